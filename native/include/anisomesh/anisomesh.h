@@ -1,0 +1,7 @@
+#pragma once
+// Umbrella header: the whole public API of the anisomesh core.
+#include "anisomesh/core/error.h"
+#include "anisomesh/core/types.h"
+#include "anisomesh/metric/metric.h"
+#include "anisomesh/controlspace/control_space.h"
+#include "anisomesh/mesh/mesh.h"

@@ -1,0 +1,36 @@
+#pragma once
+// Metric Delaunay meshing of a planar domain (or a patch's parameter domain) whose
+// contours are already discretized: boundary triangulation, boundary recovery,
+// insertion of inner nodes until edges have metric length near 1, improvement.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "anisomesh/controlspace/control_space.h"
+#include "anisomesh/mesh/mesh.h"
+
+namespace anisomesh {
+
+// One closed polygonal contour: edge i joins points[i] and points[(i + 1) % n] and
+// carries edgeRefs[i] (the Medit reference of the curve it discretizes).
+struct BoundaryLoop {
+  std::vector<Vec2> points;
+  std::vector<int> edgeRefs;
+};
+
+struct PlanarMesherOptions {
+  bool quads = false;                   // convert to a quad-dominant mesh
+  bool allQuads = false;                // then split into an all-quad mesh
+  std::int64_t maxElements = 50000000;  // element budget: ElementBudgetExceeded above it
+  int improvementPasses = 3;            // edge swaps + node smoothing rounds in the metric
+  bool boundaryOnly = false;            // stop after the boundary triangulation (section 3.2 checks)
+  // Called with a fraction in [0, 1]; returning false cancels the run (ErrorCode::Cancelled).
+  std::function<bool(double)> progress;
+};
+
+// Meshes the region inside loops[0] and outside loops[1..]; every boundary point is a
+// mesh vertex and every boundary edge is a mesh edge (with its reference).
+Mesh meshPlanarBoundary(const std::vector<BoundaryLoop>& loops, const ControlSpace& controlSpace,
+                        const PlanarMesherOptions& options = {});
+
+}  // namespace anisomesh

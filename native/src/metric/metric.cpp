@@ -1,0 +1,145 @@
+#include "anisomesh/metric/metric.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "anisomesh/core/error.h"
+
+namespace anisomesh {
+namespace {
+
+// Eigen-decomposition of a symmetric 2x2 matrix: eigenvalues l1 >= l2 and the angle
+// of l1's eigenvector, in closed form (used on every hot path, no iteration).
+struct SymEigen2 {
+  double l1, l2, theta;
+};
+
+SymEigen2 symEigen(const Mat2& m) {
+  const double a = m(0, 0), b = 0.5 * (m(0, 1) + m(1, 0)), c = m(1, 1);
+  const double mean = 0.5 * (a + c), half = 0.5 * (a - c);
+  const double r = std::hypot(half, b);
+  return {mean + r, mean - r, 0.5 * std::atan2(2.0 * b, a - c)};
+}
+
+Mat2 fromEigen(double l1, double l2, double theta) {
+  const double c = std::cos(theta), s = std::sin(theta);
+  Mat2 m;
+  m(0, 0) = l1 * c * c + l2 * s * s;
+  m(1, 1) = l1 * s * s + l2 * c * c;
+  m(0, 1) = m(1, 0) = (l1 - l2) * c * s;
+  return m;
+}
+
+std::string describe(const Mat2& m) {
+  std::ostringstream os;
+  os << "[" << m(0, 0) << ", " << m(0, 1) << "; " << m(1, 0) << ", " << m(1, 1) << "]";
+  return os.str();
+}
+
+void checkSpd(const Mat2& m, const char* what) {
+  require(m.allFinite(), ErrorCode::InvalidMetric,
+          std::string(what) + " has a NaN or infinite entry: " + describe(m));
+  const double scale = m.cwiseAbs().maxCoeff();
+  require(std::abs(m(0, 1) - m(1, 0)) <= 1e-12 * scale, ErrorCode::InvalidMetric,
+          std::string(what) + " is not symmetric: " + describe(m));
+  const SymEigen2 e = symEigen(m);
+  require(e.l2 > 0.0 && std::isfinite(1.0 / std::sqrt(e.l2)), ErrorCode::InvalidMetric,
+          std::string(what) + " is not positive definite: " + describe(m));
+}
+
+void checkSize(double h, const char* name) {
+  require(std::isfinite(h) && h > 0.0, ErrorCode::InvalidMetric,
+          std::string("metric size ") + name + " must be finite and positive, got " + std::to_string(h));
+}
+
+}  // namespace
+
+Mat2 sqrtSpd(const Mat2& m) {
+  // For SPD 2x2: sqrt(M) = (M + sqrt(det M) I) / sqrt(tr M + 2 sqrt(det M)).
+  const double s = std::sqrt(std::max(m.determinant(), 0.0));
+  const double t = std::sqrt(m.trace() + 2.0 * s);
+  Mat2 r = (m + s * Mat2::Identity()) / t;
+  r(0, 1) = r(1, 0) = 0.5 * (r(0, 1) + r(1, 0));
+  return r;
+}
+
+Metric Metric::fromSizes(double alpha, double h1, double h2) {
+  require(std::isfinite(alpha), ErrorCode::InvalidMetric, "metric direction alpha must be finite");
+  checkSize(h1, "h1");
+  checkSize(h2, "h2");
+  return Metric(fromEigen(1.0 / h1, 1.0 / h2, alpha));
+}
+
+Metric Metric::isotropic(double h) {
+  checkSize(h, "h");
+  return Metric(Mat2::Identity() / h);
+}
+
+Metric Metric::fromTensor(const Mat2& m) {
+  checkSpd(m, "metric tensor");
+  Mat2 sym = m;
+  sym(0, 1) = sym(1, 0) = 0.5 * (m(0, 1) + m(1, 0));
+  return Metric(sqrtSpd(sym));
+}
+
+Metric Metric::fromTensor(double m11, double m12, double m22) {
+  Mat2 m;
+  m << m11, m12, m12, m22;
+  return fromTensor(m);
+}
+
+Metric Metric::fromTransform(const Mat2& mt) {
+  checkSpd(mt, "metric transformation matrix");
+  Mat2 sym = mt;
+  sym(0, 1) = sym(1, 0) = 0.5 * (mt(0, 1) + mt(1, 0));
+  return Metric(sym);
+}
+
+MetricSizes Metric::sizes() const {
+  const SymEigen2 e = symEigen(mt_);
+  // The larger eigenvalue of Mt is the inverse of the smaller requested size.
+  double alpha = e.theta;
+  if (alpha <= -M_PI / 2) alpha += M_PI;
+  if (alpha > M_PI / 2) alpha -= M_PI;
+  return {alpha, 1.0 / e.l1, 1.0 / e.l2};
+}
+
+double Metric::aspectRatio() const {
+  const SymEigen2 e = symEigen(mt_);
+  return e.l1 / e.l2;
+}
+
+Metric intersect(const Metric& a, const Metric& b) {
+  // N = Mt_a^-1 M_b Mt_a^-1 is symmetric; its eigenvectors give the common basis.
+  const Mat2 ia = a.transform().inverse();
+  const Mat2 n = ia * b.tensor() * ia;
+  const SymEigen2 e = symEigen(n);
+  if (e.l2 >= 1.0) return b;  // b is at least as fine in every direction
+  if (e.l1 <= 1.0) return a;  // a is at least as fine in every direction
+  const Mat2 q = fromEigen(std::max(e.l1, 1.0), std::max(e.l2, 1.0), e.theta);
+  const Mat2 m = a.transform() * q * a.transform();
+  return Metric::fromTransformUnchecked(sqrtSpd(m));
+}
+
+Metric interpolate(const Metric& a, const Metric& b, double t) {
+  return Metric::fromTransformUnchecked((1.0 - t) * a.transform() + t * b.transform());
+}
+
+Metric weightedAverage(const Metric* metrics, const double* weights, int n) {
+  Mat2 sum = Mat2::Zero();
+  double wsum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    sum += weights[i] * metrics[i].transform();
+    wsum += weights[i];
+  }
+  require(wsum > 0.0, ErrorCode::InvalidArgument, "weighted average of metrics needs a positive total weight");
+  return Metric::fromTransformUnchecked(sum / wsum);
+}
+
+double difference(const Metric& a, const Metric& b) {
+  const Mat2 ia = a.transform().inverse();
+  const SymEigen2 e = symEigen(ia * b.tensor() * ia);
+  return std::max(std::sqrt(e.l1), 1.0 / std::sqrt(e.l2)) - 1.0;
+}
+
+}  // namespace anisomesh

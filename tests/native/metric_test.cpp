@@ -1,0 +1,141 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "anisomesh/anisomesh.h"
+
+using namespace anisomesh;
+
+namespace {
+
+Vec2 dir(double angle) { return {std::cos(angle), std::sin(angle)}; }
+
+}  // namespace
+
+TEST(Metric, FromSizesGivesRequestedLengthsAlongAxes) {
+  const double alpha = 0.3;
+  const Metric m = Metric::fromSizes(alpha, 0.01, 2.0);
+  EXPECT_NEAR(m.sizeAlong(dir(alpha)), 0.01, 1e-14);
+  EXPECT_NEAR(m.sizeAlong(dir(alpha + M_PI / 2)), 2.0, 1e-12);
+  EXPECT_NEAR(m.length(0.01 * dir(alpha)), 1.0, 1e-12);
+  EXPECT_NEAR(m.aspectRatio(), 200.0, 1e-9);
+}
+
+TEST(Metric, TransformIsSymmetricSquareRoot) {
+  const Metric m = Metric::fromSizes(-1.1, 0.5, 3.0);
+  const Mat2 mt = m.transform();
+  EXPECT_NEAR(mt(0, 1), mt(1, 0), 1e-15);
+  const Mat2 expected = [] {
+    const double c = std::cos(-1.1), s = std::sin(-1.1);
+    Mat2 r;
+    r << c, -s, s, c;
+    return Mat2(r * Eigen::Vector2d(1 / 0.25, 1 / 9.0).asDiagonal() * r.transpose());
+  }();
+  EXPECT_LT((mt * mt.transpose() - expected).norm(), 1e-12);
+  EXPECT_LT((m.tensor() - expected).norm(), 1e-12);
+}
+
+TEST(Metric, SizesRoundTrip) {
+  const Metric m = Metric::fromSizes(0.7, 0.2, 0.05);
+  const MetricSizes s = m.sizes();
+  EXPECT_NEAR(s.h1, 0.05, 1e-12);  // h1 is the smaller size
+  EXPECT_NEAR(s.h2, 0.2, 1e-12);
+  // The h1 direction is the normal of alpha = 0.7.
+  EXPECT_NEAR(std::abs(std::cos(s.alpha - (0.7 + M_PI / 2))), 1.0, 1e-12);
+  const Metric back = Metric::fromSizes(s.alpha, s.h1, s.h2);
+  EXPECT_LT((back.tensor() - m.tensor()).norm(), 1e-9 * m.tensor().norm());
+}
+
+TEST(Metric, FromTensorMatchesFromSizes) {
+  const Metric a = Metric::fromSizes(0.4, 0.1, 1.0);
+  const Mat2 t = a.tensor();
+  const Metric b = Metric::fromTensor(t(0, 0), t(0, 1), t(1, 1));
+  EXPECT_LT((a.transform() - b.transform()).norm(), 1e-10);
+}
+
+TEST(Metric, RejectsBadSizes) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (double h : {0.0, -1.0, nan, inf}) {
+    try {
+      Metric::fromSizes(0.0, h, 1.0);
+      FAIL() << "accepted h1 = " << h;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::InvalidMetric);
+      EXPECT_NE(std::string(e.what()).find("h1"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(Metric::fromSizes(nan, 1.0, 1.0), Error);
+  EXPECT_THROW(Metric::isotropic(-2.0), Error);
+}
+
+TEST(Metric, RejectsNonSpdTensor) {
+  try {
+    Metric::fromTensor(1.0, 2.0, 1.0);  // eigenvalues 3 and -1
+    FAIL() << "accepted an indefinite tensor";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidMetric);
+    EXPECT_NE(std::string(e.what()).find("positive definite"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(Metric::fromTensor(0.0, 0.0, 1.0), Error);
+  EXPECT_THROW(Metric::fromTensor(-1.0, 0.0, -1.0), Error);
+  Mat2 asym;
+  asym << 1.0, 0.5, 0.0, 1.0;
+  EXPECT_THROW(Metric::fromTensor(asym), Error);
+  EXPECT_THROW(Metric::fromTensor(std::numeric_limits<double>::quiet_NaN(), 0.0, 1.0), Error);
+}
+
+TEST(Metric, IntersectionLiesInsideBothUnitBalls) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI), logh(std::log(1e-3), std::log(10.0));
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Metric a = Metric::fromSizes(angle(rng), std::exp(logh(rng)), std::exp(logh(rng)));
+    const Metric b = Metric::fromSizes(angle(rng), std::exp(logh(rng)), std::exp(logh(rng)));
+    const Metric c = intersect(a, b);
+    for (int k = 0; k < 64; ++k) {
+      const Vec2 d = dir(2 * M_PI * k / 64.0);
+      // The result asks for lengths no larger than either input, in every direction.
+      EXPECT_LE(c.sizeAlong(d), a.sizeAlong(d) * (1 + 1e-9));
+      EXPECT_LE(c.sizeAlong(d), b.sizeAlong(d) * (1 + 1e-9));
+    }
+    // And it is the largest such ellipse along the common eigen-directions: it touches
+    // one of the two in at least one direction.
+    double touch = 1e300;
+    for (int k = 0; k < 4000; ++k) {
+      const Vec2 d = dir(M_PI * k / 4000.0);
+      touch = std::min(touch, std::min(a.sizeAlong(d), b.sizeAlong(d)) / c.sizeAlong(d));
+    }
+    EXPECT_NEAR(touch, 1.0, 1e-3);
+  }
+}
+
+TEST(Metric, IntersectionReturnsTheSmallerMetric) {
+  const Metric small = Metric::fromSizes(0.3, 0.1, 0.2);
+  const Metric large = Metric::fromSizes(1.2, 0.5, 0.9);
+  EXPECT_LT((intersect(small, large).tensor() - small.tensor()).norm(), 1e-9 * small.tensor().norm());
+  EXPECT_LT((intersect(large, small).tensor() - small.tensor()).norm(), 1e-9 * small.tensor().norm());
+  // Crossed stretches give the isotropic fine metric.
+  const Metric h = Metric::fromSizes(0.0, 0.1, 1.0), v = Metric::fromSizes(M_PI / 2, 0.1, 1.0);
+  const Metric c = intersect(h, v);
+  EXPECT_NEAR(c.sizeAlong(dir(0)), 0.1, 1e-12);
+  EXPECT_NEAR(c.sizeAlong(dir(M_PI / 2)), 0.1, 1e-12);
+}
+
+TEST(Metric, InterpolationActsOnTransform) {
+  const Metric a = Metric::fromSizes(0.0, 1.0, 1.0), b = Metric::fromSizes(0.0, 0.5, 0.25);
+  const Metric mid = interpolate(a, b, 0.5);
+  EXPECT_LT((mid.transform() - 0.5 * (a.transform() + b.transform())).norm(), 1e-15);
+  EXPECT_NEAR(mid.sizeAlong(dir(0)), 1.0 / 1.5, 1e-14);
+  EXPECT_LT((interpolate(a, b, 0.0).transform() - a.transform()).norm(), 1e-15);
+  EXPECT_LT((interpolate(a, b, 1.0).transform() - b.transform()).norm(), 1e-15);
+}
+
+TEST(Metric, DifferenceIsZeroOnlyForEqualMetrics) {
+  const Metric a = Metric::fromSizes(0.2, 0.1, 0.4);
+  EXPECT_NEAR(difference(a, a), 0.0, 1e-12);
+  EXPECT_NEAR(difference(a, a.scaled(2.0)), 1.0, 1e-12);  // lengths double
+  EXPECT_NEAR(difference(a, a.scaled(0.5)), 1.0, 1e-12);  // lengths halve
+  EXPECT_GT(difference(a, Metric::fromSizes(0.25, 0.1, 0.4)), 0.01);
+}
