@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Every test of anisomesh, in order: native (ctest), native under AddressSanitizer +
+# UndefinedBehaviorSanitizer, node (the npm package), browser (headless Chromium).
+# Builds what is needed, incrementally, into build/.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+cd "$root"
+jobs="$(nproc)"
+start=$SECONDS
+stage() { echo; echo "=== $1 ($((SECONDS - start)) s)"; }
+logs="$root/build/test-logs"
+mkdir -p "$logs"
+rm -f "$logs"/*.log
+# Runs a test layer, keeping its output to count passes and failures at the end.
+run_layer() { local name="$1"; shift; "$@" 2>&1 | tee "$logs/$name.log"; }
+
+stage "native: build and ctest"
+cmake -S . -B build/native -DCMAKE_BUILD_TYPE=Release -DANISOMESH_WERROR=ON >/dev/null
+cmake --build build/native -j"$jobs"
+run_layer native bash -c 'cd build/native && ctest --output-on-failure -j"$0"' "$jobs"
+
+stage "native under ASan + UBSan: build and ctest"
+cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DANISOMESH_SANITIZE=ON \
+  -DANISOMESH_BUILD_BENCHMARKS=OFF >/dev/null
+cmake --build build/sanitize -j"$jobs"
+run_layer sanitize bash -c 'cd build/sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j"$0"' "$jobs"
+
+stage "wasm: build"
+bash wasm/build.sh
+
+stage "node: node --test tests/node"
+run_layer node node --test tests/node/
+
+stage "browser: node --test tests/browser (headless Chromium)"
+run_layer browser node --test --test-concurrency=1 tests/browser/
+
+# One closing line for all layers: ctest "... N tests failed out of M", node "# pass N".
+passed=0; failed=0
+for layer in native sanitize; do
+  line=$(grep -E 'tests passed, [0-9]+ tests? failed out of [0-9]+' "$logs/$layer.log" | tail -1)
+  total=$(sed -E 's/.*out of ([0-9]+).*/\1/' <<<"$line"); bad=$(sed -E 's/.* ([0-9]+) tests? failed.*/\1/' <<<"$line")
+  echo "$layer (ctest): $((total - bad)) passed, $bad failed"
+  passed=$((passed + total - bad)); failed=$((failed + bad))
+done
+for layer in node browser; do
+  p=$(grep -E '^# pass [0-9]+' "$logs/$layer.log" | tail -1 | awk '{print $3}')
+  f=$(grep -E '^# fail [0-9]+' "$logs/$layer.log" | tail -1 | awk '{print $3}')
+  echo "$layer (node --test): $p passed, $f failed"
+  passed=$((passed + p)); failed=$((failed + f))
+done
+echo "all test layers ran in $((SECONDS - start)) s"
+echo "$passed passed, $failed failed"

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Builds the WebAssembly module into wasm/dist/ (incremental: a second run only
+# relinks what changed). Needs Debian's emscripten (see .ci/setup.sh).
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="$root/build/wasm"
+export NODE_PATH=/usr/share/nodejs   # emcc 3.1.6 finds acorn there
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  emcmake cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_CROSSCOMPILING_EMULATOR=/usr/bin/node \
+    -DEigen3_DIR=/usr/share/eigen3/cmake \
+    -DANISOMESH_BUILD_TESTS=OFF -DANISOMESH_BUILD_BENCHMARKS=OFF >/dev/null
+fi
+cmake --build "$build" -j"$(nproc)"
+ls -l "$root/wasm/dist/"anisomesh-core.* | awk '{print "built " $9 " (" $5 " bytes)"}'
