@@ -45,11 +45,11 @@ Mat2 SurfaceDerivatives::firstFundamentalForm() const {
 Surface::Surface(std::string name, const Box2& domain) : name_(std::move(name)) { setDomain(domain); }
 
 void Surface::setDomain(const Box2& domain) {
-  require(domain.lo.allFinite() && domain.hi.allFinite() && domain.lo.x() < domain.hi.x() &&
-              domain.lo.y() < domain.hi.y(),
-          ErrorCode::InvalidDomain,
-          "surface '" + name_ + "': parameter domain [" + fmt(domain.lo.x()) + ", " + fmt(domain.hi.x()) +
-              "] x [" + fmt(domain.lo.y()) + ", " + fmt(domain.hi.y()) + "] is empty or not finite");
+  if (!(domain.lo.allFinite() && domain.hi.allFinite() && domain.lo.x() < domain.hi.x() &&
+        domain.lo.y() < domain.hi.y()))
+    throw Error(ErrorCode::InvalidDomain, "surface '" + name_ + "': parameter domain [" + fmt(domain.lo.x()) +
+                                              ", " + fmt(domain.hi.x()) + "] x [" + fmt(domain.lo.y()) +
+                                              ", " + fmt(domain.hi.y()) + "] is empty or not finite");
   domain_ = domain;
 }
 
@@ -58,16 +58,16 @@ std::string Surface::where(const Vec2& uv) const {
 }
 
 void Surface::checkFinite(const SurfaceDerivatives& d, const Vec2& uv) const {
-  require(finite(d.p) && finite(d.su) && finite(d.sv) && finite(d.suu) && finite(d.suv) && finite(d.svv),
-          ErrorCode::InvalidSurface, "NaN or infinite point or derivative on " + where(uv));
+  if (!(finite(d.p) && finite(d.su) && finite(d.sv) && finite(d.suu) && finite(d.suv) && finite(d.svv)))
+    throw Error(ErrorCode::InvalidSurface, "NaN or infinite point or derivative on " + where(uv));
 }
 
 // --- Plane -------------------------------------------------------------------------------
 
 PlaneSurface::PlaneSurface(const Vec3& origin, const Vec3& a1, const Vec3& a2, const Box2& domain)
     : Surface("plane", domain), o_(origin), a1_(a1), a2_(a2) {
-  require(origin.allFinite() && a1.allFinite() && a2.allFinite() && a1.cross(a2).norm() > 0.0,
-          ErrorCode::InvalidSurface, "surface 'plane': axes must be finite and not parallel");
+  if (!(origin.allFinite() && a1.allFinite() && a2.allFinite() && a1.cross(a2).norm() > 0.0))
+    throw Error(ErrorCode::InvalidSurface, "surface 'plane': axes must be finite and not parallel");
 }
 
 Vec3 PlaneSurface::point(const Vec2& uv) const { return o_ + uv.x() * a1_ + uv.y() * a2_; }
@@ -91,7 +91,7 @@ HeightFieldSurface::HeightFieldSurface(const std::string& f, const Box2& domain,
 
 Vec3 HeightFieldSurface::point(const Vec2& uv) const {
   const Vec3 p(uv.x(), uv.y(), f_.value(uv.x(), uv.y()));
-  require(p.allFinite(), ErrorCode::InvalidSurface, "z(u,v) is NaN or infinite on " + where(uv));
+  if (!(p.allFinite())) throw Error(ErrorCode::InvalidSurface, "z(u,v) is NaN or infinite on " + where(uv));
   return p;
 }
 
@@ -112,8 +112,9 @@ SurfaceDerivatives HeightFieldSurface::derivatives(const Vec2& uv) const {
 
 CylinderSurface::CylinderSurface(double radius, const Vec3& center, const Box2& domain)
     : Surface("cylinder", domain), r_(radius), c_(center) {
-  require(std::isfinite(radius) && radius > 0.0 && center.allFinite(), ErrorCode::InvalidArgument,
-          "surface 'cylinder': radius must be finite and positive, got " + fmt(radius));
+  if (!(std::isfinite(radius) && radius > 0.0 && center.allFinite()))
+    throw Error(ErrorCode::InvalidArgument,
+                "surface 'cylinder': radius must be finite and positive, got " + fmt(radius));
 }
 
 Vec3 CylinderSurface::point(const Vec2& uv) const {
@@ -135,8 +136,9 @@ SurfaceDerivatives CylinderSurface::derivatives(const Vec2& uv) const {
 
 SphereSurface::SphereSurface(double radius, const Vec3& center, const Box2& domain)
     : Surface("sphere", domain), r_(radius), c_(center) {
-  require(std::isfinite(radius) && radius > 0.0 && center.allFinite(), ErrorCode::InvalidArgument,
-          "surface 'sphere': radius must be finite and positive, got " + fmt(radius));
+  if (!(std::isfinite(radius) && radius > 0.0 && center.allFinite()))
+    throw Error(ErrorCode::InvalidArgument,
+                "surface 'sphere': radius must be finite and positive, got " + fmt(radius));
 }
 
 Vec3 SphereSurface::point(const Vec2& uv) const {
@@ -161,11 +163,11 @@ SurfaceDerivatives SphereSurface::derivatives(const Vec2& uv) const {
 
 TorusSurface::TorusSurface(double majorRadius, double minorRadius, const Vec3& center, const Box2& domain)
     : Surface("torus", domain), R_(majorRadius), r_(minorRadius), c_(center) {
-  require(std::isfinite(majorRadius) && std::isfinite(minorRadius) && minorRadius > 0.0 &&
-              majorRadius > minorRadius && center.allFinite(),
-          ErrorCode::InvalidArgument,
-          "surface 'torus': need finite radii with major > minor > 0, got " + fmt(majorRadius) + " and " +
-              fmt(minorRadius));
+  if (!(std::isfinite(majorRadius) && std::isfinite(minorRadius) && minorRadius > 0.0 &&
+        majorRadius > minorRadius && center.allFinite()))
+    throw Error(ErrorCode::InvalidArgument,
+                "surface 'torus': need finite radii with major > minor > 0, got " + fmt(majorRadius) +
+                    " and " + fmt(minorRadius));
 }
 
 Vec3 TorusSurface::point(const Vec2& uv) const {
@@ -211,11 +213,13 @@ void bernstein3(double t, double b[4], double db[4], double ddb[4]) {
 
 }  // namespace
 
-BezierPatchSurface::BezierPatchSurface(const std::array<std::array<Vec3, 4>, 4>& controlPoints, std::string name)
+BezierPatchSurface::BezierPatchSurface(const std::array<std::array<Vec3, 4>, 4>& controlPoints,
+                                       std::string name)
     : Surface(std::move(name), Box2{{0.0, 0.0}, {1.0, 1.0}}), cp_(controlPoints) {
   for (const auto& row : cp_)
     for (const auto& p : row)
-      require(p.allFinite(), ErrorCode::InvalidSurface, "surface '" + this->name() + "': control point not finite");
+      if (!(p.allFinite()))
+        throw Error(ErrorCode::InvalidSurface, "surface '" + this->name() + "': control point not finite");
 }
 
 Vec3 BezierPatchSurface::point(const Vec2& uv) const { return derivatives(uv).p; }
@@ -289,31 +293,39 @@ BasisEval evalBasis(const std::vector<double>& k, int p, int count, double t) {
     const int i = s - p + r;
     out.n[r] = N(i, p);
     out.dn[r] = dN(i, p);
-    out.ddn[r] = p * (safeDiv(dN(i, p - 1), k[i + p] - k[i]) - safeDiv(dN(i + 1, p - 1), k[i + p + 1] - k[i + 1]));
+    out.ddn[r] =
+        p * (safeDiv(dN(i, p - 1), k[i + p] - k[i]) - safeDiv(dN(i + 1, p - 1), k[i + p + 1] - k[i + 1]));
   }
   return out;
 }
 
 }  // namespace
 
-BSplinePatchSurface::BSplinePatchSurface(std::vector<std::vector<Vec3>> controlPoints, int degreeU, int degreeV,
-                                         std::string name)
-    : Surface(std::move(name), Box2{{0.0, 0.0}, {1.0, 1.0}}), cp_(std::move(controlPoints)), p_(degreeU), q_(degreeV) {
-  require(p_ >= 1 && p_ <= kMaxDegree && q_ >= 1 && q_ <= kMaxDegree, ErrorCode::InvalidArgument,
-          "surface '" + this->name() + "': degrees must be in [1, 7]");
+BSplinePatchSurface::BSplinePatchSurface(std::vector<std::vector<Vec3>> controlPoints, int degreeU,
+                                         int degreeV, std::string name)
+    : Surface(std::move(name), Box2{{0.0, 0.0}, {1.0, 1.0}}),
+      cp_(std::move(controlPoints)),
+      p_(degreeU),
+      q_(degreeV) {
+  if (!(p_ >= 1 && p_ <= kMaxDegree && q_ >= 1 && q_ <= kMaxDegree))
+    throw Error(ErrorCode::InvalidArgument, "surface '" + this->name() + "': degrees must be in [1, 7]");
   const int m = static_cast<int>(cp_.size());
-  require(m >= p_ + 1, ErrorCode::InvalidArgument,
-          "surface '" + this->name() + "': need at least degree + 1 = " + std::to_string(p_ + 1) +
-              " rows of control points, got " + std::to_string(m));
+  if (!(m >= p_ + 1))
+    throw Error(ErrorCode::InvalidArgument, "surface '" + this->name() +
+                                                "': need at least degree + 1 = " + std::to_string(p_ + 1) +
+                                                " rows of control points, got " + std::to_string(m));
   const int n = static_cast<int>(cp_[0].size());
-  require(n >= q_ + 1, ErrorCode::InvalidArgument,
-          "surface '" + this->name() + "': need at least degree + 1 = " + std::to_string(q_ + 1) +
-              " columns of control points, got " + std::to_string(n));
+  if (!(n >= q_ + 1))
+    throw Error(ErrorCode::InvalidArgument, "surface '" + this->name() +
+                                                "': need at least degree + 1 = " + std::to_string(q_ + 1) +
+                                                " columns of control points, got " + std::to_string(n));
   for (const auto& row : cp_) {
-    require(static_cast<int>(row.size()) == n, ErrorCode::InvalidArgument,
-            "surface '" + this->name() + "': control point rows have different lengths");
+    if (!(static_cast<int>(row.size()) == n))
+      throw Error(ErrorCode::InvalidArgument,
+                  "surface '" + this->name() + "': control point rows have different lengths");
     for (const auto& p : row)
-      require(p.allFinite(), ErrorCode::InvalidSurface, "surface '" + this->name() + "': control point not finite");
+      if (!(p.allFinite()))
+        throw Error(ErrorCode::InvalidSurface, "surface '" + this->name() + "': control point not finite");
   }
   ku_ = clampedUniformKnots(m, p_);
   kv_ = clampedUniformKnots(n, q_);
@@ -343,7 +355,8 @@ SurfaceDerivatives BSplinePatchSurface::derivatives(const Vec2& uv) const {
 
 // --- Expression surface -----------------------------------------------------------------
 
-ExpressionSurface::ExpressionSurface(Expression x, Expression y, Expression z, const Box2& domain, std::string name)
+ExpressionSurface::ExpressionSurface(Expression x, Expression y, Expression z, const Box2& domain,
+                                     std::string name)
     : Surface(std::move(name), domain), f_{std::move(x), std::move(y), std::move(z)} {}
 
 ExpressionSurface::ExpressionSurface(const std::string& x, const std::string& y, const std::string& z,
@@ -356,8 +369,9 @@ Vec3 ExpressionSurface::point(const Vec2& uv) const {
   Vec3 p;
   for (int c = 0; c < 3; ++c) {
     p[c] = f_[c].value(uv.x(), uv.y());
-    require(std::isfinite(p[c]), ErrorCode::InvalidSurface,
-            std::string(1, "xyz"[c]) + "(u,v) = " + f_[c].text() + " is NaN or infinite on " + where(uv));
+    if (!(std::isfinite(p[c])))
+      throw Error(ErrorCode::InvalidSurface, std::string(1, "xyz"[c]) + "(u,v) = " + f_[c].text() +
+                                                 " is NaN or infinite on " + where(uv));
   }
   return p;
 }
@@ -366,11 +380,10 @@ SurfaceDerivatives ExpressionSurface::derivatives(const Vec2& uv) const {
   SurfaceDerivatives d;
   for (int c = 0; c < 3; ++c) {
     const Dual2 r = f_[c].evaluate(uv.x(), uv.y());
-    require(std::isfinite(r.f) && std::isfinite(r.fu) && std::isfinite(r.fv) && std::isfinite(r.fuu) &&
-                std::isfinite(r.fuv) && std::isfinite(r.fvv),
-            ErrorCode::InvalidSurface,
-            std::string(1, "xyz"[c]) + "(u,v) = " + f_[c].text() +
-                " or its derivatives are NaN or infinite on " + where(uv));
+    if (!(std::isfinite(r.f) && std::isfinite(r.fu) && std::isfinite(r.fv) && std::isfinite(r.fuu) &&
+          std::isfinite(r.fuv) && std::isfinite(r.fvv)))
+      throw Error(ErrorCode::InvalidSurface, std::string(1, "xyz"[c]) + "(u,v) = " + f_[c].text() +
+                                                 " or its derivatives are NaN or infinite on " + where(uv));
     d.p[c] = r.f;
     d.su[c] = r.fu;
     d.sv[c] = r.fv;
@@ -382,7 +395,8 @@ SurfaceDerivatives ExpressionSurface::derivatives(const Vec2& uv) const {
 }
 
 std::shared_ptr<ExpressionSurface> paperP2(const Box2& domain) {
-  return std::make_shared<ExpressionSurface>("u", "v", "1.5*exp(-0.001*(u^2+v^2))*sin(2*u)*cos(0.2*v)", domain, "p2");
+  return std::make_shared<ExpressionSurface>("u", "v", "1.5*exp(-0.001*(u^2+v^2))*sin(2*u)*cos(0.2*v)",
+                                             domain, "p2");
 }
 
 // --- differential geometry ---------------------------------------------------------------
@@ -397,14 +411,17 @@ namespace {
 
 Vec3 normalOrThrow(const SurfaceDerivatives& d, const Surface& s, const Vec2& uv) {
   const Vec3 c = d.su.cross(d.sv);
-  require(!isDegenerate(d), ErrorCode::InvalidSurface,
-          "degenerate parameterization (|Su x Sv| = " + fmt(c.norm()) + ", no normal) on " + s.where(uv));
+  if (!(!isDegenerate(d)))
+    throw Error(ErrorCode::InvalidSurface, "degenerate parameterization (|Su x Sv| = " + fmt(c.norm()) +
+                                               ", no normal) on " + s.where(uv));
   return c.normalized();
 }
 
 }  // namespace
 
-Mat2 firstFundamentalForm(const Surface& s, const Vec2& uv) { return s.derivatives(uv).firstFundamentalForm(); }
+Mat2 firstFundamentalForm(const Surface& s, const Vec2& uv) {
+  return s.derivatives(uv).firstFundamentalForm();
+}
 
 Vec3 unitNormal(const Surface& s, const Vec2& uv) { return normalOrThrow(s.derivatives(uv), s, uv); }
 

@@ -22,6 +22,15 @@ Mat2 symmetrized(const Mat2& m) {
   return s;
 }
 
+// Metric from a tensor symmetric by construction: a cheap SPD check on the hot path,
+// Metric::fromTensor (with its detailed InvalidMetric message) only when it fails.
+Metric metricFromSymmetric(const Mat2& m) {
+  const Mat2 mt = sqrtSpd(m);
+  if (m.allFinite() && m(0, 0) > 0.0 && m.determinant() > 0.0 && mt.allFinite())
+    return Metric::fromTransformUnchecked(mt);
+  return Metric::fromTensor(m);
+}
+
 // Sizes along the two principal directions with the d_max cap applied.
 void cappedSizes(const SurfaceCurvature& c, const SurfaceMetricOptions& o, double& h1, double& h2) {
   h1 = curvatureSize(c.k1, o);
@@ -36,19 +45,20 @@ Metric curvatureParameterMetric(const SurfaceCurvature& c, const SurfaceMetricOp
   cappedSizes(c, o, h1, h2);
   const Vec2 a1 = c.first * c.uvDir1, a2 = c.first * c.uvDir2;
   const Mat2 m = a1 * a1.transpose() / (h1 * h1) + a2 * a2.transpose() / (h2 * h2);
-  return Metric::fromTensor(symmetrized(m));
+  return metricFromSymmetric(symmetrized(m));
 }
 
 }  // namespace
 
 void validate(const SurfaceMetricOptions& o) {
-  require(std::isfinite(o.chordTolerance) && std::isfinite(o.angleTolerance), ErrorCode::InvalidArgument,
-          "surface metric: tolerances must be finite");
-  require(std::isfinite(o.hmin) && o.hmin > 0.0 && std::isfinite(o.hmax) && o.hmax >= o.hmin,
-          ErrorCode::InvalidArgument,
-          "surface metric: need 0 < hmin <= hmax, got hmin = " + fmt(o.hmin) + ", hmax = " + fmt(o.hmax));
-  require(std::isfinite(o.maxAspectRatio) && o.maxAspectRatio >= 1.0, ErrorCode::InvalidArgument,
-          "surface metric: maxAspectRatio must be >= 1, got " + fmt(o.maxAspectRatio));
+  if (!(std::isfinite(o.chordTolerance) && std::isfinite(o.angleTolerance)))
+    throw Error(ErrorCode::InvalidArgument, "surface metric: tolerances must be finite");
+  if (!(std::isfinite(o.hmin) && o.hmin > 0.0 && std::isfinite(o.hmax) && o.hmax >= o.hmin))
+    throw Error(ErrorCode::InvalidArgument, "surface metric: need 0 < hmin <= hmax, got hmin = " +
+                                                fmt(o.hmin) + ", hmax = " + fmt(o.hmax));
+  if (!(std::isfinite(o.maxAspectRatio) && o.maxAspectRatio >= 1.0))
+    throw Error(ErrorCode::InvalidArgument,
+                "surface metric: maxAspectRatio must be >= 1, got " + fmt(o.maxAspectRatio));
 }
 
 double curvatureSize(double k, const SurfaceMetricOptions& o) {
@@ -84,7 +94,7 @@ TangentMetric requestedMetric3D(const Surface& s, const Vec2& uv, const SurfaceM
 
 Metric pullBackMetric(const Mat3& m3, const SurfaceDerivatives& d) {
   const Eigen::Matrix<double, 3, 2> j = d.jacobian();
-  return Metric::fromTensor(symmetrized(j.transpose() * m3 * j));
+  return metricFromSymmetric(symmetrized(j.transpose() * m3 * j));
 }
 
 Metric parameterMetric(const Surface& s, const Vec2& uv, const SurfaceMetricOptions& options) {
@@ -94,7 +104,8 @@ Metric parameterMetric(const Surface& s, const Vec2& uv, const SurfaceMetricOpti
 
 Mat2 parameterizationMatrix(const Surface& s, const Vec2& uv) {
   const Mat2 mp = sqrtSpd(s.derivatives(uv).firstFundamentalForm());
-  require(mp.allFinite(), ErrorCode::InvalidSurface, "parameterization matrix not finite on " + s.where(uv));
+  if (!(mp.allFinite()))
+    throw Error(ErrorCode::InvalidSurface, "parameterization matrix not finite on " + s.where(uv));
   return mp;
 }
 
@@ -103,7 +114,7 @@ Mat2 parameterizationMatrix(const Surface& s, const Vec2& uv) {
 SurfaceCurvatureControlSpace::SurfaceCurvatureControlSpace(std::shared_ptr<const Surface> surface,
                                                            const SurfaceMetricOptions& options)
     : surface_(std::move(surface)), options_(options) {
-  require(surface_ != nullptr, ErrorCode::InvalidArgument, "surface control space: no surface");
+  if (!(surface_ != nullptr)) throw Error(ErrorCode::InvalidArgument, "surface control space: no surface");
   validate(options_);
 }
 
@@ -156,7 +167,8 @@ double triangleQuality3D(const Surface& s, const Vec2& a, const Vec2& b, const V
 }
 
 double chordDeviation(const Surface& s, const Vec2& a, const Vec2& b, const ChordDeviationOptions& options) {
-  require(options.samples >= 1, ErrorCode::InvalidArgument, "chord deviation: samples must be >= 1");
+  if (!(options.samples >= 1))
+    throw Error(ErrorCode::InvalidArgument, "chord deviation: samples must be >= 1");
   const Vec3 pa = s.point(a), pb = s.point(b), e = pb - pa;
   const double ee = e.squaredNorm();
   double worst = 0.0;
