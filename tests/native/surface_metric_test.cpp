@@ -132,6 +132,9 @@ TEST(SurfaceMetric, DegeneratePointIsInvalidSurfaceWithThePoint) {
   const SurfaceCurvatureControlSpace cs(s, SurfaceMetricOptions{});
   EXPECT_THROW(cs.metricAt({0.3, kPi / 2}), Error);
   EXPECT_NO_THROW(cs.metricAt({0.3, 1.0}));
+  EXPECT_FALSE(cs.tryMetricAt({0.3, kPi / 2}).has_value());
+  ASSERT_TRUE(cs.tryMetricAt({0.3, 1.0}).has_value());
+  EXPECT_LT((cs.tryMetricAt({0.3, 1.0})->tensor() - cs.metricAt({0.3, 1.0}).tensor()).norm(), 1e-15);
 }
 
 TEST(SurfaceMetric, ParameterizationMatrixMeasures3DLength) {
@@ -218,4 +221,22 @@ TEST(SurfaceMetric, OptionsAreValidated) {
   EXPECT_FALSE(bad([](SurfaceMetricOptions&) {}));
   EXPECT_THROW(SurfaceCurvatureControlSpace(nullptr, SurfaceMetricOptions{}), Error);
   EXPECT_THROW(chordDeviation(SphereSurface(1), {0, 0}, {1, 0}, ChordDeviationOptions{0}), Error);
+}
+
+TEST(SurfaceMetric, TangentBasisMetricPullsBackToTheParameterMetric) {
+  const TorusSurface s(3.0, 1.0);
+  SurfaceMetricOptions o = looseBounds(1e-3);
+  o.maxAspectRatio = 1.5;
+  for (const Vec2& uv : {Vec2(0.3, 0.4), Vec2(2.0, 3.0), Vec2(5.0, 1.2)}) {
+    const TangentMetric t = requestedMetric3D(s, uv, o);
+    const Metric a = pullBackTangentMetric(t.inTangentBasis(), t.dir1, t.dir2, s.derivatives(uv));
+    const Metric b = parameterMetric(s, uv, o);
+    const Metric c = pullBackMetric(t.tensor(), s.derivatives(uv));
+    EXPECT_LT((a.tensor() - b.tensor()).norm(), 1e-10 * b.tensor().norm());
+    EXPECT_LT((c.tensor() - b.tensor()).norm(), 1e-10 * b.tensor().norm());
+    // Along each principal direction the 3D size is h_i.
+    const SurfaceCurvature k = curvature(s, uv);
+    EXPECT_NEAR(1.0 / b.length(k.uvDir1), t.h1, 1e-10 * t.h1);
+    EXPECT_NEAR(1.0 / b.length(k.uvDir2), t.h2, 1e-10 * t.h2);
+  }
 }

@@ -97,6 +97,14 @@ Metric pullBackMetric(const Mat3& m3, const SurfaceDerivatives& d) {
   return metricFromSymmetric(symmetrized(j.transpose() * m3 * j));
 }
 
+Metric pullBackTangentMetric(const Metric& m, const Vec3& t1, const Vec3& t2, const SurfaceDerivatives& d) {
+  Eigen::Matrix<double, 2, 3> bt;  // B^T
+  bt.row(0) = t1.transpose();
+  bt.row(1) = t2.transpose();
+  const Mat2 a = bt * d.jacobian();  // B^T J: tangent-basis coordinates of Su, Sv
+  return metricFromSymmetric(symmetrized(a.transpose() * m.tensor() * a));
+}
+
 Metric parameterMetric(const Surface& s, const Vec2& uv, const SurfaceMetricOptions& options) {
   validate(options);
   return curvatureParameterMetric(curvature(s, uv), options);
@@ -130,6 +138,15 @@ Metric SurfaceCurvatureControlSpace::metricAt(const Vec2& p) const {
   if (user2d_) m = intersect(m, user2d_(q));
   if (user3d_) m = intersect(m, pullBackMetric(user3d_(d.p), d));
   return m;
+}
+
+std::optional<Metric> SurfaceCurvatureControlSpace::tryMetricAt(const Vec2& p) const {
+  try {
+    return metricAt(p);
+  } catch (const Error& e) {
+    if (e.code() == ErrorCode::InvalidSurface) return std::nullopt;
+    throw;
+  }
 }
 
 Mat2 SurfaceCurvatureControlSpace::parameterizationAt(const Vec2& p) const {

@@ -15,6 +15,7 @@
 // of its 3D image J du (for an isotropic size h, M_uv = G / h^2).
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "anisomesh/controlspace/control_space.h"
 #include "anisomesh/geometry/surface.h"
@@ -51,6 +52,8 @@ struct TangentMetric {
   Mat3 tensor() const;
   // Its symmetric square root sum_i e_i e_i^T / h_i: |transform() x| is the metric length of x.
   Mat3 transform() const;
+  // The restriction to the tangent plane as a 2x2 metric in the basis (dir1, dir2): diag(1/h1^2, 1/h2^2).
+  Metric inTangentBasis() const { return Metric::fromSizes(0.0, h1, h2); }
 };
 
 // The requested 3D metric at uv from the principal curvatures; throws InvalidSurface at a degenerate point.
@@ -58,6 +61,10 @@ TangentMetric requestedMetric3D(const Surface& s, const Vec2& uv, const SurfaceM
 
 // Pull-back of a 3D metric tensor into (u, v): J^T M3 J; throws InvalidMetric if the result is not SPD.
 Metric pullBackMetric(const Mat3& m3, const SurfaceDerivatives& d);
+
+// Pull-back of a tangent-plane metric given as a 2x2 metric in the orthonormal tangent
+// basis (t1, t2): J^T B M B^T J with B = [t1 t2].
+Metric pullBackTangentMetric(const Metric& m, const Vec3& t1, const Vec3& t2, const SurfaceDerivatives& d);
 
 // The curvature metric in the parameter plane at uv (requestedMetric3D pulled back through J).
 Metric parameterMetric(const Surface& s, const Vec2& uv, const SurfaceMetricOptions& options);
@@ -82,6 +89,9 @@ class SurfaceCurvatureControlSpace : public ControlSpace {
   void setUserMetric3D(Metric3Function f) { user3d_ = std::move(f); }
 
   Metric metricAt(const Vec2& p) const override;
+  // metricAt(p), or nothing where the curvature is unavailable (degenerate or non-finite
+  // parameterization), for samplers that extrapolate there (section 3.1).
+  std::optional<Metric> tryMetricAt(const Vec2& p) const;
   Mat2 parameterizationAt(const Vec2& p) const override;
   Box2 bounds() const override { return surface_->domain(); }
 
