@@ -16,7 +16,11 @@
 // with forward-mode automatic differentiation on second-order dual numbers, so the
 // gradient and Hessian in (u, v) are exact (up to rounding), not finite differences.
 // Evaluation uses a fixed-size stack on the call stack: no allocation, thread-safe,
-// deterministic.
+// deterministic. Conventions: a^c with a constant exponent c works for negative a
+// (integer c); a^b with b depending on (u, v) goes through exp(b log a) and needs a > 0;
+// abs, min and max take the derivatives of the selected branch (abs'(0) = 0, ties pick
+// the first argument). Domain errors (sqrt(-1), log(0), 1/0) give NaN or infinity,
+// which callers such as the surfaces report as InvalidSurface.
 #include <cstdint>
 #include <map>
 #include <string>

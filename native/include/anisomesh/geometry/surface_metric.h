@@ -7,8 +7,9 @@
 // in model units): an arc of radius 1/|k| spanned by a chord of length h deviates from
 // it by the sagitta s ~ |k| h^2 / 8, so h = sqrt(8 tol / |k|). With an angle tolerance
 // a (radians) the chord may turn the tangent by at most a: h = a / |k|. The smaller
-// one wins, then h is clamped to [hmin, hmax] and the larger of the two sizes is capped
-// at maxAspectRatio times the smaller (the paper's d_max).
+// one wins (a chord tolerance relative to the radius of curvature, tol = t / |k|, is
+// the angle criterion with a = sqrt(8 t)). Then h is clamped to [hmin, hmax] and the
+// larger of the two sizes is capped at maxAspectRatio times the smaller (the paper's d_max).
 //
 // Mapping into (u, v): a 3D tangent metric M3 pulls back through J = [Su Sv] as
 // M_uv = J^T M3 J, so the metric length of a parameter vector du equals the M3 length
