@@ -294,3 +294,24 @@ TEST(SurfaceGeometry, BadInputsAreTypedErrors) {
   EXPECT_EQ(code([] { BSplinePatchSurface(curvedBSplinePoints(3, 5)); }), ErrorCode::InvalidArgument);
   EXPECT_EQ(code([] { BSplinePatchSurface(curvedBSplinePoints(5, 5), 0, 3); }), ErrorCode::InvalidArgument);
 }
+
+TEST(SurfaceGeometry, HeightFieldCurvatureMatchesGraphFormulas) {
+  // For z = f(u, v): K = (fuu fvv - fuv^2) / W^4 and
+  // H = ((1 + fv^2) fuu - 2 fu fv fuv + (1 + fu^2) fvv) / (2 W^3), W^2 = 1 + fu^2 + fv^2,
+  // with the upward normal (-fu, -fv, 1) / W, which is Su x Sv / |Su x Sv| here.
+  const auto p2 = paperP2();
+  const Expression f = Expression::parse("1.5*exp(-0.001*(u^2+v^2))*sin(2*u)*cos(0.2*v)");
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> t(-10, 10);
+  for (int i = 0; i < 200; ++i) {
+    const double u = t(rng), v = t(rng);
+    const Dual2 z = f.evaluate(u, v);
+    const double w2 = 1 + z.fu * z.fu + z.fv * z.fv, w = std::sqrt(w2);
+    const double K = (z.fuu * z.fvv - z.fuv * z.fuv) / (w2 * w2);
+    const double H = ((1 + z.fv * z.fv) * z.fuu - 2 * z.fu * z.fv * z.fuv + (1 + z.fu * z.fu) * z.fvv) / (2 * w2 * w);
+    const SurfaceCurvature c = curvature(*p2, {u, v});
+    EXPECT_NEAR(c.gaussian, K, 1e-12 * (1 + std::abs(K)));
+    EXPECT_NEAR(c.mean, H, 1e-12 * (1 + std::abs(H)));
+    expectVecNear(c.normal, Vec3(-z.fu, -z.fv, 1) / w, 1e-14, "p2 normal");
+  }
+}
