@@ -490,7 +490,11 @@ double Expression::value(double u, double v) const {
       case Op::U: stack[++top] = u; break;
       case Op::V: stack[++top] = v; break;
       case Op::Param: stack[++top] = paramValues_[in.arg]; break;
-      case Op::PowConst: stack[top] = std::pow(stack[top], constants_[in.arg]); break;
+      case Op::PowConst: {
+        const double c = constants_[in.arg];
+        stack[top] = c == 2.0 ? stack[top] * stack[top] : std::pow(stack[top], c);
+        break;
+      }
       default:
         if (isBinary(in.op)) {
           stack[top - 1] = applyScalar(in.op, stack[top - 1], stack[top]);
