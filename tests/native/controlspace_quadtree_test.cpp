@@ -160,7 +160,8 @@ TEST(ControlSpaceQuadtree, AdaptsToAnisotropicBoundaryLayer) {
     o.interpolation = interp;
     QuadtreeControlSpace qt(box(0.0, 0.0, 1.0, 1.0), o);
     ContinuousInsertionOptions c;
-    c.threshold = 0.04;
+    c.threshold = 0.3;
+    c.sampleThreshold = 0.05;
     insertMetricFunction(qt, boundaryLayer, c);
     EXPECT_TRUE(qt.isBalanced());
     std::mt19937 rng(11);

@@ -240,6 +240,7 @@ int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback) {
 void insertMetricFunction(AdaptiveControlSpace& cs, const MetricFunction& f, const ContinuousInsertionOptions& options) {
   require(static_cast<bool>(f), ErrorCode::InvalidArgument, "metric function is empty");
   require(options.threshold > 0.0, ErrorCode::InvalidArgument, "continuous insertion threshold must be > 0");
+  const double sampleThreshold = options.sampleThreshold < 0.0 ? options.threshold : options.sampleThreshold;
   bool fresh = true;
   for (int i = 0; i < cs.nodeCount(); ++i)
     if (cs.nodeIsFree(i) && cs.nodeIsInitialized(i)) fresh = false;
@@ -265,7 +266,7 @@ void insertMetricFunction(AdaptiveControlSpace& cs, const MetricFunction& f, con
         if (elementNodesDiffer(cs, e, options.threshold)) return true;
         if (!options.checkSamples) return false;
         for (int k = 0; k < e.sampleCount; ++k)
-          if (difference(cs.metricAt(e.samples[k]), target(e.samples[k])) > options.threshold) return true;
+          if (difference(cs.metricAt(e.samples[k]), target(e.samples[k])) > sampleThreshold) return true;
         return false;
       },
       setFromFunction);

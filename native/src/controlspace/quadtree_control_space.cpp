@@ -17,7 +17,13 @@ std::uint64_t latticeKey(int x, int y) {
 }
 
 size_t hashSlot(std::uint64_t key, size_t mask) {
-  return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> 17) & mask;
+  // splitmix64 finalizer: every key bit reaches the low bits used by the mask.
+  key ^= key >> 30;
+  key *= 0xBF58476D1CE4E5B9ull;
+  key ^= key >> 27;
+  key *= 0x94D049BB133111EBull;
+  key ^= key >> 31;
+  return static_cast<size_t>(key) & mask;
 }
 
 bool validBox(const Box2& b) {

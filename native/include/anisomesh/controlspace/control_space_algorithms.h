@@ -32,14 +32,17 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
 int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback);
 
 struct ContinuousInsertionOptions {
-  double threshold = 0.05;  // difference() above which an element is split
-  bool checkSamples = true;  // also compare interpolated and analytic metric inside elements
+  double threshold = 0.05;         // difference() between an element's nodes that splits it
+  bool checkSamples = true;         // also compare interpolated and analytic metric inside elements
+  double sampleThreshold = -1.0;    // difference() at samples that splits (< 0: same as threshold)
 };
 
 // Continuous source (section 2.3): every free node takes f (intersected with its metric
 // when already initialized); then elements are split recursively while their nodes'
-// metrics differ, or (checkSamples) the interpolated metric at interior sample points
-// differs from the analytic one, by more than threshold (down to the minimum size).
+// metrics differ by more than threshold, or (checkSamples) the interpolated metric at
+// interior sample points differs from the analytic one by more than sampleThreshold
+// (down to the minimum size). The node test is the paper's; the sample test is what
+// bounds the interpolation error (and catches features between nodes).
 void insertMetricFunction(AdaptiveControlSpace& cs, const MetricFunction& f,
                           const ContinuousInsertionOptions& options = {});
 
