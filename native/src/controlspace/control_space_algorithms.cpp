@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <limits>
 #include <string>
 
@@ -336,17 +335,35 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
   std::vector<int> start, nbr;
   adjacency(cs, start, nbr);
   const int n = cs.nodeCount();
-  std::deque<int> queue;
-  std::vector<char> queued(n, 0);
+  // Work-set ordered by the node's smallest requested size (smallest first, as in
+  // Dijkstra): a node is mostly final when it is popped, so few nodes are re-queued.
+  // Stale heap entries are skipped by comparing with the node's current key.
+  auto key = [&](int i) {
+    const SymMt& m = cs.nodeMt(i);
+    // Largest eigenvalue of Mt = 1 / smallest size.
+    const double mean = 0.5 * (m.a + m.c), r = std::hypot(0.5 * (m.a - m.c), m.b);
+    return -(mean + r);
+  };
+  using Entry = std::pair<double, int>;  // (key, node): max-heap on -1/h_min
+  std::vector<Entry> heap;
+  std::vector<double> current(n, 0.0);
+  heap.reserve(n);
   for (int i = 0; i < n; ++i)
     if (cs.nodeIsFree(i)) {
-      queue.push_back(i);
-      queued[i] = 1;
+      current[i] = key(i);
+      heap.push_back({-current[i], i});
     }
+  auto cmp = [](const Entry& x, const Entry& y) { return x.first < y.first || (x.first == y.first && x.second > y.second); };
+  std::make_heap(heap.begin(), heap.end(), cmp);
+  std::vector<char> queued(n, 0);
+  for (const auto& e : heap) queued[e.second] = 1;
   int updates = 0;
-  while (!queue.empty()) {
-    const int i = queue.front();
-    queue.pop_front();
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), cmp);
+    const Entry top = heap.back();
+    heap.pop_back();
+    const int i = top.second;
+    if (!queued[i] || -top.first != current[i]) continue;  // stale entry
     queued[i] = 0;
     const Metric mi = cs.nodeMetric(i);
     const Vec2 pi = cs.nodePosition(i);
@@ -356,10 +373,10 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
       if (limitGradation(mi, pi, mj, cs.nodePosition(j), slope, options.tolerance)) {
         cs.setNodeMetric(j, mj);
         ++updates;
-        if (!queued[j]) {
-          queued[j] = 1;
-          queue.push_back(j);
-        }
+        current[j] = key(j);
+        queued[j] = 1;
+        heap.push_back({-current[j], j});
+        std::push_heap(heap.begin(), heap.end(), cmp);
       }
     }
   }

@@ -77,9 +77,10 @@ double gradationSlope(double ratio);
 bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj, double slope,
                     double tolerance = 1e-12);
 
-// Global smoothing (section 2.5.2) with a work-set: all free nodes start in a FIFO
-// queue; a popped node limits each neighbour along controlEdges(); a neighbour that
-// changed is re-queued. Metrics only grow (Loewner order) and are bounded by the finest
+// Global smoothing (section 2.5.2) with a work-set: all free nodes start in the set; the
+// node with the smallest requested size is taken first (Dijkstra-like order, so most
+// nodes are final when taken) and limits each neighbour along controlEdges(); a
+// neighbour that changed is re-queued. Metrics only grow (Loewner order) and are bounded by the finest
 // metric present, so with the tolerance it terminates; at the end every edge satisfies
 // h_j <= h_i + a_max d. Returns the number of node updates. Throws InvalidArgument for dr < 1.
 int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options = {});
