@@ -9,13 +9,14 @@
 namespace anisomesh {
 namespace {
 
+// The messages are built only on failure (these run once per source).
 void checkPoint(const Vec2& p, const char* what) {
-  require(p.allFinite(), ErrorCode::InvalidArgument, std::string(what) + " has a NaN or infinite coordinate");
+  if (!p.allFinite()) throw Error(ErrorCode::InvalidArgument, std::string(what) + " has a NaN or infinite coordinate");
 }
 
 void checkRadius(double r, const char* what) {
-  require(std::isfinite(r) && r >= 0.0, ErrorCode::InvalidArgument,
-          std::string(what) + " radius must be finite and >= 0, got " + std::to_string(r));
+  if (!(std::isfinite(r) && r >= 0.0))
+    throw Error(ErrorCode::InvalidArgument, std::string(what) + " radius must be finite and >= 0, got " + std::to_string(r));
 }
 
 bool isZeroLength(const Vec2& a, const Vec2& b) {
