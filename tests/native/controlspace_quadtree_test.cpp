@@ -153,6 +153,37 @@ TEST(ControlSpaceQuadtree, SerendipityReproducesQuadraticFieldExactly) {
   EXPECT_GT(maxFieldError(bl, 2, 5000), 1e-4);
 }
 
+TEST(ControlSpaceQuadtree, FieldIsContinuousAcrossLevelJumps) {
+  // Arbitrary node values (no polynomial field): hanging nodes must still make the
+  // interpolation continuous across every leaf side.
+  for (auto interp : {QuadtreeInterpolation::Bilinear, QuadtreeInterpolation::Serendipity}) {
+    QuadtreeControlSpace qt = irregularTree(interp);
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> a(-1.5, 1.5), h(0.01, 0.2);
+    for (int i = 0; i < qt.nodeCount(); ++i)
+      if (qt.nodeIsFree(i)) qt.setNodeMetric(i, Metric::fromSizes(a(rng), h(rng), h(rng)));
+    qt.applyConstraints();
+    double worst = 0.0;
+    const double eps = 1e-10;
+    for (int c : qt.leaves()) {
+      const Box2 b = qt.cellBox(c);
+      for (int k = 1; k < 8; ++k) {
+        const double t = k / 8.0;
+        const Vec2 left(b.lo.x(), b.lo.y() + t * b.size().y()), bottom(b.lo.x() + t * b.size().x(), b.lo.y());
+        if (b.lo.x() > 0.0) {
+          const SymMt u = qt.mtAt(left - Vec2(eps, 0)), v = qt.mtAt(left + Vec2(eps, 0));
+          worst = std::max({worst, std::abs(u.a - v.a), std::abs(u.b - v.b), std::abs(u.c - v.c)});
+        }
+        if (b.lo.y() > 0.0) {
+          const SymMt u = qt.mtAt(bottom - Vec2(0, eps)), v = qt.mtAt(bottom + Vec2(0, eps));
+          worst = std::max({worst, std::abs(u.a - v.a), std::abs(u.b - v.b), std::abs(u.c - v.c)});
+        }
+      }
+    }
+    EXPECT_LT(worst, 1e-4);  // node values are O(100); a missing constraint jumps by O(10)
+  }
+}
+
 TEST(ControlSpaceQuadtree, AdaptsToAnisotropicBoundaryLayer) {
   for (auto interp : {QuadtreeInterpolation::Bilinear, QuadtreeInterpolation::Serendipity}) {
     QuadtreeOptions o;

@@ -178,6 +178,13 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
   extrapolateMetric(cs, fallback);
 }
 
+int refineWhereMetricsDiffer(AdaptiveControlSpace& cs, double threshold) {
+  require(threshold >= 0.0, ErrorCode::InvalidArgument, "refinement threshold must be >= 0");
+  const int before = cs.elementCount();
+  cs.refine([&](const ControlElement& e) { return elementNodesDiffer(cs, e, threshold); }, nullptr);
+  return cs.elementCount() - before;
+}
+
 int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback) {
   const int n = cs.nodeCount();
   std::vector<char> known(n, 0);

@@ -26,6 +26,11 @@ struct DiscreteInsertionOptions {
 void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& sources,
                    const DiscreteInsertionOptions& options = {});
 
+// Splits elements whose nodes hold metrics differing (difference() between any two) by
+// more than threshold, recursively down to the minimum element size; new nodes take the
+// interpolated metric. Returns the number of elements added.
+int refineWhereMetricsDiffer(AdaptiveControlSpace& cs, double threshold);
+
 // Iteratively fills uninitialized free nodes, front by front along controlEdges(), with
 // the inverse-squared-distance average of their initialized neighbours (fig. 2c); nodes
 // unreachable (or all, when none is initialized) get fallback. Returns the count filled.
