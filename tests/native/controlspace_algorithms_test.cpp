@@ -141,7 +141,7 @@ TEST(ControlSpaceSources, BadInputIsRejectedWithTypedErrors) {
 
 TEST(ControlSpaceSources, SourceOutsideTheDomainChangesNothing) {
   for (bool quadtree : {true, false}) {
-    auto cs = makeSpace(quadtree, 8);
+    auto cs = makeSpace(quadtree, 6);
     insertMetricFunction(*cs, sharpField, insertion());
     const auto before = cs->clone();
     insertSources(*cs, {RadialSource{{5.0, 5.0}, Metric::isotropic(0.001), 1.0},
@@ -217,7 +217,7 @@ TEST(ControlSpaceMinimum, BackgroundAndCrossStructureMinimum) {
   auto f2 = [](const Vec2& p) { return Metric::fromSizes(-0.2, 0.05, 0.005 + 0.3 * std::abs(p.x() - 0.6)); };
   // (first quadtree?, second quadtree?)
   for (auto [q1, q2] : {std::pair{false, false}, std::pair{true, false}, std::pair{false, true}}) {
-    auto cs1 = makeSpace(q1, 9), cs2 = makeSpace(q2, 9);
+    auto cs1 = makeSpace(q1, 8), cs2 = makeSpace(q2, 8);
     insertMetricFunction(*cs1, f1, insertion());
     insertMetricFunction(*cs2, f2, insertion());
     const auto orig = cs1->clone();
@@ -250,9 +250,10 @@ TEST(ControlSpaceMinimum, BackgroundAndCrossStructureMinimum) {
 
 TEST(ControlSpaceGradation, SizeGrowsNoFasterThanTheBoundAlongEveryEdge) {
   for (bool quadtree : {true, false}) {
+    auto field = makeSpace(quadtree, 7);
+    insertMetricFunction(*field, sharpField, insertion());
     for (double dr : {1.5, 2.0, 8.0}) {
-      auto cs = makeSpace(quadtree, 8);
-      insertMetricFunction(*cs, sharpField, insertion());
+      auto cs = field->clone();
       GradationOptions g;
       g.ratio = dr;
       const int updates = smoothGradation(*cs, g);
