@@ -1,0 +1,130 @@
+#pragma once
+// Common ground of the two adaptive control space structures of the paper (section 2.1):
+// the balanced quadtree and the background mesh. Both store the metric transformation
+// matrix Mt in control nodes and can be refined by splitting elements (quadtree leaves,
+// triangles). The algorithms that build and combine control spaces (discrete and
+// continuous sources, minimum, gradation smoothing; see control_space_algorithms.h) work
+// on this interface only, so every one of them serves both structures.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "anisomesh/controlspace/control_space.h"
+
+namespace anisomesh {
+
+// Mt of a control node as its three distinct entries [a b; b c]: the compact layout that
+// keeps the query path on flat arrays.
+struct SymMt {
+  double a = 1.0, b = 0.0, c = 1.0;
+};
+
+// Mt entries of a metric.
+inline SymMt toSymMt(const Metric& m) {
+  const Mat2& t = m.transform();
+  return {t(0, 0), 0.5 * (t(0, 1) + t(1, 0)), t(1, 1)};
+}
+
+// The metric whose Mt has these entries (no validation: values come from SPD metrics).
+inline Metric toMetric(const SymMt& s) {
+  Mat2 t;
+  t << s.a, s.b, s.b, s.c;
+  return Metric::fromTransformUnchecked(t);
+}
+
+// A control node seen from outside: position, metric and the size of the smallest
+// element touching it (the resolution of the structure there).
+struct ControlNode {
+  Vec2 position;
+  Metric metric;
+  double elementSize = 0.0;
+};
+
+// An element (quadtree leaf or triangle) offered to a refinement predicate.
+struct ControlElement {
+  int id = -1;                 // leaf cell index or triangle index
+  Box2 box;                    // bounding box
+  double size = 0.0;           // longest side
+  int nodeCount = 0;           // 3 (triangle), 4 (bilinear leaf) or 8 (serendipity leaf)
+  std::array<int, 8> nodes{};  // control nodes of the element (hanging ones included)
+  int sampleCount = 0;         // interior points where the interpolation is worth checking
+  std::array<Vec2, 5> samples{};
+};
+
+// Decides whether an element must be split.
+using ElementPredicate = std::function<bool(const ControlElement&)>;
+// Called after each batch of splits with the range [first, last) of the nodes it created.
+using NewNodesCallback = std::function<void(int first, int last)>;
+
+class AdaptiveControlSpace : public ControlSpace {
+ public:
+  Box2 bounds() const override { return box_; }
+
+  // Number of control nodes.
+  int nodeCount() const { return static_cast<int>(pos_.size()); }
+  // Position of node i.
+  const Vec2& nodePosition(int i) const { return pos_[i]; }
+  // Metric stored in node i.
+  Metric nodeMetric(int i) const { return toMetric(mt_[i]); }
+  // Raw Mt entries of node i.
+  const SymMt& nodeMt(int i) const { return mt_[i]; }
+  // False for hanging nodes, whose value follows the coarser neighbour's interpolation.
+  bool nodeIsFree(int i) const { return (flags_[i] & kDependent) == 0; }
+  // False while no source has reached the node (before extrapolation).
+  bool nodeIsInitialized(int i) const { return (flags_[i] & kInitialized) != 0; }
+  // Sets the metric of node i and marks it initialized; call applyConstraints() after a
+  // batch of changes so hanging nodes follow.
+  void setNodeMetric(int i, const Metric& m) {
+    mt_[i] = toSymMt(m);
+    flags_[i] |= kInitialized;
+  }
+  // Marks node i as not yet reached by any source (its value is a placeholder).
+  void clearNodeInitialized(int i) { flags_[i] &= static_cast<std::uint8_t>(~kInitialized); }
+
+  // Recomputes hanging nodes from their masters (no-op for structures without them).
+  virtual void applyConstraints() {}
+  // Pairs (i < j) of free nodes adjacent along the structure's edges, sorted: the graph
+  // of gradation smoothing and extrapolation.
+  virtual std::vector<std::array<int, 2>> controlEdges() const = 0;
+  // Number of elements (quadtree leaves or triangles).
+  virtual int elementCount() const = 0;
+  // Elements for display: corner nodes of every leaf (4, counter-clockwise) or triangle (3).
+  virtual std::vector<std::vector<int>> elementNodes() const = 0;
+  // Splits elements while pred holds (each split keeps the structure valid: balanced
+  // quadtree, conforming triangulation); new nodes take the interpolated metric and then
+  // onNewNodes may overwrite free ones. Elements at the minimum size are never split.
+  virtual void refine(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) = 0;
+  // Size of the smallest element touching each node.
+  virtual std::vector<double> nodeElementSizes() const = 0;
+  // Smallest element size the structure may reach (its maximum depth).
+  virtual double minElementSize() const = 0;
+  // "quadtree" or "background".
+  virtual const char* kindName() const = 0;
+  // A deep copy (the minimum keeps the original field while it refines).
+  virtual std::unique_ptr<AdaptiveControlSpace> clone() const = 0;
+
+  // All nodes with their metrics and local element sizes (free nodes only: hanging ones
+  // carry no information of their own). Used as discrete sources by the minimum.
+  std::vector<ControlNode> controlNodes() const;
+
+ protected:
+  static constexpr std::uint8_t kInitialized = 1;
+  static constexpr std::uint8_t kDependent = 2;
+
+  // Appends a node; returns its index.
+  int addNode(const Vec2& p, const SymMt& mt, bool initialized) {
+    pos_.push_back(p);
+    mt_.push_back(mt);
+    flags_.push_back(initialized ? kInitialized : 0);
+    return static_cast<int>(pos_.size()) - 1;
+  }
+
+  Box2 box_;
+  std::vector<Vec2> pos_;
+  std::vector<SymMt> mt_;
+  std::vector<std::uint8_t> flags_;
+};
+
+}  // namespace anisomesh

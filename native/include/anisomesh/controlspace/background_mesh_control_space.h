@@ -1,0 +1,90 @@
+#pragma once
+// Background mesh control space (section 2.1, fig. 1b; interpolation section 4.2, eq. 11).
+// A conforming triangulation of the control nodes: the main-level grid of the box, each
+// cell split into two triangles, refined by longest-edge bisection (Rivara's LEPP), which
+// keeps the triangulation conforming and the angles bounded. A query finds the containing
+// triangle by walking from a triangle picked by an auxiliary uniform grid, then
+// interpolates from V* = the triangle's three vertices with inverse squared distance
+// weights (eq. 11), taking a vertex's metric directly within epsilon of it. The choice
+// of V* = 3 vertices keeps the query short; a linear (barycentric) option gives a
+// continuous field when that matters (e.g. exact minima of nested meshes).
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "anisomesh/controlspace/adaptive_control_space.h"
+
+namespace anisomesh {
+
+enum class BackgroundInterpolation {
+  InverseSquaredDistance,  // eq. 11 over the containing triangle's vertices
+  Linear,                  // barycentric weights (continuous, exact for linear Mt fields)
+};
+
+struct BackgroundMeshOptions {
+  int initialGrid = 4;         // main-level grid cells per side (each cell -> 2 triangles)
+  int maxLevel = 14;           // smallest element: longest initial edge / 2^maxLevel
+  BackgroundInterpolation interpolation = BackgroundInterpolation::InverseSquaredDistance;
+  double epsilon = 1e-12;      // relative to the box diagonal: "at a vertex" distance
+  std::optional<Metric> initialMetric;  // as in QuadtreeOptions
+};
+
+class BackgroundMeshControlSpace : public AdaptiveControlSpace {
+ public:
+  // Triangulates the main-level grid of box. Throws InvalidDomain for an empty, inverted
+  // or non-finite box, InvalidArgument for options out of range.
+  explicit BackgroundMeshControlSpace(const Box2& box, const BackgroundMeshOptions& options = {});
+
+  // Interpolated metric (eq. 11); points outside the box are clamped onto it.
+  Metric metricAt(const Vec2& p) const override;
+  // Interpolated Mt entries at p (the allocation-free core of metricAt).
+  SymMt mtAt(const Vec2& p) const;
+  // Triangle containing p (clamped onto the box), by walking.
+  int locateTriangle(const Vec2& p) const;
+  // True when p lies in the closed triangle t.
+  bool triangleContains(int t, const Vec2& p) const;
+
+  std::vector<std::array<int, 2>> controlEdges() const override;
+  int elementCount() const override { return static_cast<int>(tri_.size()); }
+  std::vector<std::vector<int>> elementNodes() const override;
+  void refine(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) override;
+  std::vector<double> nodeElementSizes() const override;
+  double minElementSize() const override { return minSize_; }
+  const char* kindName() const override { return "background"; }
+  std::unique_ptr<AdaptiveControlSpace> clone() const override {
+    return std::make_unique<BackgroundMeshControlSpace>(*this);
+  }
+
+  // Bisects triangle t by its longest edge (splitting neighbours first as LEPP requires).
+  void bisect(int t);
+  // Vertices (counter-clockwise) and edge neighbours (across the edge opposite vertex k,
+  // -1 on the boundary) of triangle t.
+  const std::array<int, 3>& triangle(int t) const { return tri_[t]; }
+  const std::array<int, 3>& neighbours(int t) const { return nbr_[t]; }
+  BackgroundInterpolation interpolation() const { return options_.interpolation; }
+  // Number of bytes held by the structure.
+  size_t memoryBytes() const;
+
+ private:
+  int longestEdge(int t) const;
+  double edgeKey(int a, int b) const;
+  void splitPair(int t, int i);
+  void bisectImpl(int t);
+  void rebuildLocator();
+  ControlElement elementOf(int t) const;
+  double orient(int a, int b, const Vec2& p) const;
+
+  BackgroundMeshOptions options_;
+  double minSize_ = 0.0;
+  double eps2_ = 0.0;
+  std::vector<std::array<int, 3>> tri_;
+  std::vector<std::array<int, 3>> nbr_;
+  std::vector<int> touched_;  // triangles changed by the current refinement batch
+  std::vector<char> touchedFlag_;
+  // Auxiliary grid: a triangle containing each grid cell's centre.
+  int gridSide_ = 1;
+  Vec2 gridInv_;
+  std::vector<int> grid_;
+};
+
+}  // namespace anisomesh

@@ -1,0 +1,409 @@
+#include "anisomesh/controlspace/control_space_algorithms.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "anisomesh/core/error.h"
+
+namespace anisomesh {
+namespace {
+
+// Uniform bucket grid over a box holding item indices by bounding box (an item lands in
+// every bucket its box overlaps): the spatial index of sources and nodes here.
+class BucketGrid {
+ public:
+  BucketGrid(const Box2& domain, const std::vector<Box2>& boxes) : domain_(domain) {
+    const double n = static_cast<double>(boxes.size());
+    side_ = std::clamp(static_cast<int>(std::sqrt(n / 2.0)) + 1, 1, 1024);
+    const Vec2 sz = domain.size();
+    inv_ = Vec2(side_ / std::max(sz.x(), 1e-300), side_ / std::max(sz.y(), 1e-300));
+    std::vector<int> count(static_cast<size_t>(side_) * side_ + 1, 0);
+    auto forCells = [&](const Box2& b, auto&& fn) {
+      int i0, i1, j0, j1;
+      if (!range(b, i0, i1, j0, j1)) return;
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) fn(j * side_ + i);
+    };
+    for (const Box2& b : boxes) forCells(b, [&](int c) { ++count[c + 1]; });
+    for (size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
+    start_ = count;
+    items_.resize(count.back());
+    for (size_t k = 0; k < boxes.size(); ++k) forCells(boxes[k], [&](int c) { items_[count[c]++] = static_cast<int>(k); });
+  }
+
+  // Calls fn(item) for items in buckets overlapping b (an item may come more than once
+  // when its box spans several buckets); stops early when fn returns true.
+  template <class F>
+  bool any(const Box2& b, F&& fn) const {
+    int i0, i1, j0, j1;
+    if (!range(b, i0, i1, j0, j1)) return false;
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const int c = j * side_ + i;
+        for (int k = start_[c]; k < start_[c + 1]; ++k)
+          if (fn(items_[k])) return true;
+      }
+    return false;
+  }
+
+ private:
+  bool range(const Box2& b, int& i0, int& i1, int& j0, int& j1) const {
+    if (b.hi.x() < domain_.lo.x() || b.hi.y() < domain_.lo.y() || b.lo.x() > domain_.hi.x() ||
+        b.lo.y() > domain_.hi.y())
+      return false;
+    auto cell = [&](double v, double lo, double inv) {
+      return std::clamp(static_cast<int>(std::floor((v - lo) * inv)), 0, side_ - 1);
+    };
+    i0 = cell(b.lo.x(), domain_.lo.x(), inv_.x());
+    i1 = cell(b.hi.x(), domain_.lo.x(), inv_.x());
+    j0 = cell(b.lo.y(), domain_.lo.y(), inv_.y());
+    j1 = cell(b.hi.y(), domain_.lo.y(), inv_.y());
+    return true;
+  }
+
+  Box2 domain_;
+  int side_ = 1;
+  Vec2 inv_;
+  std::vector<int> start_, items_;
+};
+
+Box2 pointBox(const Vec2& p, double r) {
+  Box2 b;
+  b.lo = p - Vec2(r, r);
+  b.hi = p + Vec2(r, r);
+  return b;
+}
+
+Box2 pieceBox(const SourcePiece& s, double r) {
+  Box2 b;
+  b.lo = s.a.cwiseMin(s.b) - Vec2(r, r);
+  b.hi = s.a.cwiseMax(s.b) + Vec2(r, r);
+  return b;
+}
+
+// Adjacency (CSR) of the free-node graph.
+void adjacency(const AdaptiveControlSpace& cs, std::vector<int>& start, std::vector<int>& nbr) {
+  const auto edges = cs.controlEdges();
+  start.assign(cs.nodeCount() + 1, 0);
+  for (const auto& e : edges) {
+    ++start[e[0] + 1];
+    ++start[e[1] + 1];
+  }
+  for (size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  nbr.resize(start.back());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const auto& e : edges) {
+    nbr[fill[e[0]]++] = e[1];
+    nbr[fill[e[1]]++] = e[0];
+  }
+}
+
+bool elementNodesDiffer(const AdaptiveControlSpace& cs, const ControlElement& e, double threshold) {
+  for (int i = 0; i < e.nodeCount; ++i)
+    for (int j = i + 1; j < e.nodeCount; ++j)
+      if (difference(cs.nodeMetric(e.nodes[i]), cs.nodeMetric(e.nodes[j])) > threshold) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<ControlNode> AdaptiveControlSpace::controlNodes() const {
+  const std::vector<double> sizes = nodeElementSizes();
+  std::vector<ControlNode> out;
+  out.reserve(nodeCount());
+  for (int i = 0; i < nodeCount(); ++i)
+    if (nodeIsFree(i)) out.push_back({pos_[i], nodeMetric(i), sizes[i]});
+  return out;
+}
+
+void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& sources,
+                   const DiscreteInsertionOptions& options) {
+  const Box2 box = cs.bounds();
+  const std::vector<SourcePiece> pieces = sourcePieces(sources, box, options.source);
+  if (pieces.empty()) return;  // nothing inside the domain: no-op
+
+  // (a) Structure adaptation near the sources.
+  {
+    std::vector<Box2> boxes;
+    boxes.reserve(pieces.size());
+    for (const auto& p : pieces) boxes.push_back(pieceBox(p, p.radius));
+    const BucketGrid grid(box, boxes);
+    cs.refine(
+        [&](const ControlElement& e) {
+          return grid.any(e.box, [&](int k) {
+            const SourcePiece& p = pieces[k];
+            return e.size > p.targetSize && segmentBoxDistance(p.a, p.b, e.box) <= p.radius;
+          });
+        },
+        nullptr);
+  }
+
+  // (b) Weighted average of the sources reaching each free node.
+  const int n = cs.nodeCount();
+  const double minSize = cs.minElementSize();
+  std::vector<Box2> nodeBoxes(n);
+  for (int i = 0; i < n; ++i) nodeBoxes[i] = pointBox(cs.nodePosition(i), 0.0);
+  const BucketGrid nodeGrid(box, nodeBoxes);
+  std::vector<SymMt> sum(n, SymMt{0.0, 0.0, 0.0});
+  std::vector<double> wsum(n, 0.0);
+  for (const SourcePiece& p : pieces) {
+    const double reach = std::max(p.targetSize, minSize);
+    const double soft = 0.25 * reach;
+    const SymMt m = toSymMt(p.metric);
+    nodeGrid.any(pieceBox(p, p.radius + reach), [&](int i) {
+      if (!cs.nodeIsFree(i)) return false;
+      const double d = distanceToPiece(p, cs.nodePosition(i));
+      if (d > p.radius + reach) return false;
+      const double t = std::max(d - p.radius, 0.0) + soft;
+      const double w = 1.0 / (t * t);
+      sum[i].a += w * m.a;
+      sum[i].b += w * m.b;
+      sum[i].c += w * m.c;
+      wsum[i] += w;
+      return false;
+    });
+  }
+  for (int i = 0; i < n; ++i) {
+    if (wsum[i] <= 0.0) continue;
+    const SymMt avg{sum[i].a / wsum[i], sum[i].b / wsum[i], sum[i].c / wsum[i]};
+    const Metric m = toMetric(avg);
+    cs.setNodeMetric(i, cs.nodeIsInitialized(i) ? intersect(cs.nodeMetric(i), m) : m);
+  }
+
+  // (c) Extrapolation into the nodes no source reached.
+  const Metric fallback =
+      options.fallbackMetric ? *options.fallbackMetric : Metric::isotropic(0.25 * box.size().norm());
+  extrapolateMetric(cs, fallback);
+}
+
+int refineWhereMetricsDiffer(AdaptiveControlSpace& cs, double threshold) {
+  require(threshold >= 0.0, ErrorCode::InvalidArgument, "refinement threshold must be >= 0");
+  const int before = cs.elementCount();
+  cs.refine([&](const ControlElement& e) { return elementNodesDiffer(cs, e, threshold); }, nullptr);
+  return cs.elementCount() - before;
+}
+
+int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback) {
+  const int n = cs.nodeCount();
+  std::vector<char> known(n, 0);
+  bool any = false;
+  for (int i = 0; i < n; ++i) {
+    known[i] = cs.nodeIsFree(i) && cs.nodeIsInitialized(i);
+    any = any || known[i];
+  }
+  int filled = 0;
+  if (any) {
+    std::vector<int> start, nbr;
+    adjacency(cs, start, nbr);
+    std::vector<int> front;
+    std::vector<std::pair<int, SymMt>> values;
+    for (;;) {
+      front.clear();
+      for (int i = 0; i < n; ++i) {
+        if (known[i] || !cs.nodeIsFree(i)) continue;
+        for (int k = start[i]; k < start[i + 1]; ++k)
+          if (known[nbr[k]]) {
+            front.push_back(i);
+            break;
+          }
+      }
+      if (front.empty()) break;
+      // Values of a whole front come from the previous fronts only (order independent).
+      values.clear();
+      for (int i : front) {
+        SymMt s{0.0, 0.0, 0.0};
+        double ws = 0.0;
+        for (int k = start[i]; k < start[i + 1]; ++k) {
+          const int j = nbr[k];
+          if (!known[j]) continue;
+          const double w = 1.0 / (cs.nodePosition(j) - cs.nodePosition(i)).squaredNorm();
+          const SymMt& m = cs.nodeMt(j);
+          s.a += w * m.a;
+          s.b += w * m.b;
+          s.c += w * m.c;
+          ws += w;
+        }
+        values.push_back({i, SymMt{s.a / ws, s.b / ws, s.c / ws}});
+      }
+      for (const auto& [i, v] : values) {
+        cs.setNodeMetric(i, toMetric(v));
+        known[i] = 1;
+        ++filled;
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i)
+    if (!known[i] && cs.nodeIsFree(i)) {
+      cs.setNodeMetric(i, fallback);
+      ++filled;
+    }
+  cs.applyConstraints();
+  return filled;
+}
+
+void insertMetricFunction(AdaptiveControlSpace& cs, const MetricFunction& f, const ContinuousInsertionOptions& options) {
+  require(static_cast<bool>(f), ErrorCode::InvalidArgument, "metric function is empty");
+  require(options.threshold > 0.0, ErrorCode::InvalidArgument, "continuous insertion threshold must be > 0");
+  const double sampleThreshold = options.sampleThreshold < 0.0 ? options.threshold : options.sampleThreshold;
+  bool fresh = true;
+  for (int i = 0; i < cs.nodeCount(); ++i)
+    if (cs.nodeIsFree(i) && cs.nodeIsInitialized(i)) fresh = false;
+  // The field before insertion: new nodes and samples compare against min(original, f),
+  // not against an interpolation of already intersected values (which would compound).
+  std::unique_ptr<AdaptiveControlSpace> original;
+  if (!fresh) original = cs.clone();
+  auto target = [&](const Vec2& p) {
+    const Metric v = f(p);
+    return fresh ? v : intersect(original->metricAt(p), v);
+  };
+  auto setFromFunction = [&](int first, int last) {
+    for (int i = first; i < last; ++i) {
+      if (!cs.nodeIsFree(i)) continue;
+      const Vec2& p = cs.nodePosition(i);
+      cs.setNodeMetric(i, fresh || !cs.nodeIsInitialized(i) ? f(p) : target(p));
+    }
+  };
+  setFromFunction(0, cs.nodeCount());
+  cs.applyConstraints();
+  cs.refine(
+      [&](const ControlElement& e) {
+        if (elementNodesDiffer(cs, e, options.threshold)) return true;
+        if (!options.checkSamples) return false;
+        for (int k = 0; k < e.sampleCount; ++k)
+          if (difference(cs.metricAt(e.samples[k]), target(e.samples[k])) > sampleThreshold) return true;
+        return false;
+      },
+      setFromFunction);
+}
+
+void intersectControlSpace(AdaptiveControlSpace& cs1, const ControlSpace& cs2, const std::vector<ControlNode>& cs2Nodes,
+                           const MinimumOptions& options) {
+  require(options.threshold >= 0.0, ErrorCode::InvalidArgument, "minimum threshold must be >= 0");
+  const std::unique_ptr<AdaptiveControlSpace> original = cs1.clone();
+  auto phase1 = [&](int first, int last) {
+    for (int i = first; i < last; ++i)
+      if (cs1.nodeIsFree(i)) {
+        const Vec2& p = cs1.nodePosition(i);
+        cs1.setNodeMetric(i, intersect(original->metricAt(p), cs2.metricAt(p)));
+      }
+  };
+  // Phase 1.
+  phase1(0, cs1.nodeCount());
+  cs1.applyConstraints();
+  // Phase 2: the nodes of cs2 as discrete sources.
+  std::vector<Box2> boxes;
+  boxes.reserve(cs2Nodes.size());
+  for (const auto& nd : cs2Nodes) boxes.push_back(pointBox(nd.position, 0.0));
+  const BucketGrid grid(cs1.bounds(), boxes);
+  cs1.refine(
+      [&](const ControlElement& e) {
+        return grid.any(e.box, [&](int k) {
+          const ControlNode& nd = cs2Nodes[k];
+          if (e.size <= nd.elementSize || !e.box.contains(nd.position)) return false;
+          const Metric m = cs1.metricAt(nd.position);
+          const Metric target = intersect(original->metricAt(nd.position), nd.metric);
+          return difference(m, target) > options.threshold;
+        });
+      },
+      phase1);
+  // Phase 3.
+  phase1(0, cs1.nodeCount());
+  cs1.applyConstraints();
+}
+
+void intersectControlSpace(AdaptiveControlSpace& cs1, const AdaptiveControlSpace& cs2, const MinimumOptions& options) {
+  intersectControlSpace(cs1, cs2, cs2.controlNodes(), options);
+}
+
+double gradationSlope(double ratio) {
+  require(std::isfinite(ratio) && ratio >= 1.0, ErrorCode::InvalidArgument,
+          "gradation ratio dr must be finite and >= 1, got " + std::to_string(ratio));
+  return 2.0 * (ratio - 1.0) / (ratio + 1.0);
+}
+
+bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj, double slope, double tolerance) {
+  const Vec2 u = pj - pi;
+  const double d = u.norm();
+  if (d <= 0.0) return false;
+  const double hi = mi.sizeAlong(u);
+  const double s = 1.0 + slope * d / hi;  // eq. 7 at a = a_max
+  const Metric cand = intersect(mj, mi.scaled(s));
+  if (cand.transform() == mj.transform()) return false;
+  if (difference(mj, cand) <= tolerance) return false;
+  mj = cand;
+  return true;
+}
+
+int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
+  const double slope = gradationSlope(options.ratio);
+  require(options.tolerance >= 0.0, ErrorCode::InvalidArgument, "gradation tolerance must be >= 0");
+  std::vector<int> start, nbr;
+  adjacency(cs, start, nbr);
+  const int n = cs.nodeCount();
+  // Work-set ordered by the node's smallest requested size (smallest first, as in
+  // Dijkstra): a node is mostly final when it is popped, so few nodes are re-queued.
+  // Stale heap entries are skipped by comparing with the node's current key.
+  auto key = [&](int i) {
+    const SymMt& m = cs.nodeMt(i);
+    // Largest eigenvalue of Mt = 1 / smallest size.
+    const double mean = 0.5 * (m.a + m.c), r = std::hypot(0.5 * (m.a - m.c), m.b);
+    return -(mean + r);
+  };
+  using Entry = std::pair<double, int>;  // (key, node): max-heap on -1/h_min
+  std::vector<Entry> heap;
+  std::vector<double> current(n, 0.0);
+  heap.reserve(n);
+  for (int i = 0; i < n; ++i)
+    if (cs.nodeIsFree(i)) {
+      current[i] = key(i);
+      heap.push_back({-current[i], i});
+    }
+  auto cmp = [](const Entry& x, const Entry& y) { return x.first < y.first || (x.first == y.first && x.second > y.second); };
+  std::make_heap(heap.begin(), heap.end(), cmp);
+  std::vector<char> queued(n, 0);
+  for (const auto& e : heap) queued[e.second] = 1;
+  int updates = 0;
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), cmp);
+    const Entry top = heap.back();
+    heap.pop_back();
+    const int i = top.second;
+    if (!queued[i] || -top.first != current[i]) continue;  // stale entry
+    queued[i] = 0;
+    const Metric mi = cs.nodeMetric(i);
+    const Vec2 pi = cs.nodePosition(i);
+    for (int k = start[i]; k < start[i + 1]; ++k) {
+      const int j = nbr[k];
+      Metric mj = cs.nodeMetric(j);
+      if (limitGradation(mi, pi, mj, cs.nodePosition(j), slope, options.tolerance)) {
+        cs.setNodeMetric(j, mj);
+        ++updates;
+        current[j] = key(j);
+        queued[j] = 1;
+        heap.push_back({-current[j], j});
+        std::push_heap(heap.begin(), heap.end(), cmp);
+      }
+    }
+  }
+  cs.applyConstraints();
+  return updates;
+}
+
+Metric clampMetricSizes(const Metric& m, double hmin, double hmax) {
+  const MetricSizes s = m.sizes();
+  const double h1 = std::clamp(s.h1, hmin, hmax), h2 = std::clamp(s.h2, hmin, hmax);
+  if (h1 == s.h1 && h2 == s.h2) return m;
+  return Metric::fromSizes(s.alpha, h1, h2);
+}
+
+void clampSizes(AdaptiveControlSpace& cs, double hmin, double hmax) {
+  require(std::isfinite(hmin) && hmin > 0.0 && !(hmax < hmin), ErrorCode::InvalidArgument,
+          "size clamps need 0 < hmin <= hmax");
+  for (int i = 0; i < cs.nodeCount(); ++i)
+    if (cs.nodeIsFree(i)) cs.setNodeMetric(i, clampMetricSizes(cs.nodeMetric(i), hmin, hmax));
+  cs.applyConstraints();
+}
+
+}  // namespace anisomesh

@@ -1,0 +1,321 @@
+// Building and combining control spaces: sources, continuous insertion, minimum,
+// gradation smoothing - on both structures.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "anisomesh/controlspace/background_mesh_control_space.h"
+#include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/controlspace/quadtree_control_space.h"
+#include "anisomesh/core/error.h"
+
+using namespace anisomesh;
+
+namespace {
+
+Box2 unitBox() {
+  Box2 b;
+  b.lo = Vec2(0.0, 0.0);
+  b.hi = Vec2(1.0, 1.0);
+  return b;
+}
+
+std::unique_ptr<AdaptiveControlSpace> makeSpace(bool quadtree, int maxLevel = 9,
+                                                std::optional<Metric> initial = std::nullopt) {
+  if (quadtree) {
+    QuadtreeOptions o;
+    o.maxLevel = maxLevel;
+    o.initialMetric = initial;
+    return std::make_unique<QuadtreeControlSpace>(unitBox(), o);
+  }
+  BackgroundMeshOptions o;
+  o.maxLevel = maxLevel;
+  o.initialMetric = initial;
+  return std::make_unique<BackgroundMeshControlSpace>(unitBox(), o);
+}
+
+void expectBalanced(const AdaptiveControlSpace& cs) {
+  if (const auto* qt = dynamic_cast<const QuadtreeControlSpace*>(&cs)) {
+    EXPECT_TRUE(qt->isBalanced());
+  }
+}
+
+double relDiff(const Metric& a, const Metric& b) {
+  return (a.transform() - b.transform()).norm() / b.transform().norm();
+}
+
+ContinuousInsertionOptions insertion() {
+  ContinuousInsertionOptions c;
+  c.threshold = 0.3;
+  c.sampleThreshold = 0.05;
+  return c;
+}
+
+// Sharp field: steep boundary layer and a small isotropic spot (slopes above a_max).
+Metric sharpField(const Vec2& p) {
+  const double hn = std::min(0.001 + 1.0 * std::abs(p.y() - 0.5), 0.2);
+  const Metric layer = Metric::fromSizes(0.0, 0.2, hn);
+  const Metric spot = Metric::isotropic(std::min(0.002 + 3.0 * (p - Vec2(0.25, 0.25)).norm(), 0.2));
+  return intersect(layer, spot);
+}
+
+Vec2 dir(double a) { return {std::cos(a), std::sin(a)}; }
+
+}  // namespace
+
+TEST(ControlSpaceSources, MetricIsHeldNearRadialSegmentAndCurveSources) {
+  const Metric m1 = Metric::fromSizes(0.3, 0.01, 0.05), m2 = Metric::isotropic(0.02),
+               m3 = Metric::fromSizes(0.0, 0.005, 0.05);
+  CurveSource arc;
+  arc.curve = [](double t) { return Vec2(0.5 + 0.15 * std::cos(t), 0.7 + 0.15 * std::sin(t)); };
+  arc.t1 = 0.0;
+  arc.t2 = M_PI;
+  arc.metric = m3;
+  arc.radius = 0.01;
+  const std::vector<MetricSource> sources = {RadialSource{{0.3, 0.3}, m1, 0.05},
+                                             SegmentSource{{0.6, 0.2}, {0.9, 0.2}, m2, 0.02}, arc};
+  for (bool quadtree : {true, false}) {
+    auto cs = makeSpace(quadtree);
+    insertSources(*cs, sources);
+    expectBalanced(*cs);
+    EXPECT_LT(relDiff(cs->metricAt({0.3, 0.3}), m1), 1e-9);
+    EXPECT_LT(relDiff(cs->metricAt({0.32, 0.29}), m1), 1e-9);
+    EXPECT_LT(relDiff(cs->metricAt({0.75, 0.2}), m2), 1e-9);
+    EXPECT_LT(relDiff(cs->metricAt({0.5 + 0.15 * std::cos(1.0), 0.7 + 0.15 * std::sin(1.0)}), m3), 1e-9);
+    for (int i = 0; i < cs->nodeCount(); ++i) ASSERT_TRUE(cs->nodeIsInitialized(i));
+    // Extrapolated elsewhere: a valid metric not larger than the sources' range.
+    const MetricSizes far = cs->metricAt({0.95, 0.95}).sizes();
+    EXPECT_GE(far.h1, 0.004);
+    EXPECT_LE(far.h2, 0.06);
+  }
+}
+
+TEST(ControlSpaceSources, ManyRadialSourcesKeepBalance) {
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0), h(0.005, 0.05);
+  std::vector<MetricSource> sources(2000);
+  for (auto& s : sources) {
+    const Vec2 p(u(rng), u(rng));
+    s = RadialSource{p, Metric::isotropic(h(rng)), 0.0};
+  }
+  for (bool quadtree : {true, false}) {
+    auto cs = makeSpace(quadtree);
+    insertSources(*cs, sources);
+    expectBalanced(*cs);
+    for (int i = 0; i < cs->nodeCount(); ++i) {
+      const MetricSizes s = cs->nodeMetric(i).sizes();
+      ASSERT_GE(s.h1, 0.005 * (1 - 1e-9));
+      ASSERT_LE(s.h2, 0.05 * (1 + 1e-9));
+    }
+  }
+}
+
+TEST(ControlSpaceSources, BadInputIsRejectedWithTypedErrors) {
+  auto cs = makeSpace(true);
+  auto code = [&](const std::vector<MetricSource>& s) {
+    try {
+      insertSources(*cs, s);
+    } catch (const Error& e) {
+      return e.code();
+    }
+    return ErrorCode::Internal;
+  };
+  EXPECT_EQ(code({RadialSource{{0.5, 0.5}, Metric::isotropic(0.1), -0.1}}), ErrorCode::InvalidArgument);
+  EXPECT_EQ(code({SegmentSource{{0.5, 0.5}, {0.5, 0.5}, Metric::isotropic(0.1), 0.1}}), ErrorCode::ZeroLengthCurve);
+  EXPECT_EQ(code({RadialSource{{std::nan(""), 0.5}, Metric::isotropic(0.1), 0.1}}), ErrorCode::InvalidArgument);
+  CurveSource still;
+  still.curve = [](double) { return Vec2(0.5, 0.5); };
+  still.radius = 0.1;
+  EXPECT_EQ(code({still}), ErrorCode::ZeroLengthCurve);
+  EXPECT_EQ(code({PolylineSource{{{0.1, 0.1}}, Metric::isotropic(0.1), 0.0}}), ErrorCode::InvalidArgument);
+  EXPECT_EQ(code({NodeSource{{{0.1, 0.1}}, {}}}), ErrorCode::InvalidArgument);
+  try {
+    (void)Metric::isotropic(std::nan(""));
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidMetric);
+  }
+}
+
+TEST(ControlSpaceSources, SourceOutsideTheDomainChangesNothing) {
+  for (bool quadtree : {true, false}) {
+    auto cs = makeSpace(quadtree, 6);
+    insertMetricFunction(*cs, sharpField, insertion());
+    const auto before = cs->clone();
+    insertSources(*cs, {RadialSource{{5.0, 5.0}, Metric::isotropic(0.001), 1.0},
+                        SegmentSource{{-3.0, -1.0}, {3.0, -1.0}, Metric::isotropic(0.001), 0.5}});
+    ASSERT_EQ(cs->nodeCount(), before->nodeCount());
+    ASSERT_EQ(cs->elementCount(), before->elementCount());
+    for (int i = 0; i < cs->nodeCount(); ++i) ASSERT_EQ(cs->nodeMetric(i).transform(), before->nodeMetric(i).transform());
+  }
+}
+
+TEST(ControlSpaceContinuous, IntersectsWithExistingField) {
+  for (bool quadtree : {true, false}) {
+    auto cs = makeSpace(quadtree, 8);
+    insertSources(*cs, {RadialSource{{0.5, 0.5}, Metric::fromSizes(0.0, 0.01, 0.2), 0.1}});
+    insertMetricFunction(*cs, [](const Vec2&) { return Metric::isotropic(0.05); }, insertion());
+    expectBalanced(*cs);
+    const MetricSizes s = cs->metricAt({0.5, 0.5}).sizes();
+    EXPECT_NEAR(s.h1, 0.01, 1e-9);
+    EXPECT_NEAR(s.h2, 0.05, 1e-9);
+  }
+}
+
+TEST(ControlSpaceMinimum, QuadtreeResultLiesInsideBothInputs) {
+  // Axis-aligned fields: bilinear interpolation of Mt is then monotone, so the
+  // property holds at every point, not only at nodes.
+  auto f1 = [](const Vec2& p) { return Metric::fromSizes(0.0, 0.02 + 0.2 * p.x(), 0.1 - 0.05 * p.y()); };
+  auto f2 = [](const Vec2& p) {
+    return Metric::fromSizes(0.0, 0.05, 0.005 + 0.3 * std::abs(p.x() - 0.6) + 0.1 * p.y() * p.y());
+  };
+  auto cs1 = makeSpace(true, 9), cs2 = makeSpace(true, 9);
+  insertMetricFunction(*cs1, f1, insertion());
+  insertMetricFunction(*cs2, f2, insertion());
+  const auto orig = cs1->clone();
+  MinimumOptions mo;
+  mo.threshold = 1e-9;
+  intersectControlSpace(*cs1, *cs2, mo);
+  expectBalanced(*cs1);
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int equalToSecond = 0;
+  for (int k = 0; k < 5000; ++k) {
+    const Vec2 p(u(rng), u(rng));
+    const Metric r = cs1->metricAt(p), a = orig->metricAt(p), b = cs2->metricAt(p);
+    for (int d = 0; d < 8; ++d) {
+      const Vec2 v = dir(d * M_PI / 8);
+      ASSERT_LE(r.sizeAlong(v), a.sizeAlong(v) * (1 + 1e-6));
+      ASSERT_LE(r.sizeAlong(v), b.sizeAlong(v) * (1 + 1e-6));
+    }
+    if (relDiff(r, b) < 1e-9) ++equalToSecond;
+  }
+  EXPECT_GT(equalToSecond, 0);
+}
+
+TEST(ControlSpaceMinimum, EqualsTheInputThatIsSmallerEverywhere) {
+  auto layer = [](const Vec2& p) { return Metric::fromSizes(0.0, 0.1, 0.001 + 0.1 * std::abs(p.y() - 0.5)); };
+  auto cs1 = makeSpace(true, 10, Metric::isotropic(0.5));
+  auto cs2 = makeSpace(true, 10);
+  insertMetricFunction(*cs2, layer, insertion());
+  MinimumOptions mo;
+  mo.threshold = 1e-9;
+  intersectControlSpace(*cs1, *cs2, mo);
+  expectBalanced(*cs1);
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < 5000; ++k) {
+    const Vec2 p(u(rng), u(rng));
+    ASSERT_LT(relDiff(cs1->metricAt(p), cs2->metricAt(p)), 1e-9) << p.transpose();
+  }
+}
+
+TEST(ControlSpaceMinimum, BackgroundAndCrossStructureMinimum) {
+  auto f1 = [](const Vec2& p) { return Metric::fromSizes(0.4, 0.02 + 0.2 * p.x(), 0.1 - 0.05 * p.y()); };
+  auto f2 = [](const Vec2& p) { return Metric::fromSizes(-0.2, 0.05, 0.005 + 0.3 * std::abs(p.x() - 0.6)); };
+  // (first quadtree?, second quadtree?)
+  for (auto [q1, q2] : {std::pair{false, false}, std::pair{true, false}, std::pair{false, true}}) {
+    auto cs1 = makeSpace(q1, 8), cs2 = makeSpace(q2, 8);
+    insertMetricFunction(*cs1, f1, insertion());
+    insertMetricFunction(*cs2, f2, insertion());
+    const auto orig = cs1->clone();
+    intersectControlSpace(*cs1, *cs2);
+    expectBalanced(*cs1);
+    // At the result's nodes: inside both inputs (to rounding).
+    for (int i = 0; i < cs1->nodeCount(); ++i) {
+      if (!cs1->nodeIsFree(i)) continue;  // hanging nodes follow the interpolation
+      const Vec2 p = cs1->nodePosition(i);
+      const Metric r = cs1->nodeMetric(i), a = orig->metricAt(p), b = cs2->metricAt(p);
+      for (int d = 0; d < 8; ++d) {
+        const Vec2 v = dir(d * M_PI / 8);
+        ASSERT_LE(r.sizeAlong(v), a.sizeAlong(v) * (1 + 1e-6));
+        ASSERT_LE(r.sizeAlong(v), b.sizeAlong(v) * (1 + 1e-6)) << q1 << q2 << " node " << i << " free " << cs1->nodeIsFree(i);
+      }
+    }
+    // Between nodes: interpolations of different structures differ; the result stays close
+    // to the exact minimum of the analytic inputs.
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    double worst = 0.0;
+    for (int k = 0; k < 3000; ++k) {
+      const Vec2 p(u(rng), u(rng));
+      const Metric r = cs1->metricAt(p), exact = intersect(f1(p), f2(p));
+      for (int d = 0; d < 8; ++d) worst = std::max(worst, r.sizeAlong(dir(d * M_PI / 8)) / exact.sizeAlong(dir(d * M_PI / 8)) - 1);
+    }
+    EXPECT_LT(worst, 0.15) << q1 << q2;
+  }
+}
+
+TEST(ControlSpaceGradation, SizeGrowsNoFasterThanTheBoundAlongEveryEdge) {
+  for (bool quadtree : {true, false}) {
+    auto field = makeSpace(quadtree, 7);
+    insertMetricFunction(*field, sharpField, insertion());
+    for (double dr : {1.5, 2.0, 8.0}) {
+      auto cs = field->clone();
+      GradationOptions g;
+      g.ratio = dr;
+      const int updates = smoothGradation(*cs, g);
+      EXPECT_GT(updates, 0);
+      expectBalanced(*cs);
+      const double amax = gradationSlope(dr);
+      for (const auto& e : cs->controlEdges()) {
+        const Vec2 pi = cs->nodePosition(e[0]), pj = cs->nodePosition(e[1]);
+        const Vec2 u = pj - pi;
+        const double hi = cs->nodeMetric(e[0]).sizeAlong(u), hj = cs->nodeMetric(e[1]).sizeAlong(u);
+        const double tol = 1e-9 * std::max(hi, hj);
+        ASSERT_LE(hj, hi + amax * u.norm() + tol) << dr;
+        ASSERT_LE(hi, hj + amax * u.norm() + tol) << dr;
+      }
+      // Idempotent.
+      const auto once = cs->clone();
+      smoothGradation(*cs, g);
+      for (int i = 0; i < cs->nodeCount(); ++i) ASSERT_LT(relDiff(cs->nodeMetric(i), once->nodeMetric(i)), 1e-9);
+    }
+  }
+}
+
+TEST(ControlSpaceGradation, KeepsAnisotropy) {
+  const Metric stretched = Metric::fromSizes(0.3, 0.002, 0.1);  // aspect ratio 50
+  for (bool quadtree : {true, false}) {
+    auto cs = makeSpace(quadtree, 8, stretched);
+    GradationOptions g;
+    g.ratio = 1.5;
+    EXPECT_EQ(smoothGradation(*cs, g), 0);
+    for (int i = 0; i < cs->nodeCount(); ++i) ASSERT_NEAR(cs->nodeMetric(i).aspectRatio(), 50.0, 1e-9);
+    // A small isotropic spot: smoothing shrinks sizes around it, but far from it the
+    // stretch is untouched and near it the result stays anisotropic (intersection).
+    insertSources(*cs, {RadialSource{{0.5, 0.5}, Metric::isotropic(0.001), 0.0}});
+    smoothGradation(*cs, g);
+    int far = 0, nearAniso = 0, nearCount = 0;
+    for (int i = 0; i < cs->nodeCount(); ++i) {
+      const double d = (cs->nodePosition(i) - Vec2(0.5, 0.5)).norm();
+      const double ar = cs->nodeMetric(i).aspectRatio();
+      if (d > 0.3) {
+        ++far;
+        ASSERT_NEAR(ar, 50.0, 1e-6);
+      } else if (d > 0.01 && d < 0.1) {
+        ++nearCount;
+        nearAniso += ar > 1.5 ? 1 : 0;
+      }
+    }
+    EXPECT_GT(far, 0);
+    EXPECT_GT(nearCount, 0);
+    EXPECT_GT(nearAniso, nearCount / 2);
+  }
+}
+
+TEST(ControlSpaceGradation, RatioBelowOneIsRejected) {
+  auto cs = makeSpace(true, 4, Metric::isotropic(0.1));
+  for (double dr : {0.5, 0.999, std::nan("")}) {
+    GradationOptions g;
+    g.ratio = dr;
+    try {
+      smoothGradation(*cs, g);
+      FAIL();
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
+    }
+  }
+}

@@ -1,0 +1,167 @@
+// Background mesh control space: conforming bisection, point location, interpolation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "anisomesh/controlspace/background_mesh_control_space.h"
+#include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/core/error.h"
+
+using namespace anisomesh;
+
+namespace {
+
+Box2 box(double x0, double y0, double x1, double y1) {
+  Box2 b;
+  b.lo = Vec2(x0, y0);
+  b.hi = Vec2(x1, y1);
+  return b;
+}
+
+Metric boundaryLayer(const Vec2& p) {
+  const double hn = 0.001 + 0.1 * std::abs(p.y() - 0.5);
+  return Metric::fromSizes(0.0, 0.1, hn);
+}
+
+// Conformity: every interior edge is shared by exactly two triangles with matching
+// neighbour links, all triangles counter-clockwise, total area = box area.
+void expectValidTriangulation(const BackgroundMeshControlSpace& bg) {
+  std::map<std::pair<int, int>, int> edgeUse;
+  double area = 0.0;
+  for (int t = 0; t < bg.elementCount(); ++t) {
+    const auto& v = bg.triangle(t);
+    const Vec2 a = bg.nodePosition(v[0]), b = bg.nodePosition(v[1]), c = bg.nodePosition(v[2]);
+    const double ar = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+    ASSERT_GT(ar, 0.0);
+    area += ar;
+    for (int k = 0; k < 3; ++k) {
+      const int p = v[(k + 1) % 3], q = v[(k + 2) % 3];
+      ++edgeUse[{std::min(p, q), std::max(p, q)}];
+      const int n = bg.neighbours(t)[k];
+      if (n >= 0) {
+        bool back = false;
+        for (int j = 0; j < 3; ++j) back = back || bg.neighbours(n)[j] == t;
+        ASSERT_TRUE(back);
+      }
+    }
+  }
+  for (const auto& [e, uses] : edgeUse) ASSERT_LE(uses, 2);
+  const Vec2 sz = bg.bounds().size();
+  EXPECT_NEAR(area, sz.x() * sz.y(), 1e-12 * sz.x() * sz.y());
+}
+
+}  // namespace
+
+TEST(ControlSpaceBackground, InvalidBoxIsRejected) {
+  try {
+    BackgroundMeshControlSpace bg(box(0.0, 1.0, 1.0, 0.0));
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidDomain);
+  }
+  BackgroundMeshOptions o;
+  o.initialGrid = 0;
+  EXPECT_THROW(BackgroundMeshControlSpace(box(0.0, 0.0, 1.0, 1.0), o), Error);
+}
+
+TEST(ControlSpaceBackground, BisectionKeepsConformingTriangulation) {
+  BackgroundMeshOptions o;
+  o.initialGrid = 3;
+  BackgroundMeshControlSpace bg(box(0.0, 0.0, 2.0, 1.0), o);
+  expectValidTriangulation(bg);
+  const Vec2 focus(0.7, 0.31);
+  bg.refine([&](const ControlElement& e) { return e.box.contains(focus) && e.size > 0.003; }, nullptr);
+  EXPECT_GT(bg.elementCount(), 50);
+  expectValidTriangulation(bg);
+  bg.bisect(0);
+  expectValidTriangulation(bg);
+}
+
+TEST(ControlSpaceBackground, PointLocationAgreesWithBruteForce) {
+  BackgroundMeshOptions o;
+  o.initialGrid = 4;
+  BackgroundMeshControlSpace bg(box(-1.0, 0.0, 1.0, 1.0), o);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> ux(-1.0, 1.0), uy(0.0, 1.0);
+  // Irregular refinement around a few random points.
+  for (int k = 0; k < 6; ++k) {
+    const Vec2 f(ux(rng), uy(rng));
+    bg.refine([&](const ControlElement& e) { return e.box.contains(f) && e.size > 0.002; }, nullptr);
+  }
+  for (int k = 0; k < 3000; ++k) {
+    const Vec2 p(ux(rng), uy(rng));
+    const int t = bg.locateTriangle(p);
+    ASSERT_TRUE(bg.triangleContains(t, p));
+    int brute = -1;
+    for (int u = 0; u < bg.elementCount() && brute < 0; ++u)
+      if (bg.triangleContains(u, p)) brute = u;
+    ASSERT_GE(brute, 0);
+    if (brute != t) {
+      // Only on a shared edge or vertex: both contain it.
+      ASSERT_TRUE(bg.triangleContains(brute, p));
+    }
+  }
+}
+
+TEST(ControlSpaceBackground, InterpolationReturnsNodeMetricAtNodesAndConstants) {
+  for (auto interp : {BackgroundInterpolation::InverseSquaredDistance, BackgroundInterpolation::Linear}) {
+    BackgroundMeshOptions o;
+    o.interpolation = interp;
+    BackgroundMeshControlSpace bg(box(0.0, 0.0, 1.0, 1.0), o);
+    bg.refine([&](const ControlElement& e) { return e.box.contains(Vec2(0.3, 0.3)) && e.size > 0.01; }, nullptr);
+    const Metric c = Metric::fromSizes(0.4, 0.01, 0.2);
+    for (int i = 0; i < bg.nodeCount(); ++i) bg.setNodeMetric(i, c);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int k = 0; k < 1000; ++k) {
+      const Vec2 p(u(rng), u(rng));
+      EXPECT_LT((bg.metricAt(p).transform() - c.transform()).norm(), 1e-9 * c.transform().norm());
+    }
+    for (int i = 0; i < bg.nodeCount(); ++i) bg.setNodeMetric(i, Metric::isotropic(0.01 + bg.nodePosition(i).x()));
+    for (int i = 0; i < bg.nodeCount(); i += 5)
+      EXPECT_NEAR(bg.metricAt(bg.nodePosition(i)).sizes().h1, 0.01 + bg.nodePosition(i).x(), 1e-12);
+  }
+  // Linear interpolation reproduces a linear Mt field.
+  BackgroundMeshOptions o;
+  o.interpolation = BackgroundInterpolation::Linear;
+  BackgroundMeshControlSpace bg(box(0.0, 0.0, 1.0, 1.0), o);
+  auto field = [](const Vec2& p) {
+    Mat2 t;
+    t << 3.0 + p.x(), 0.2 * p.y(), 0.2 * p.y(), 2.0 + p.y() - 0.5 * p.x();
+    return t;
+  };
+  for (int i = 0; i < bg.nodeCount(); ++i) bg.setNodeMetric(i, Metric::fromTransform(field(bg.nodePosition(i))));
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < 1000; ++k) {
+    const Vec2 p(u(rng), u(rng));
+    EXPECT_LT((bg.metricAt(p).transform() - field(p)).norm(), 1e-12);
+  }
+}
+
+TEST(ControlSpaceBackground, AdaptsToAnisotropicBoundaryLayer) {
+  for (auto interp : {BackgroundInterpolation::InverseSquaredDistance, BackgroundInterpolation::Linear}) {
+    BackgroundMeshOptions o;
+    o.interpolation = interp;
+    o.maxLevel = 12;
+    BackgroundMeshControlSpace bg(box(0.0, 0.0, 1.0, 1.0), o);
+    ContinuousInsertionOptions c;
+    c.threshold = 0.3;
+    c.sampleThreshold = 0.05;
+    insertMetricFunction(bg, boundaryLayer, c);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0), ang(0.0, 2 * M_PI);
+    double worst = 0.0;
+    for (int k = 0; k < 10000; ++k) {
+      const Vec2 p(u(rng), u(rng));
+      const Vec2 d(std::cos(ang(rng)), std::sin(ang(rng)));
+      const double l = bg.metricAt(p).length(d), la = boundaryLayer(p).length(d);
+      worst = std::max(worst, std::abs(l / la - 1.0));
+    }
+    EXPECT_LT(worst, 0.1) << "triangles " << bg.elementCount();
+    EXPECT_GT(bg.metricAt(Vec2(0.3, 0.5)).aspectRatio(), 90.0);
+    expectValidTriangulation(bg);
+  }
+}
