@@ -1,0 +1,956 @@
+// Metric Delaunay mesher of a planar domain (coordinate-transformation approach):
+// exact Delaunay triangulation of the boundary points in a super-box, boundary recovery
+// by edge flips, removal of outside triangles by parity flood fill, frontal-Delaunay
+// insertion of inner nodes in the metric (Rebay-style point placement, Bowyer-Watson
+// cavities judged by each triangle's metric circumcircle), then metric edge swaps and
+// node smoothing. Data layout is flat arrays with triangle neighbours; no per-insertion
+// heap allocation on the hot path.
+#include "anisomesh/mesh/planar_mesher.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <queue>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "anisomesh/core/error.h"
+#include "anisomesh/mesh/predicates.h"
+#include "mesh_internal.h"
+
+namespace anisomesh {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+constexpr int kSuper = 4;                         // super-box corners are vertices 0..3
+constexpr double kIdealRadius = 0.57735026918962576;  // circumradius of the unit equilateral triangle
+constexpr double kAcceptRadius = 0.70710678118654752; // triangles with metric radius below are done
+
+inline int next3(int i) { return i == 2 ? 0 : i + 1; }
+inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
+
+// Metric-space circumcircle of a triangle under its own (vertex-averaged) metric.
+struct TriCache {
+  double cx = 0, cy = 0;  // physical circumcentre
+  double r2 = 0;          // squared metric radius
+  SymMt m;                // the triangle's metric
+};
+
+class Mesher {
+ public:
+  Mesher(const std::vector<BoundaryLoop>& loops, const ControlSpace& cs, const PlanarMesherOptions& opt)
+      : loops_(loops), cs_(cs), opt_(opt) {}
+
+  Mesh run();
+
+ private:
+  // ---- setup and output ----
+  void validate() const;
+  void checkProgress(double fraction);
+  SymMt queryMetric(const Vec2& p) const { return SymMt::from(cs_.metricAt(p).transform()); }
+  Mesh output() const;
+
+  // ---- triangle storage ----
+  int allocTri();
+  void setNbrAcross(int tri, int a, int b, int newNbr);  // in tri, edge (b, a) now borders newNbr
+  bool cons(int t, int i) const { return (tc_[t] >> i) & 1; }
+  int findEdge(int a, int b, int* idx) const;  // triangle holding directed edge a->b, opposite index
+  int liveTriangles() const { return static_cast<int>(tv_.size() - freeTris_.size()); }
+
+  // ---- Delaunay kernel ----
+  int locate(const Vec2& x, int start, bool stopAtConstraints);
+  template <class InCircle>
+  bool buildCavity(const Vec2& x, int t0, InCircle inCircle);
+  int commitCavity(int v);  // fans the cavity from vertex v, returns one new triangle
+  void flip(int t, int i);
+
+  // ---- stages ----
+  void triangulateBoundary();
+  void recoverEdge(int a, int b);
+  void removeOutside();
+  double estimateMetricArea();
+  double metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double da, double db, double dc, int depth,
+                       std::int64_t& budget) const;
+  void insertInnerNodes();
+  void improve();
+  int swapPass();
+  int smoothPass();
+
+  // ---- metric helpers ----
+  void computeCache(int t);
+  double triQuality(int a, int b, int c) const;
+  double triQuality(int a, int b, int c, const Vec2& pa) const;  // with a moved to pa
+
+  const std::vector<BoundaryLoop>& loops_;
+  const ControlSpace& cs_;
+  const PlanarMesherOptions& opt_;
+
+  std::vector<Vec2> pts_;
+  std::vector<SymMt> vmt_;
+  std::vector<std::uint8_t> vbnd_;  // 1: boundary or super vertex (never moved)
+  std::vector<int> vtri_;
+  std::vector<std::array<int, 3>> tv_, tn_;
+  std::vector<std::uint8_t> tc_;  // constrained-edge bits
+  std::vector<int> freeTris_;
+  std::vector<std::array<int, 2>> bedges_;  // boundary edges (mesher vertex ids)
+  std::vector<int> bedgeRefs_;
+  int nBoundary_ = 0;
+
+  // cavity scratch (reused)
+  std::vector<std::uint32_t> mark_, forbid_;
+  std::uint32_t epoch_ = 0, fepoch_ = 0;
+  std::vector<int> cav_;
+  struct BndEdge {
+    int a, b, outer;
+    bool c;
+  };
+  std::vector<BndEdge> bnd_;
+  std::vector<int> startAt_, endAt_, newTris_;
+  std::uint32_t rng_ = 12345u;
+
+  // frontal state
+  std::vector<TriCache> cache_;
+  std::vector<std::uint8_t> accepted_;
+  std::vector<std::uint32_t> stamp_, queued_;
+  bool metricMode_ = false;
+
+  double estimate_ = 0.0;
+  double elementRatio_ = 1.0;  // final elements per triangle
+  MesherTimings timings_;
+};
+
+// ---------------------------------------------------------------------------------
+void Mesher::validate() const {
+  require(!loops_.empty(), ErrorCode::InvalidArgument, "meshPlanarBoundary: no boundary loop given");
+  for (size_t l = 0; l < loops_.size(); ++l) {
+    const auto& lp = loops_[l];
+    const std::string name = l == 0 ? "outer loop" : "hole loop " + std::to_string(l);
+    require(lp.points.size() >= 3, ErrorCode::InvalidArgument,
+            "meshPlanarBoundary: " + name + " has " + std::to_string(lp.points.size()) +
+                " points, at least 3 are needed");
+    require(lp.edgeRefs.size() == lp.points.size(), ErrorCode::InvalidArgument,
+            "meshPlanarBoundary: " + name + " has " + std::to_string(lp.points.size()) + " points but " +
+                std::to_string(lp.edgeRefs.size()) + " edge refs (one per edge expected)");
+    for (size_t i = 0; i < lp.points.size(); ++i)
+      require(lp.points[i].allFinite(), ErrorCode::InvalidArgument,
+              "meshPlanarBoundary: " + name + " point " + std::to_string(i) + " is not finite");
+  }
+  require(opt_.maxElements > 0, ErrorCode::InvalidArgument, "meshPlanarBoundary: maxElements must be positive");
+  require(opt_.improvementPasses >= 0, ErrorCode::InvalidArgument,
+          "meshPlanarBoundary: improvementPasses must be >= 0");
+  require(std::isfinite(opt_.minNodeDistance) && opt_.minNodeDistance >= 0.0 && opt_.minNodeDistance < 1.0,
+          ErrorCode::InvalidArgument, "meshPlanarBoundary: minNodeDistance must be in [0, 1)");
+}
+
+void Mesher::checkProgress(double fraction) {
+  if (opt_.progress && !opt_.progress(std::min(1.0, std::max(0.0, fraction))))
+    throw Error(ErrorCode::Cancelled, "meshPlanarBoundary: cancelled by the progress callback");
+}
+
+int Mesher::allocTri() {
+  if (!freeTris_.empty()) {
+    const int t = freeTris_.back();
+    freeTris_.pop_back();
+    ++stamp_[t];
+    return t;
+  }
+  tv_.push_back({-1, -1, -1});
+  tn_.push_back({-1, -1, -1});
+  tc_.push_back(0);
+  mark_.push_back(0);
+  forbid_.push_back(0);
+  stamp_.push_back(0);
+  queued_.push_back(std::numeric_limits<std::uint32_t>::max());
+  accepted_.push_back(0);
+  cache_.emplace_back();
+  return static_cast<int>(tv_.size()) - 1;
+}
+
+void Mesher::setNbrAcross(int tri, int a, int b, int newNbr) {
+  if (tri < 0) return;
+  auto& v = tv_[tri];
+  for (int j = 0; j < 3; ++j)
+    if (v[next3(j)] == b && v[prev3(j)] == a) {
+      tn_[tri][j] = newNbr;
+      return;
+    }
+  throw Error(ErrorCode::Internal, "meshPlanarBoundary: broken triangle adjacency");
+}
+
+int Mesher::findEdge(int a, int b, int* idx) const {
+  // Rotate around a (all vertices touched here are interior to the super-box triangulation
+  // or the rotation stops at a hull edge, which is then walked the other way).
+  const int t0 = vtri_[a];
+  int t = t0;
+  for (int guard = 0; guard < 100000; ++guard) {
+    const auto& v = tv_[t];
+    const int i = v[0] == a ? 0 : (v[1] == a ? 1 : 2);
+    if (v[next3(i)] == b) {
+      *idx = prev3(i);
+      return t;
+    }
+    // Next triangle counter-clockwise around a: across edge (a, v[prev]) opposite v[next].
+    t = tn_[t][next3(i)];
+    if (t < 0 || t == t0) break;
+  }
+  if (t < 0) {  // hit a hull edge: go clockwise from the start
+    t = t0;
+    for (int guard = 0; guard < 100000; ++guard) {
+      const auto& v = tv_[t];
+      const int i = v[0] == a ? 0 : (v[1] == a ? 1 : 2);
+      if (v[next3(i)] == b) {
+        *idx = prev3(i);
+        return t;
+      }
+      t = tn_[t][prev3(i)];
+      if (t < 0 || t == t0) break;
+    }
+  }
+  return -1;
+}
+
+// Visibility walk with a deterministic pseudo-random edge order (terminates on any
+// triangulation with probability one). Returns -1 when leaving the domain.
+int Mesher::locate(const Vec2& x, int t, bool stopAtConstraints) {
+  const int limit = 4 * static_cast<int>(tv_.size()) + 100;
+  for (int steps = 0; steps < limit; ++steps) {
+    rng_ = rng_ * 1664525u + 1013904223u;
+    const int r = static_cast<int>((rng_ >> 16) % 3u);
+    bool moved = false;
+    for (int k = 0; k < 3; ++k) {
+      const int i = (r + k) % 3;
+      const auto& v = tv_[t];
+      if (orient2d(pts_[v[next3(i)]], pts_[v[prev3(i)]], x) < 0.0) {
+        if (stopAtConstraints && cons(t, i)) return -1;
+        const int nb = tn_[t][i];
+        if (nb < 0) return -1;
+        t = nb;
+        moved = true;
+        break;
+      }
+    }
+    if (!moved) return t;
+  }
+  return -1;
+}
+
+// Cavity of x: triangles reachable from t0 across unconstrained edges whose circumcircle
+// (as judged by inCircle) contains x, reduced until x sees every cavity boundary edge
+// strictly counter-clockwise (star-shaped, so the fan is valid). False if impossible.
+template <class InCircle>
+bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
+  ++fepoch_;
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    ++epoch_;
+    cav_.clear();
+    cav_.push_back(t0);
+    mark_[t0] = epoch_;
+    for (size_t k = 0; k < cav_.size(); ++k) {
+      const int t = cav_[k];
+      for (int i = 0; i < 3; ++i) {
+        if (cons(t, i)) continue;
+        const int nb = tn_[t][i];
+        if (nb < 0 || mark_[nb] == epoch_ || forbid_[nb] == fepoch_) continue;
+        if (inCircle(nb)) {
+          mark_[nb] = epoch_;
+          cav_.push_back(nb);
+        }
+      }
+    }
+    bnd_.clear();
+    bool ok = true;
+    for (const int t : cav_) {
+      for (int i = 0; i < 3; ++i) {
+        const int nb = tn_[t][i];
+        if (nb >= 0 && mark_[nb] == epoch_ && !cons(t, i)) continue;
+        const int a = tv_[t][next3(i)], b = tv_[t][prev3(i)];
+        if (orient2d(pts_[a], pts_[b], x) <= 0.0) {
+          if (t == t0) return false;
+          forbid_[t] = fepoch_;
+          ok = false;
+        } else {
+          bnd_.push_back({a, b, nb, cons(t, i)});
+        }
+      }
+    }
+    if (ok) return true;
+  }
+  return false;
+}
+
+int Mesher::commitCavity(int v) {
+  if (static_cast<int>(startAt_.size()) < static_cast<int>(pts_.size())) {
+    startAt_.resize(pts_.size() + 1024, -1);
+    endAt_.resize(pts_.size() + 1024, -1);
+  }
+  newTris_.clear();
+  size_t reuse = 0;
+  for (size_t k = 0; k < bnd_.size(); ++k) {
+    int t;
+    if (reuse < cav_.size()) {
+      t = cav_[reuse++];
+      ++stamp_[t];
+    } else {
+      t = allocTri();
+    }
+    newTris_.push_back(t);
+  }
+  for (; reuse < cav_.size(); ++reuse) {  // cannot happen for a disc cavity, kept for safety
+    tv_[cav_[reuse]] = {-1, -1, -1};
+    freeTris_.push_back(cav_[reuse]);
+  }
+  for (size_t k = 0; k < bnd_.size(); ++k) {
+    const auto& e = bnd_[k];
+    const int t = newTris_[k];
+    tv_[t] = {e.a, e.b, v};
+    tn_[t][2] = e.outer;
+    tc_[t] = e.c ? 4 : 0;
+    accepted_[t] = 0;
+    if (e.outer >= 0) setNbrAcross(e.outer, e.a, e.b, t);
+    startAt_[e.a] = t;
+    endAt_[e.b] = t;
+  }
+  for (size_t k = 0; k < bnd_.size(); ++k) {
+    const int t = newTris_[k];
+    tn_[t][0] = startAt_[bnd_[k].b];
+    tn_[t][1] = endAt_[bnd_[k].a];
+    vtri_[bnd_[k].a] = t;
+  }
+  vtri_[v] = newTris_[0];
+  return newTris_[0];
+}
+
+void Mesher::flip(int t, int i) {
+  const int nb = tn_[t][i];
+  const int p = tv_[t][i], u = tv_[t][next3(i)], w = tv_[t][prev3(i)];
+  int j = 0;
+  while (tv_[nb][j] == u || tv_[nb][j] == w) ++j;
+  const int q = tv_[nb][j];
+  // t = (p, u, w), nb = (q, w, u)  ->  t = (p, u, q), nb = (q, w, p)
+  const int nWP = tn_[t][next3(i)], nPU = tn_[t][prev3(i)];
+  const bool cWP = cons(t, next3(i)), cPU = cons(t, prev3(i));
+  // in nb = (q, w, u) at positions j, j+1, j+2: opposite w is edge (u, q), opposite u is (q, w)
+  const int nUQ = tn_[nb][next3(j)], nQW = tn_[nb][prev3(j)];
+  const bool cUQ = cons(nb, next3(j)), cQW = cons(nb, prev3(j));
+  tv_[t] = {p, u, q};
+  tn_[t] = {nUQ, nb, nPU};
+  tc_[t] = static_cast<std::uint8_t>((cUQ ? 1 : 0) | (cPU ? 4 : 0));
+  tv_[nb] = {q, w, p};
+  tn_[nb] = {nWP, t, nQW};
+  tc_[nb] = static_cast<std::uint8_t>((cWP ? 1 : 0) | (cQW ? 4 : 0));
+  if (nUQ >= 0) setNbrAcross(nUQ, u, q, t);
+  if (nWP >= 0) setNbrAcross(nWP, w, p, nb);
+  ++stamp_[t];
+  ++stamp_[nb];
+  vtri_[p] = t;
+  vtri_[u] = t;
+  vtri_[q] = nb;
+  vtri_[w] = nb;
+}
+
+// ---------------------------------------------------------------------------------
+void Mesher::triangulateBoundary() {
+  // Vertices: 4 super-box corners, then the boundary points loop by loop in input order.
+  Vec2 lo = loops_[0].points[0], hi = lo;
+  int n = 0;
+  for (const auto& lp : loops_)
+    for (const auto& p : lp.points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+      ++n;
+    }
+  const Vec2 c = 0.5 * (lo + hi);
+  const double r = std::max(1e-300, 4.0 * std::max(hi.x() - lo.x(), hi.y() - lo.y()));
+  pts_.reserve(n + kSuper);
+  pts_.push_back(c + Vec2(-r, -r));
+  pts_.push_back(c + Vec2(r, -r));
+  pts_.push_back(c + Vec2(r, r));
+  pts_.push_back(c + Vec2(-r, r));
+  for (const auto& lp : loops_) {
+    const int base = static_cast<int>(pts_.size());
+    const int m = static_cast<int>(lp.points.size());
+    for (int i = 0; i < m; ++i) {
+      pts_.push_back(lp.points[i]);
+      bedges_.push_back({base + i, base + (i + 1) % m});
+      bedgeRefs_.push_back(lp.edgeRefs[i]);
+    }
+  }
+  nBoundary_ = n;
+  vbnd_.assign(pts_.size(), 1);
+  vtri_.assign(pts_.size(), -1);
+  const int t0 = allocTri(), t1 = allocTri();
+  tv_[t0] = {0, 1, 2};
+  tv_[t1] = {0, 2, 3};
+  tn_[t0] = {-1, t1, -1};
+  tn_[t1] = {-1, -1, t0};
+  vtri_[0] = vtri_[1] = vtri_[2] = t0;
+  vtri_[3] = t1;
+
+  int last = t0;
+  for (int v = kSuper; v < static_cast<int>(pts_.size()); ++v) {
+    const Vec2 x = pts_[v];
+    int t = locate(x, last, false);
+    if (t < 0) {  // cannot happen inside the super-box; scan as a last resort
+      for (int k = 0; k < static_cast<int>(tv_.size()) && t < 0; ++k)
+        if (tv_[k][0] >= 0 && orient2d(pts_[tv_[k][0]], pts_[tv_[k][1]], x) >= 0 &&
+            orient2d(pts_[tv_[k][1]], pts_[tv_[k][2]], x) >= 0 && orient2d(pts_[tv_[k][2]], pts_[tv_[k][0]], x) >= 0)
+          t = k;
+      require(t >= 0, ErrorCode::Internal, "meshPlanarBoundary: point location failed");
+    }
+    for (int k = 0; k < 3; ++k)
+      if (pts_[tv_[t][k]] == x) {
+        std::ostringstream os;
+        os << "meshPlanarBoundary: duplicate boundary point (" << x.x() << ", " << x.y() << ")";
+        throw Error(ErrorCode::InvalidArgument, os.str());
+      }
+    const bool ok = buildCavity(x, t, [&](int nb) {
+      const auto& tv = tv_[nb];
+      return incircle(pts_[tv[0]], pts_[tv[1]], pts_[tv[2]], x) > 0.0;
+    });
+    require(ok, ErrorCode::Internal, "meshPlanarBoundary: Delaunay cavity is not star-shaped");
+    last = commitCavity(v);
+  }
+
+  for (size_t e = 0; e < bedges_.size(); ++e) recoverEdge(bedges_[e][0], bedges_[e][1]);
+}
+
+void Mesher::recoverEdge(int a, int b) {
+  auto setConstrained = [&](int t, int i) {
+    tc_[t] |= static_cast<std::uint8_t>(1 << i);
+    const int nb = tn_[t][i];
+    const int u = tv_[t][next3(i)], w = tv_[t][prev3(i)];
+    for (int j = 0; j < 3; ++j)
+      if (tv_[nb][next3(j)] == w && tv_[nb][prev3(j)] == u) tc_[nb] |= static_cast<std::uint8_t>(1 << j);
+  };
+  auto onSegmentError = [&](int v) {
+    std::ostringstream os;
+    os << "meshPlanarBoundary: boundary point (" << pts_[v].x() << ", " << pts_[v].y()
+       << ") lies on the boundary segment (" << pts_[a].x() << ", " << pts_[a].y() << ")-(" << pts_[b].x() << ", "
+       << pts_[b].y() << ")";
+    throw Error(ErrorCode::SelfIntersectingContour, os.str());
+  };
+  int idx;
+  int t = findEdge(a, b, &idx);
+  if (t >= 0) {
+    setConstrained(t, idx);
+    return;
+  }
+  const Vec2& pa = pts_[a];
+  const Vec2& pb = pts_[b];
+  // Find the triangle around a through which segment ab leaves a.
+  std::deque<std::pair<int, int>> crossing;
+  int cur = vtri_[a];
+  int u = -1, w = -1;
+  for (int guard = 0;; ++guard) {
+    require(guard < 1000000, ErrorCode::Internal, "meshPlanarBoundary: boundary recovery: no start triangle");
+    const auto& v = tv_[cur];
+    const int i = v[0] == a ? 0 : (v[1] == a ? 1 : 2);
+    const int x = v[next3(i)], y = v[prev3(i)];
+    const double ox = orient2d(pa, pb, pts_[x]), oy = orient2d(pa, pb, pts_[y]);
+    if (ox == 0.0 && (pts_[x] - pa).dot(pb - pa) > 0.0) onSegmentError(x);
+    if (ox < 0.0 && oy > 0.0) {
+      u = x;
+      w = y;
+      break;
+    }
+    cur = tn_[cur][next3(i)];
+  }
+  // Walk along ab collecting the crossed edges.
+  for (int guard = 0;; ++guard) {
+    require(guard < 10000000, ErrorCode::Internal, "meshPlanarBoundary: boundary recovery walk failed");
+    int i = 0;
+    while (tv_[cur][i] == u || tv_[cur][i] == w) ++i;
+    if (cons(cur, i)) {
+      std::ostringstream os;
+      os << "meshPlanarBoundary: boundary segment (" << pa.x() << ", " << pa.y() << ")-(" << pb.x() << ", "
+         << pb.y() << ") crosses another boundary segment";
+      throw Error(ErrorCode::SelfIntersectingContour, os.str());
+    }
+    crossing.emplace_back(u, w);
+    const int nb = tn_[cur][i];
+    int j = 0;
+    while (tv_[nb][j] == u || tv_[nb][j] == w) ++j;
+    const int z = tv_[nb][j];
+    cur = nb;
+    if (z == b) break;
+    const double oz = orient2d(pa, pb, pts_[z]);
+    if (oz == 0.0) onSegmentError(z);
+    if (oz < 0.0)
+      u = z;
+    else
+      w = z;
+  }
+  // Flip crossing edges until none is left (terminates for a segment between two vertices).
+  const std::int64_t cap = 1000 + 100 * static_cast<std::int64_t>(crossing.size()) * crossing.size();
+  for (std::int64_t guard = 0; !crossing.empty(); ++guard) {
+    require(guard < cap, ErrorCode::Internal, "meshPlanarBoundary: boundary recovery did not converge");
+    const auto e = crossing.front();
+    crossing.pop_front();
+    int ti;
+    const int tt = findEdge(e.first, e.second, &ti);
+    require(tt >= 0, ErrorCode::Internal, "meshPlanarBoundary: boundary recovery lost an edge");
+    const int nb = tn_[tt][ti];
+    const int p = tv_[tt][ti];
+    int j = 0;
+    while (tv_[nb][j] == e.first || tv_[nb][j] == e.second) ++j;
+    const int q = tv_[nb][j];
+    // t = (p, u, w); flipping gives (p, u, q) and (q, w, p): both must be counter-clockwise.
+    if (orient2d(pts_[p], pts_[e.first], pts_[q]) <= 0.0 || orient2d(pts_[q], pts_[e.second], pts_[p]) <= 0.0) {
+      crossing.push_back(e);
+      continue;
+    }
+    flip(tt, ti);
+    if (p == a || p == b || q == a || q == b) continue;
+    const double op = orient2d(pa, pb, pts_[p]), oq = orient2d(pa, pb, pts_[q]);
+    if ((op < 0.0 && oq > 0.0) || (op > 0.0 && oq < 0.0)) crossing.emplace_back(p, q);
+  }
+  t = findEdge(a, b, &idx);
+  require(t >= 0, ErrorCode::Internal, "meshPlanarBoundary: boundary edge could not be recovered");
+  setConstrained(t, idx);
+}
+
+// Keeps the triangles separated from the super-box by an odd number of constrained
+// edges (inside the outer loop, outside every hole), whatever the loops' orientation.
+void Mesher::removeOutside() {
+  const int nt = static_cast<int>(tv_.size());
+  std::vector<int> depth(nt, -1);
+  std::deque<int> dq;
+  for (int t = 0; t < nt; ++t) {
+    const auto& v = tv_[t];
+    if (v[0] >= 0 && (v[0] < kSuper || v[1] < kSuper || v[2] < kSuper)) {
+      depth[t] = 0;
+      dq.push_back(t);
+    }
+  }
+  while (!dq.empty()) {  // 0-1 BFS: crossing a constrained edge costs one
+    const int t = dq.front();
+    dq.pop_front();
+    for (int i = 0; i < 3; ++i) {
+      const int nb = tn_[t][i];
+      if (nb < 0) continue;
+      const int d = depth[t] + (cons(t, i) ? 1 : 0);
+      if (depth[nb] < 0 || d < depth[nb]) {
+        depth[nb] = d;
+        if (cons(t, i))
+          dq.push_back(nb);
+        else
+          dq.push_front(nb);
+      }
+    }
+  }
+  std::vector<int> remap(nt, -1);
+  int kept = 0;
+  for (int t = 0; t < nt; ++t)
+    if (tv_[t][0] >= 0 && depth[t] >= 0 && (depth[t] & 1)) remap[t] = kept++;
+  require(kept > 0, ErrorCode::InvalidDomain, "meshPlanarBoundary: the boundary loops enclose no area");
+  std::vector<std::array<int, 3>> tv(kept), tn(kept);
+  std::vector<std::uint8_t> tc(kept);
+  for (int t = 0; t < nt; ++t) {
+    const int k = remap[t];
+    if (k < 0) continue;
+    tv[k] = tv_[t];
+    tc[k] = tc_[t];
+    for (int i = 0; i < 3; ++i) tn[k][i] = tn_[t][i] >= 0 ? remap[tn_[t][i]] : -1;
+  }
+  tv_.swap(tv);
+  tn_.swap(tn);
+  tc_.swap(tc);
+  freeTris_.clear();
+  mark_.assign(kept, 0);
+  forbid_.assign(kept, 0);
+  stamp_.assign(kept, 0);
+  queued_.assign(kept, std::numeric_limits<std::uint32_t>::max());
+  accepted_.assign(kept, 0);
+  cache_.assign(kept, TriCache());
+  std::fill(vtri_.begin(), vtri_.end(), -1);
+  for (int t = 0; t < kept; ++t)
+    for (int i = 0; i < 3; ++i) vtri_[tv_[t][i]] = t;
+  for (int v = kSuper; v < static_cast<int>(pts_.size()); ++v)
+    require(vtri_[v] >= 0, ErrorCode::HoleOutsideDomain,
+            "meshPlanarBoundary: a boundary point is not on the meshed region (hole outside the outer loop?)");
+}
+
+// Integral of det(Mt) over the domain (metric area), adaptive over the boundary triangles.
+double Mesher::metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double da, double db, double dc,
+                             int depth, std::int64_t& budget) const {
+  const double area = 0.5 * std::fabs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+  const Vec2 g = (a + b + c) / 3.0;
+  const double dg = cs_.metricAt(g).transform().determinant();
+  --budget;
+  const double lo = std::min({da, db, dc, dg}), hi = std::max({da, db, dc, dg});
+  if (depth >= 12 || budget <= 0 || hi <= 1.3 * lo) return area * (0.25 * (da + db + dc) + 0.75 * dg) * 0.5;
+  const Vec2 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
+  const double dab = cs_.metricAt(ab).transform().determinant();
+  const double dbc = cs_.metricAt(bc).transform().determinant();
+  const double dca = cs_.metricAt(ca).transform().determinant();
+  budget -= 3;
+  return metricAreaRec(a, ab, ca, da, dab, dca, depth + 1, budget) +
+         metricAreaRec(ab, b, bc, dab, db, dbc, depth + 1, budget) +
+         metricAreaRec(ca, bc, c, dca, dbc, dc, depth + 1, budget) +
+         metricAreaRec(ab, bc, ca, dab, dbc, dca, depth + 1, budget);
+}
+
+double Mesher::estimateMetricArea() {
+  std::int64_t budget = 400000;
+  double sum = 0.0;
+  for (const auto& t : tv_) {
+    const Vec2 &a = pts_[t[0]], &b = pts_[t[1]], &c = pts_[t[2]];
+    sum += metricAreaRec(a, b, c, vmt_[t[0]].det(), vmt_[t[1]].det(), vmt_[t[2]].det(), 0, budget);
+  }
+  return sum;
+}
+
+// ---------------------------------------------------------------------------------
+void Mesher::computeCache(int t) {
+  const auto& v = tv_[t];
+  TriCache& c = cache_[t];
+  c.m = SymMt::average3(vmt_[v[0]], vmt_[v[1]], vmt_[v[2]]);
+  const Vec2& pa = pts_[v[0]];
+  const Vec2 b = c.m.apply(pts_[v[1]] - pa), cc = c.m.apply(pts_[v[2]] - pa);
+  const double d = 2.0 * (b.x() * cc.y() - b.y() * cc.x());
+  if (!(d > 0.0)) {  // degenerate in floating point: never refine it, never absorb points
+    c.r2 = 0.0;
+    c.cx = pa.x();
+    c.cy = pa.y();
+    return;
+  }
+  const double b2 = b.squaredNorm(), c2 = cc.squaredNorm();
+  const double ux = (cc.y() * b2 - b.y() * c2) / d, uy = (b.x() * c2 - cc.x() * b2) / d;
+  c.r2 = ux * ux + uy * uy;
+  const Vec2 center = pa + c.m.solve(Vec2(ux, uy));
+  c.cx = center.x();
+  c.cy = center.y();
+}
+
+double Mesher::triQuality(int a, int b, int c) const { return triQuality(a, b, c, pts_[a]); }
+
+double Mesher::triQuality(int a, int b, int c, const Vec2& pa) const {
+  const SymMt m = SymMt::average3(vmt_[a], vmt_[b], vmt_[c]);
+  return metricTriangleQuality(m, pa, pts_[b], pts_[c]);
+}
+
+void Mesher::insertInnerNodes() {
+  metricMode_ = true;
+  struct Item {
+    double r2;
+    int t;
+    std::uint32_t stamp;
+    bool operator<(const Item& o) const { return r2 < o.r2 || (r2 == o.r2 && t > o.t); }
+  };
+  std::vector<Item> heapStore;
+  heapStore.reserve(1024);
+  std::priority_queue<Item> heap(std::less<Item>(), std::move(heapStore));
+  const double acc2 = kAcceptRadius * kAcceptRadius;
+
+  auto isActive = [&](int t) {
+    if (accepted_[t]) return false;
+    for (int i = 0; i < 3; ++i) {
+      const int nb = tn_[t][i];
+      if (nb < 0 || cons(t, i) || accepted_[nb]) return true;
+    }
+    return false;
+  };
+  auto pushIfActive = [&](int t) {
+    if (queued_[t] != stamp_[t] && isActive(t)) {
+      queued_[t] = stamp_[t];
+      heap.push({cache_[t].r2, t, stamp_[t]});
+    }
+  };
+  const int nt0 = static_cast<int>(tv_.size());
+  for (int t = 0; t < nt0; ++t) {
+    computeCache(t);
+    accepted_[t] = cache_[t].r2 <= acc2;
+  }
+  for (int t = 0; t < nt0; ++t) pushIfActive(t);
+
+  const double minDist2 = opt_.minNodeDistance * opt_.minNodeDistance;
+  const double budget = static_cast<double>(opt_.maxElements);
+  std::int64_t inserted = 0;
+  while (!heap.empty()) {
+    const Item it = heap.top();
+    heap.pop();
+    const int t = it.t;
+    if (stamp_[t] != it.stamp || tv_[t][0] < 0 || accepted_[t]) continue;
+    queued_[t] = std::numeric_limits<std::uint32_t>::max();
+    // Front edge: an edge on the boundary or next to an accepted triangle, the one
+    // whose metric length is closest to 1.
+    const TriCache& tc = cache_[t];
+    int edge = -1;
+    double bestDev = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i) {
+      const int nb = tn_[t][i];
+      if (!(nb < 0 || cons(t, i) || accepted_[nb])) continue;
+      const double len = tc.m.length(pts_[tv_[t][prev3(i)]] - pts_[tv_[t][next3(i)]]);
+      const double dev = std::fabs(len - 1.0);
+      if (dev < bestDev) {
+        bestDev = dev;
+        edge = i;
+      }
+    }
+    if (edge < 0) continue;  // not on the front any more; re-queued when a neighbour is accepted
+    const Vec2& pa = pts_[tv_[t][next3(edge)]];
+    const Vec2& pb = pts_[tv_[t][prev3(edge)]];
+    // Rebay's point placement in the triangle's metric space.
+    const Vec2 mid = 0.5 * (pa + pb);
+    const Vec2 e = tc.m.apply(pb - pa);
+    const double elen = e.norm();
+    const double p = 0.5 * elen;
+    const Vec2 nrm(-e.y() / elen, e.x() / elen);  // towards the triangle's interior
+    const double q = tc.m.apply(Vec2(tc.cx, tc.cy) - mid).dot(nrm);
+    const double R = std::sqrt(tc.r2);
+    const double rho = std::min(std::max(kIdealRadius, p), R);
+    double d = rho + std::sqrt(std::max(0.0, rho * rho - p * p));
+    d = std::min(d, 0.999 * (q + R));
+    const Vec2 x = mid + tc.m.solve(d * nrm);
+    bool ok = d > 0.0 && x.allFinite();
+    int t0 = ok ? locate(x, t, true) : -1;
+    ok = t0 >= 0 && cache_[t0].r2 > 0.0;
+    if (ok) {
+      ok = buildCavity(x, t0, [&](int nb) {
+        const TriCache& c = cache_[nb];
+        return c.m.apply(x - Vec2(c.cx, c.cy)).squaredNorm() < c.r2;
+      });
+    }
+    if (ok) {
+      for (const auto& be : bnd_) {
+        if (tc.m.apply(pts_[be.a] - x).squaredNorm() < minDist2) {
+          ok = false;
+          break;
+        }
+      }
+    }
+    if (!ok) {
+      accepted_[t] = 1;  // give up on this triangle; its neighbours join the front
+      for (int i = 0; i < 3; ++i)
+        if (tn_[t][i] >= 0) pushIfActive(tn_[t][i]);
+      continue;
+    }
+    const int v = static_cast<int>(pts_.size());
+    pts_.push_back(x);
+    vmt_.push_back(queryMetric(x));
+    vbnd_.push_back(0);
+    vtri_.push_back(-1);
+    commitCavity(v);
+    for (const int nt : newTris_) {
+      computeCache(nt);
+      accepted_[nt] = cache_[nt].r2 <= acc2;
+    }
+    for (const int nt : newTris_) {
+      if (accepted_[nt]) {
+        for (int i = 0; i < 3; ++i)
+          if (tn_[nt][i] >= 0) pushIfActive(tn_[nt][i]);
+      } else {
+        pushIfActive(nt);
+      }
+    }
+    if ((++inserted & 4095) == 0) {
+      const double live = liveTriangles();
+      if (live * elementRatio_ > budget) {
+        std::ostringstream os;
+        os << "meshPlanarBoundary: the mesh exceeds the element budget of " << opt_.maxElements
+           << " elements during insertion (estimate was " << static_cast<std::int64_t>(estimate_) << ")";
+        throw Error(ErrorCode::ElementBudgetExceeded, os.str());
+      }
+      checkProgress(0.1 + 0.7 * std::min(1.0, live / std::max(1.0, estimate_)));
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------
+int Mesher::swapPass() {
+  int swaps = 0;
+  const int nt = static_cast<int>(tv_.size());
+  for (int t = 0; t < nt; ++t) {
+    if (tv_[t][0] < 0) continue;
+    for (int i = 0; i < 3; ++i) {
+      const int nb = tn_[t][i];
+      if (nb < 0 || cons(t, i)) continue;
+      const int p = tv_[t][i], u = tv_[t][next3(i)], w = tv_[t][prev3(i)];
+      int j = 0;
+      while (tv_[nb][j] == u || tv_[nb][j] == w) ++j;
+      const int q = tv_[nb][j];
+      if (orient2d(pts_[p], pts_[u], pts_[q]) <= 0.0 || orient2d(pts_[q], pts_[w], pts_[p]) <= 0.0) continue;
+      const double before = std::min(triQuality(p, u, w), triQuality(q, w, u));
+      const double after = std::min(triQuality(p, u, q), triQuality(q, w, p));
+      if (after > before + 1e-6) {
+        flip(t, i);
+        ++swaps;
+        break;  // t changed; its other edges are seen on the next pass
+      }
+    }
+  }
+  return swaps;
+}
+
+int Mesher::smoothPass() {
+  int moved = 0;
+  std::vector<int> ring;  // one per pass
+  std::vector<int> ballTri;
+  const int nv = static_cast<int>(pts_.size());
+  for (int v = kSuper; v < nv; ++v) {
+    if (vbnd_[v]) continue;
+    ring.clear();
+    ballTri.clear();
+    const int t0 = vtri_[v];
+    int t = t0;
+    bool closed = true;
+    for (int guard = 0; guard < 1000; ++guard) {
+      const auto& tv = tv_[t];
+      const int i = tv[0] == v ? 0 : (tv[1] == v ? 1 : 2);
+      ballTri.push_back(t);
+      ring.push_back(tv[next3(i)]);
+      t = tn_[t][next3(i)];
+      if (t < 0) {
+        closed = false;
+        break;
+      }
+      if (t == t0) break;
+    }
+    if (!closed || t != t0) continue;
+    const Vec2 p = pts_[v];
+    // Each neighbour proposes the point at unit metric distance from it towards p.
+    Vec2 target(0.0, 0.0);
+    for (const int r : ring) {
+      const Vec2 dv = p - pts_[r];
+      const double len = SymMt::average2(vmt_[v], vmt_[r]).length(dv);
+      target += len > 0.0 ? Vec2(pts_[r] + dv / len) : p;
+    }
+    target /= static_cast<double>(ring.size());
+    double before = std::numeric_limits<double>::infinity();
+    for (const int bt : ballTri) {
+      const auto& tv = tv_[bt];
+      const int i = tv[0] == v ? 0 : (tv[1] == v ? 1 : 2);
+      before = std::min(before, triQuality(v, tv[next3(i)], tv[prev3(i)]));
+    }
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      const Vec2 cand = attempt == 0 ? target : Vec2(0.5 * (p + target));
+      double after = std::numeric_limits<double>::infinity();
+      for (const int bt : ballTri) {
+        const auto& tv = tv_[bt];
+        const int i = tv[0] == v ? 0 : (tv[1] == v ? 1 : 2);
+        const int b = tv[next3(i)], c = tv[prev3(i)];
+        if (orient2d(cand, pts_[b], pts_[c]) <= 0.0) {
+          after = -1.0;
+          break;
+        }
+        after = std::min(after, triQuality(v, b, c, cand));
+        if (after <= before) break;
+      }
+      if (after > before) {
+        pts_[v] = cand;
+        vmt_[v] = queryMetric(cand);
+        ++moved;
+        break;
+      }
+    }
+  }
+  return moved;
+}
+
+void Mesher::improve() {
+  for (int pass = 0; pass < opt_.improvementPasses; ++pass) {
+    for (int k = 0; k < 4; ++k)
+      if (swapPass() == 0) break;
+    smoothPass();
+    checkProgress(0.8 + 0.15 * (pass + 1) / opt_.improvementPasses);
+  }
+  if (opt_.improvementPasses > 0)
+    for (int k = 0; k < 4; ++k)
+      if (swapPass() == 0) break;
+}
+
+// ---------------------------------------------------------------------------------
+Mesh Mesher::output() const {
+  Mesh m;
+  m.dimension = 2;
+  const int nv = static_cast<int>(pts_.size()) - kSuper;
+  m.points.reserve(nv);
+  m.params.reserve(nv);
+  for (int v = kSuper; v < static_cast<int>(pts_.size()); ++v) {
+    m.points.emplace_back(pts_[v].x(), pts_[v].y(), 0.0);
+    m.params.push_back(pts_[v]);
+  }
+  m.pointRefs.assign(nv, 0);
+  for (size_t e = 0; e < bedges_.size(); ++e) {
+    m.edges.push_back({bedges_[e][0] - kSuper, bedges_[e][1] - kSuper});
+    m.edgeRefs.push_back(bedgeRefs_[e]);
+  }
+  m.triangles.reserve(tv_.size());
+  for (const auto& t : tv_) {
+    if (t[0] < 0) continue;
+    m.triangles.push_back({t[0] - kSuper, t[1] - kSuper, t[2] - kSuper});
+  }
+  m.triangleRefs.assign(m.triangles.size(), 0);
+  return m;
+}
+
+Mesh Mesher::run() {
+  validate();
+  auto t0 = Clock::now();
+  elementRatio_ = opt_.allQuads ? 2.0 : (opt_.quads ? 0.6 : 1.0);
+  checkProgress(0.0);
+  triangulateBoundary();
+  removeOutside();
+  vmt_.resize(pts_.size());
+  for (int v = kSuper; v < static_cast<int>(pts_.size()); ++v) vmt_[v] = queryMetric(pts_[v]);
+  timings_.boundary = secondsSince(t0);
+
+  Mesh mesh;
+  if (opt_.boundaryOnly) {
+    mesh = output();
+  } else {
+    // Budget check before the expensive work: one unit equilateral triangle per sqrt(3)/4 of metric area.
+    const double metricArea = estimateMetricArea();
+    estimate_ = std::max(static_cast<double>(liveTriangles()), metricArea / (std::sqrt(3.0) / 4.0));
+    timings_.estimatedElements = static_cast<std::int64_t>(estimate_ * elementRatio_);
+    if (estimate_ * elementRatio_ > static_cast<double>(opt_.maxElements)) {
+      std::ostringstream os;
+      os << "meshPlanarBoundary: the requested mesh needs about " << timings_.estimatedElements
+         << " elements, above the element budget of " << opt_.maxElements;
+      throw Error(ErrorCode::ElementBudgetExceeded, os.str());
+    }
+    checkProgress(0.1);
+    t0 = Clock::now();
+    insertInnerNodes();
+    timings_.insertion = secondsSince(t0);
+    t0 = Clock::now();
+    improve();
+    timings_.improvement = secondsSince(t0);
+    mesh = output();
+    if (opt_.quads || opt_.allQuads) {
+      t0 = Clock::now();
+      std::vector<SymMt> vm(vmt_.begin() + kSuper, vmt_.end());
+      convertToQuads(mesh, vm, opt_.allQuads, cs_);
+      timings_.quads = secondsSince(t0);
+    }
+  }
+  if (mesh.elementCount() > opt_.maxElements) {
+    std::ostringstream os;
+    os << "meshPlanarBoundary: the mesh has " << mesh.elementCount() << " elements, above the element budget of "
+       << opt_.maxElements;
+    throw Error(ErrorCode::ElementBudgetExceeded, os.str());
+  }
+  checkProgress(1.0);
+  if (opt_.timings) *opt_.timings = timings_;
+  return mesh;
+}
+
+}  // namespace
+
+Mesh meshPlanarBoundary(const std::vector<BoundaryLoop>& loops, const ControlSpace& controlSpace,
+                        const PlanarMesherOptions& options) {
+  Mesher mesher(loops, controlSpace, options);
+  return mesher.run();
+}
+
+}  // namespace anisomesh
