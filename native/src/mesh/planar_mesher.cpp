@@ -36,6 +36,8 @@ constexpr int kSuper = 4;                         // super-box corners are verti
 constexpr double kIdealRadius = 0.57735026918962576;  // circumradius of the unit equilateral triangle
 constexpr double kAcceptRadius = 0.70710678118654752; // triangles with metric radius below are done
 
+constexpr double kSmoothSkipQuality = 0.9;     // balls whose worst triangle is better are not smoothed
+
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
 inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
 
@@ -82,9 +84,10 @@ class Mesher {
   double metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double da, double db, double dc, int depth,
                        std::int64_t& budget) const;
   void insertInnerNodes();
+  void renumberSpatially();
   void improve();
-  int swapPass();
-  int smoothPass();
+  int swapSweep(const std::vector<int>& work, std::vector<int>& next);
+  int smoothPass(std::vector<int>& touched);
 
   // ---- metric helpers ----
   void computeCache(int t);
@@ -122,6 +125,7 @@ class Mesher {
   std::vector<TriCache> cache_;
   std::vector<std::uint8_t> accepted_;
   std::vector<std::uint32_t> stamp_, queued_;
+  std::vector<double> tq_;  // triangle metric quality (improvement stage)
   bool metricMode_ = false;
 
   double estimate_ = 0.0;
@@ -767,10 +771,11 @@ void Mesher::insertInnerNodes() {
 }
 
 // ---------------------------------------------------------------------------------
-int Mesher::swapPass() {
+// One sweep of metric-quality edge swaps over the triangles in work; flipped triangles
+// go to next (they are the only ones whose edges can have become swappable).
+int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
   int swaps = 0;
-  const int nt = static_cast<int>(tv_.size());
-  for (int t = 0; t < nt; ++t) {
+  for (const int t : work) {
     if (tv_[t][0] < 0) continue;
     for (int i = 0; i < 3; ++i) {
       const int nb = tn_[t][i];
@@ -779,23 +784,30 @@ int Mesher::swapPass() {
       int j = 0;
       while (tv_[nb][j] == u || tv_[nb][j] == w) ++j;
       const int q = tv_[nb][j];
+      const double before = std::min(tq_[t], tq_[nb]);
+      const double qa = triQuality(p, u, q);
+      if (!(qa > before + 1e-6)) continue;
+      const double qb = triQuality(q, w, p);
+      if (!(qb > before + 1e-6)) continue;
+      // Positive metric quality means counter-clockwise in floating point; confirm exactly.
       if (orient2d(pts_[p], pts_[u], pts_[q]) <= 0.0 || orient2d(pts_[q], pts_[w], pts_[p]) <= 0.0) continue;
-      const double before = std::min(triQuality(p, u, w), triQuality(q, w, u));
-      const double after = std::min(triQuality(p, u, q), triQuality(q, w, p));
-      if (after > before + 1e-6) {
-        flip(t, i);
-        ++swaps;
-        break;  // t changed; its other edges are seen on the next pass
-      }
+      flip(t, i);
+      tq_[t] = qa;
+      tq_[nb] = qb;
+      next.push_back(t);
+      next.push_back(nb);
+      ++swaps;
+      break;  // t changed; its edges are seen again in the next sweep
     }
   }
   return swaps;
 }
 
-int Mesher::smoothPass() {
+// Moves every free vertex towards the point its neighbours see at unit metric distance
+// (or halfway), when no triangle of its ball gets inverted and the worst one improves.
+int Mesher::smoothPass(std::vector<int>& touched) {
   int moved = 0;
-  std::vector<int> ring;  // one per pass
-  std::vector<int> ballTri;
+  std::vector<int> ring, ballTri;
   const int nv = static_cast<int>(pts_.size());
   for (int v = kSuper; v < nv; ++v) {
     if (vbnd_[v]) continue;
@@ -803,22 +815,16 @@ int Mesher::smoothPass() {
     ballTri.clear();
     const int t0 = vtri_[v];
     int t = t0;
-    bool closed = true;
     for (int guard = 0; guard < 1000; ++guard) {
       const auto& tv = tv_[t];
       const int i = tv[0] == v ? 0 : (tv[1] == v ? 1 : 2);
       ballTri.push_back(t);
       ring.push_back(tv[next3(i)]);
       t = tn_[t][next3(i)];
-      if (t < 0) {
-        closed = false;
-        break;
-      }
-      if (t == t0) break;
+      if (t < 0 || t == t0) break;
     }
-    if (!closed || t != t0) continue;
+    if (t != t0) continue;
     const Vec2 p = pts_[v];
-    // Each neighbour proposes the point at unit metric distance from it towards p.
     Vec2 target(0.0, 0.0);
     for (const int r : ring) {
       const Vec2 dv = p - pts_[r];
@@ -827,46 +833,172 @@ int Mesher::smoothPass() {
     }
     target /= static_cast<double>(ring.size());
     double before = std::numeric_limits<double>::infinity();
-    for (const int bt : ballTri) {
-      const auto& tv = tv_[bt];
-      const int i = tv[0] == v ? 0 : (tv[1] == v ? 1 : 2);
-      before = std::min(before, triQuality(v, tv[next3(i)], tv[prev3(i)]));
-    }
-    for (int attempt = 0; attempt < 2; ++attempt) {
-      const Vec2 cand = attempt == 0 ? target : Vec2(0.5 * (p + target));
+    for (const int bt : ballTri) before = std::min(before, tq_[bt]);
+    if (before >= kSmoothSkipQuality) continue;  // already good: not worth the metric queries
+    // Candidates in order of preference: unit-length target (edge lengths), halfway to it,
+    // then the ring centroid (Laplacian; the same in any constant metric) and halfway to
+    // it as fallbacks for the worst balls; the first that improves the worst triangle wins.
+    Vec2 centroid(0.0, 0.0);
+    for (const int r : ring) centroid += pts_[r];
+    centroid /= static_cast<double>(ring.size());
+    const Vec2 cands[4] = {target, 0.5 * (p + target), centroid, 0.5 * (p + centroid)};
+    int best = -1;
+    double bestQ = before;
+    for (int ci = 0; ci < 4; ++ci) {
+      const Vec2& cand = cands[ci];
       double after = std::numeric_limits<double>::infinity();
-      for (const int bt : ballTri) {
-        const auto& tv = tv_[bt];
-        const int i = tv[0] == v ? 0 : (tv[1] == v ? 1 : 2);
-        const int b = tv[next3(i)], c = tv[prev3(i)];
-        if (orient2d(cand, pts_[b], pts_[c]) <= 0.0) {
-          after = -1.0;
-          break;
-        }
-        after = std::min(after, triQuality(v, b, c, cand));
-        if (after <= before) break;
+      for (size_t k = 0; k < ballTri.size(); ++k) {
+        after = std::min(after, triQuality(v, ring[k], ring[k + 1 == ring.size() ? 0 : k + 1], cand));
+        if (after <= bestQ) break;
       }
-      if (after > before) {
-        pts_[v] = cand;
-        vmt_[v] = queryMetric(cand);
-        ++moved;
-        break;
-      }
+      if (!(after > bestQ)) continue;
+      bool valid = true;
+      for (size_t k = 0; k < ballTri.size() && valid; ++k)
+        valid = orient2d(cand, pts_[ring[k]], pts_[ring[k + 1 == ring.size() ? 0 : k + 1]]) > 0.0;
+      if (!valid) continue;
+      best = ci;
+      bestQ = after;
+      break;
     }
+    if (best < 0) continue;
+    pts_[v] = cands[best];
+    vmt_[v] = queryMetric(cands[best]);
+    for (size_t k = 0; k < ballTri.size(); ++k) touched.push_back(ballTri[k]);
+    ++moved;
   }
   return moved;
 }
 
+// Hilbert index of (x, y) in [0, 2^16)^2 (for cache-friendly renumbering).
+std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
+  constexpr std::uint32_t n = 1u << 16;
+  std::uint64_t d = 0;
+  for (std::uint32_t s = n / 2; s > 0; s /= 2) {
+    const std::uint32_t rx = (x & s) ? 1u : 0u, ry = (y & s) ? 1u : 0u;
+    d += static_cast<std::uint64_t>(s) * s * ((3u * rx) ^ ry);
+    if (ry == 0) {  // rotate the quadrant
+      if (rx == 1) {
+        x = n - 1 - x;
+        y = n - 1 - y;
+      }
+      std::swap(x, y);
+    }
+  }
+  return d;
+}
+
+// Renumbers the inner vertices along a Hilbert curve and the triangles by their first
+// vertex, dropping free slots: the frontal insertion creates them in order of size, not
+// of position, and the later passes walk around vertices (cache misses dominate otherwise).
+void Mesher::renumberSpatially() {
+  const int nv = static_cast<int>(pts_.size());
+  const int first = kSuper + nBoundary_;
+  Vec2 lo = pts_[kSuper], hi = lo;
+  for (int v = kSuper; v < nv; ++v) {
+    lo = lo.cwiseMin(pts_[v]);
+    hi = hi.cwiseMax(pts_[v]);
+  }
+  const Vec2 ext = (hi - lo).cwiseMax(Vec2(1e-300, 1e-300));
+  std::vector<std::pair<std::uint64_t, int>> keyed;
+  keyed.reserve(nv - first);
+  for (int v = first; v < nv; ++v) {
+    const Vec2 f = (pts_[v] - lo).cwiseQuotient(ext) * 65535.0;
+    keyed.emplace_back(hilbertIndex(static_cast<std::uint32_t>(f.x()), static_cast<std::uint32_t>(f.y())), v);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<int> vmap(nv);
+  for (int v = 0; v < first; ++v) vmap[v] = v;
+  for (size_t k = 0; k < keyed.size(); ++k) vmap[keyed[k].second] = first + static_cast<int>(k);
+  {
+    std::vector<Vec2> p(nv);
+    std::vector<SymMt> m(nv);
+    std::vector<std::uint8_t> b(nv);
+    for (int v = 0; v < nv; ++v) {
+      p[vmap[v]] = pts_[v];
+      m[vmap[v]] = vmt_[v];
+      b[vmap[v]] = vbnd_[v];
+    }
+    pts_.swap(p);
+    vmt_.swap(m);
+    vbnd_.swap(b);
+  }
+  // Triangles: counting sort by their smallest new vertex index (stable, linear).
+  const int nt = static_cast<int>(tv_.size());
+  std::vector<int> count(nv + 1, 0);
+  for (int t = 0; t < nt; ++t) {
+    if (tv_[t][0] < 0) continue;
+    for (int i = 0; i < 3; ++i) tv_[t][i] = vmap[tv_[t][i]];
+    ++count[std::min({tv_[t][0], tv_[t][1], tv_[t][2]}) + 1];
+  }
+  for (int v = 0; v < nv; ++v) count[v + 1] += count[v];
+  const int live = count[nv];
+  std::vector<int> tmap(nt, -1);
+  for (int t = 0; t < nt; ++t)
+    if (tv_[t][0] >= 0) tmap[t] = count[std::min({tv_[t][0], tv_[t][1], tv_[t][2]})]++;
+  std::vector<std::array<int, 3>> tv(live), tn(live);
+  std::vector<std::uint8_t> tc(live);
+  for (int t = 0; t < nt; ++t) {
+    const int k = tmap[t];
+    if (k < 0) continue;
+    tv[k] = tv_[t];
+    tc[k] = tc_[t];
+    for (int i = 0; i < 3; ++i) tn[k][i] = tn_[t][i] >= 0 ? tmap[tn_[t][i]] : -1;
+  }
+  tv_.swap(tv);
+  tn_.swap(tn);
+  tc_.swap(tc);
+  freeTris_.clear();
+  mark_.assign(live, 0);
+  forbid_.assign(live, 0);
+  stamp_.assign(live, 0);
+  queued_.assign(live, 0);
+  accepted_.assign(live, 0);
+  cache_.clear();
+  cache_.shrink_to_fit();
+  vtri_.assign(nv, -1);
+  for (int t = 0; t < live; ++t)
+    for (int i = 0; i < 3; ++i) vtri_[tv_[t][i]] = t;
+}
+
 void Mesher::improve() {
+  const int nt = static_cast<int>(tv_.size());
+  tq_.assign(nt, 0.0);
+  std::vector<int> work, next;
+  for (int t = 0; t < nt; ++t)
+    if (tv_[t][0] >= 0) {
+      tq_[t] = triQuality(tv_[t][0], tv_[t][1], tv_[t][2]);
+      work.push_back(t);
+    }
+  // Removes repeated triangles keeping the first occurrence (deterministic, no sort).
+  auto dedupe = [&](std::vector<int>& list) {
+    ++epoch_;
+    size_t k = 0;
+    for (const int t : list)
+      if (mark_[t] != epoch_) {
+        mark_[t] = epoch_;
+        list[k++] = t;
+      }
+    list.resize(k);
+  };
+  auto swaps = [&](int sweeps) {
+    for (int k = 0; k < sweeps && !work.empty(); ++k) {
+      next.clear();
+      swapSweep(work, next);
+      dedupe(next);
+      work.swap(next);
+    }
+  };
   for (int pass = 0; pass < opt_.improvementPasses; ++pass) {
-    for (int k = 0; k < 4; ++k)
-      if (swapPass() == 0) break;
-    smoothPass();
+    swaps(6);
+    work.clear();
+    smoothPass(work);
+    // The ball triangles of moved vertices are reconsidered for swaps (the vertex metric
+    // changed too, so their cached quality is refreshed).
+    dedupe(work);
+    for (const int t : work) tq_[t] = triQuality(tv_[t][0], tv_[t][1], tv_[t][2]);
     checkProgress(0.8 + 0.15 * (pass + 1) / opt_.improvementPasses);
   }
-  if (opt_.improvementPasses > 0)
-    for (int k = 0; k < 4; ++k)
-      if (swapPass() == 0) break;
+  if (opt_.improvementPasses > 0) swaps(6);
 }
 
 // ---------------------------------------------------------------------------------
@@ -924,6 +1056,7 @@ Mesh Mesher::run() {
     insertInnerNodes();
     timings_.insertion = secondsSince(t0);
     t0 = Clock::now();
+    renumberSpatially();
     improve();
     timings_.improvement = secondsSince(t0);
     mesh = output();
