@@ -144,6 +144,12 @@ inline void checkPlanarMesh(const Mesh& m, const std::vector<BoundaryLoop>& loop
                    orient2d(m.params[q[0]], m.params[q[2]], m.params[q[3]]));
   }
   EXPECT_EQ(bad, 0) << "inverted or degenerate elements";
+  std::vector<char> used(m.vertexCount(), 0);
+  for (const auto& t : m.triangles)
+    for (int v : t) used[v] = 1;
+  for (const auto& q : m.quads)
+    for (int v : q) used[v] = 1;
+  EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0) << "vertices not used by any element";
   std::sort(ekeys.begin(), ekeys.end());
   size_t missing = 0;
   for (const auto& e : m.edges)

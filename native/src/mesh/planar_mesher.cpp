@@ -110,7 +110,7 @@ class Mesher {
   int nBoundary_ = 0;
 
   // cavity scratch (reused)
-  std::vector<std::uint32_t> mark_, forbid_;
+  std::vector<std::uint32_t> mark_, forbid_, vmark_;
   std::uint32_t epoch_ = 0, fepoch_ = 0;
   std::vector<int> cav_;
   struct BndEdge {
@@ -287,7 +287,18 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
         }
       }
     }
-    if (ok) return true;
+    if (!ok) continue;
+    if (bnd_.size() == cav_.size() + 2) return true;  // a disc without inner vertices
+    // A vertex whose whole ball is in the cavity would be lost (possible with per-triangle
+    // metrics): take its triangles out of the cavity and retry.
+    if (vmark_.size() < pts_.size() + 1) vmark_.resize(pts_.size() + 1024, 0);
+    for (const auto& e : bnd_) vmark_[e.a] = epoch_;
+    for (const int t : cav_)
+      for (int i = 0; i < 3; ++i)
+        if (vmark_[tv_[t][i]] != epoch_) {
+          if (t == t0) return false;
+          forbid_[t] = fepoch_;
+        }
   }
   return false;
 }
