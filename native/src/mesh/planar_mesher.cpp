@@ -36,6 +36,7 @@ constexpr int kSuper = 4;                         // super-box corners are verti
 constexpr double kIdealRadius = 0.57735026918962576;  // circumradius of the unit equilateral triangle
 constexpr double kAcceptRadius = 0.70710678118654752; // triangles with metric radius below are done
 
+constexpr int kBucketOffset = 4 * 1100;          // bucket index offset: covers every double exponent
 constexpr double kSmoothSkipQuality = 0.9;     // balls whose worst triangle is better are not smoothed
 
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
@@ -65,9 +66,9 @@ class Mesher {
   // ---- triangle storage ----
   int allocTri();
   void setNbrAcross(int tri, int a, int b, int newNbr);  // in tri, edge (b, a) now borders newNbr
-  bool cons(int t, int i) const { return (tc_[t] >> i) & 1; }
+  bool cons(int t, int i) const { return (tri_[t].c >> i) & 1; }
   int findEdge(int a, int b, int* idx) const;  // triangle holding directed edge a->b, opposite index
-  int liveTriangles() const { return static_cast<int>(tv_.size() - freeTris_.size()); }
+  int liveTriangles() const { return static_cast<int>(tri_.size() - freeTris_.size()); }
 
   // ---- Delaunay kernel ----
   int locate(const Vec2& x, int start, bool stopAtConstraints);
@@ -102,8 +103,14 @@ class Mesher {
   std::vector<SymMt> vmt_;
   std::vector<std::uint8_t> vbnd_;  // 1: boundary or super vertex (never moved)
   std::vector<int> vtri_;
-  std::vector<std::array<int, 3>> tv_, tn_;
-  std::vector<std::uint8_t> tc_;  // constrained-edge bits
+  // Triangle: vertices (counter-clockwise), neighbours (n[i] across the edge opposite
+  // v[i]) and constrained-edge bits, together in one cache line.
+  struct Tri {
+    std::array<int, 3> v;
+    std::array<int, 3> n;
+    std::uint8_t c;
+  };
+  std::vector<Tri> tri_;
   std::vector<int> freeTris_;
   std::vector<std::array<int, 2>> bedges_;  // boundary edges (mesher vertex ids)
   std::vector<int> bedgeRefs_;
@@ -168,24 +175,22 @@ int Mesher::allocTri() {
     ++stamp_[t];
     return t;
   }
-  tv_.push_back({-1, -1, -1});
-  tn_.push_back({-1, -1, -1});
-  tc_.push_back(0);
+  tri_.push_back(Tri{{-1, -1, -1}, {-1, -1, -1}, 0});
   mark_.push_back(0);
   forbid_.push_back(0);
   stamp_.push_back(0);
   queued_.push_back(std::numeric_limits<std::uint32_t>::max());
   accepted_.push_back(0);
   cache_.emplace_back();
-  return static_cast<int>(tv_.size()) - 1;
+  return static_cast<int>(tri_.size()) - 1;
 }
 
 void Mesher::setNbrAcross(int tri, int a, int b, int newNbr) {
   if (tri < 0) return;
-  auto& v = tv_[tri];
+  auto& v = tri_[tri].v;
   for (int j = 0; j < 3; ++j)
     if (v[next3(j)] == b && v[prev3(j)] == a) {
-      tn_[tri][j] = newNbr;
+      tri_[tri].n[j] = newNbr;
       return;
     }
   throw Error(ErrorCode::Internal, "meshPlanarBoundary: broken triangle adjacency");
@@ -197,26 +202,26 @@ int Mesher::findEdge(int a, int b, int* idx) const {
   const int t0 = vtri_[a];
   int t = t0;
   for (int guard = 0; guard < 100000; ++guard) {
-    const auto& v = tv_[t];
+    const auto& v = tri_[t].v;
     const int i = v[0] == a ? 0 : (v[1] == a ? 1 : 2);
     if (v[next3(i)] == b) {
       *idx = prev3(i);
       return t;
     }
     // Next triangle counter-clockwise around a: across edge (a, v[prev]) opposite v[next].
-    t = tn_[t][next3(i)];
+    t = tri_[t].n[next3(i)];
     if (t < 0 || t == t0) break;
   }
   if (t < 0) {  // hit a hull edge: go clockwise from the start
     t = t0;
     for (int guard = 0; guard < 100000; ++guard) {
-      const auto& v = tv_[t];
+      const auto& v = tri_[t].v;
       const int i = v[0] == a ? 0 : (v[1] == a ? 1 : 2);
       if (v[next3(i)] == b) {
         *idx = prev3(i);
         return t;
       }
-      t = tn_[t][prev3(i)];
+      t = tri_[t].n[prev3(i)];
       if (t < 0 || t == t0) break;
     }
   }
@@ -226,17 +231,17 @@ int Mesher::findEdge(int a, int b, int* idx) const {
 // Visibility walk with a deterministic pseudo-random edge order (terminates on any
 // triangulation with probability one). Returns -1 when leaving the domain.
 int Mesher::locate(const Vec2& x, int t, bool stopAtConstraints) {
-  const int limit = 4 * static_cast<int>(tv_.size()) + 100;
+  const int limit = 4 * static_cast<int>(tri_.size()) + 100;
   for (int steps = 0; steps < limit; ++steps) {
     rng_ = rng_ * 1664525u + 1013904223u;
     const int r = static_cast<int>((rng_ >> 16) % 3u);
     bool moved = false;
     for (int k = 0; k < 3; ++k) {
       const int i = (r + k) % 3;
-      const auto& v = tv_[t];
+      const auto& v = tri_[t].v;
       if (orient2d(pts_[v[next3(i)]], pts_[v[prev3(i)]], x) < 0.0) {
         if (stopAtConstraints && cons(t, i)) return -1;
-        const int nb = tn_[t][i];
+        const int nb = tri_[t].n[i];
         if (nb < 0) return -1;
         t = nb;
         moved = true;
@@ -263,7 +268,7 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
       const int t = cav_[k];
       for (int i = 0; i < 3; ++i) {
         if (cons(t, i)) continue;
-        const int nb = tn_[t][i];
+        const int nb = tri_[t].n[i];
         if (nb < 0 || mark_[nb] == epoch_ || forbid_[nb] == fepoch_) continue;
         if (inCircle(nb)) {
           mark_[nb] = epoch_;
@@ -275,9 +280,9 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
     bool ok = true;
     for (const int t : cav_) {
       for (int i = 0; i < 3; ++i) {
-        const int nb = tn_[t][i];
+        const int nb = tri_[t].n[i];
         if (nb >= 0 && mark_[nb] == epoch_ && !cons(t, i)) continue;
-        const int a = tv_[t][next3(i)], b = tv_[t][prev3(i)];
+        const int a = tri_[t].v[next3(i)], b = tri_[t].v[prev3(i)];
         if (orient2d(pts_[a], pts_[b], x) <= 0.0) {
           if (t == t0) return false;
           forbid_[t] = fepoch_;
@@ -295,7 +300,7 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
     for (const auto& e : bnd_) vmark_[e.a] = epoch_;
     for (const int t : cav_)
       for (int i = 0; i < 3; ++i)
-        if (vmark_[tv_[t][i]] != epoch_) {
+        if (vmark_[tri_[t].v[i]] != epoch_) {
           if (t == t0) return false;
           forbid_[t] = fepoch_;
         }
@@ -321,15 +326,15 @@ int Mesher::commitCavity(int v) {
     newTris_.push_back(t);
   }
   for (; reuse < cav_.size(); ++reuse) {  // cannot happen for a disc cavity, kept for safety
-    tv_[cav_[reuse]] = {-1, -1, -1};
+    tri_[cav_[reuse]].v = {-1, -1, -1};
     freeTris_.push_back(cav_[reuse]);
   }
   for (size_t k = 0; k < bnd_.size(); ++k) {
     const auto& e = bnd_[k];
     const int t = newTris_[k];
-    tv_[t] = {e.a, e.b, v};
-    tn_[t][2] = e.outer;
-    tc_[t] = e.c ? 4 : 0;
+    tri_[t].v = {e.a, e.b, v};
+    tri_[t].n[2] = e.outer;
+    tri_[t].c = e.c ? 4 : 0;
     accepted_[t] = 0;
     if (e.outer >= 0) setNbrAcross(e.outer, e.a, e.b, t);
     startAt_[e.a] = t;
@@ -337,8 +342,8 @@ int Mesher::commitCavity(int v) {
   }
   for (size_t k = 0; k < bnd_.size(); ++k) {
     const int t = newTris_[k];
-    tn_[t][0] = startAt_[bnd_[k].b];
-    tn_[t][1] = endAt_[bnd_[k].a];
+    tri_[t].n[0] = startAt_[bnd_[k].b];
+    tri_[t].n[1] = endAt_[bnd_[k].a];
     vtri_[bnd_[k].a] = t;
   }
   vtri_[v] = newTris_[0];
@@ -346,23 +351,23 @@ int Mesher::commitCavity(int v) {
 }
 
 void Mesher::flip(int t, int i) {
-  const int nb = tn_[t][i];
-  const int p = tv_[t][i], u = tv_[t][next3(i)], w = tv_[t][prev3(i)];
+  const int nb = tri_[t].n[i];
+  const int p = tri_[t].v[i], u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
   int j = 0;
-  while (tv_[nb][j] == u || tv_[nb][j] == w) ++j;
-  const int q = tv_[nb][j];
+  while (tri_[nb].v[j] == u || tri_[nb].v[j] == w) ++j;
+  const int q = tri_[nb].v[j];
   // t = (p, u, w), nb = (q, w, u)  ->  t = (p, u, q), nb = (q, w, p)
-  const int nWP = tn_[t][next3(i)], nPU = tn_[t][prev3(i)];
+  const int nWP = tri_[t].n[next3(i)], nPU = tri_[t].n[prev3(i)];
   const bool cWP = cons(t, next3(i)), cPU = cons(t, prev3(i));
   // in nb = (q, w, u) at positions j, j+1, j+2: opposite w is edge (u, q), opposite u is (q, w)
-  const int nUQ = tn_[nb][next3(j)], nQW = tn_[nb][prev3(j)];
+  const int nUQ = tri_[nb].n[next3(j)], nQW = tri_[nb].n[prev3(j)];
   const bool cUQ = cons(nb, next3(j)), cQW = cons(nb, prev3(j));
-  tv_[t] = {p, u, q};
-  tn_[t] = {nUQ, nb, nPU};
-  tc_[t] = static_cast<std::uint8_t>((cUQ ? 1 : 0) | (cPU ? 4 : 0));
-  tv_[nb] = {q, w, p};
-  tn_[nb] = {nWP, t, nQW};
-  tc_[nb] = static_cast<std::uint8_t>((cWP ? 1 : 0) | (cQW ? 4 : 0));
+  tri_[t].v = {p, u, q};
+  tri_[t].n = {nUQ, nb, nPU};
+  tri_[t].c = static_cast<std::uint8_t>((cUQ ? 1 : 0) | (cPU ? 4 : 0));
+  tri_[nb].v = {q, w, p};
+  tri_[nb].n = {nWP, t, nQW};
+  tri_[nb].c = static_cast<std::uint8_t>((cWP ? 1 : 0) | (cQW ? 4 : 0));
   if (nUQ >= 0) setNbrAcross(nUQ, u, q, t);
   if (nWP >= 0) setNbrAcross(nWP, w, p, nb);
   ++stamp_[t];
@@ -404,10 +409,10 @@ void Mesher::triangulateBoundary() {
   vbnd_.assign(pts_.size(), 1);
   vtri_.assign(pts_.size(), -1);
   const int t0 = allocTri(), t1 = allocTri();
-  tv_[t0] = {0, 1, 2};
-  tv_[t1] = {0, 2, 3};
-  tn_[t0] = {-1, t1, -1};
-  tn_[t1] = {-1, -1, t0};
+  tri_[t0].v = {0, 1, 2};
+  tri_[t1].v = {0, 2, 3};
+  tri_[t0].n = {-1, t1, -1};
+  tri_[t1].n = {-1, -1, t0};
   vtri_[0] = vtri_[1] = vtri_[2] = t0;
   vtri_[3] = t1;
 
@@ -416,20 +421,20 @@ void Mesher::triangulateBoundary() {
     const Vec2 x = pts_[v];
     int t = locate(x, last, false);
     if (t < 0) {  // cannot happen inside the super-box; scan as a last resort
-      for (int k = 0; k < static_cast<int>(tv_.size()) && t < 0; ++k)
-        if (tv_[k][0] >= 0 && orient2d(pts_[tv_[k][0]], pts_[tv_[k][1]], x) >= 0 &&
-            orient2d(pts_[tv_[k][1]], pts_[tv_[k][2]], x) >= 0 && orient2d(pts_[tv_[k][2]], pts_[tv_[k][0]], x) >= 0)
+      for (int k = 0; k < static_cast<int>(tri_.size()) && t < 0; ++k)
+        if (tri_[k].v[0] >= 0 && orient2d(pts_[tri_[k].v[0]], pts_[tri_[k].v[1]], x) >= 0 &&
+            orient2d(pts_[tri_[k].v[1]], pts_[tri_[k].v[2]], x) >= 0 && orient2d(pts_[tri_[k].v[2]], pts_[tri_[k].v[0]], x) >= 0)
           t = k;
       require(t >= 0, ErrorCode::Internal, "meshPlanarBoundary: point location failed");
     }
     for (int k = 0; k < 3; ++k)
-      if (pts_[tv_[t][k]] == x) {
+      if (pts_[tri_[t].v[k]] == x) {
         std::ostringstream os;
         os << "meshPlanarBoundary: duplicate boundary point (" << x.x() << ", " << x.y() << ")";
         throw Error(ErrorCode::InvalidArgument, os.str());
       }
     const bool ok = buildCavity(x, t, [&](int nb) {
-      const auto& tv = tv_[nb];
+      const auto& tv = tri_[nb].v;
       return incircle(pts_[tv[0]], pts_[tv[1]], pts_[tv[2]], x) > 0.0;
     });
     require(ok, ErrorCode::Internal, "meshPlanarBoundary: Delaunay cavity is not star-shaped");
@@ -441,11 +446,11 @@ void Mesher::triangulateBoundary() {
 
 void Mesher::recoverEdge(int a, int b) {
   auto setConstrained = [&](int t, int i) {
-    tc_[t] |= static_cast<std::uint8_t>(1 << i);
-    const int nb = tn_[t][i];
-    const int u = tv_[t][next3(i)], w = tv_[t][prev3(i)];
+    tri_[t].c |= static_cast<std::uint8_t>(1 << i);
+    const int nb = tri_[t].n[i];
+    const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
     for (int j = 0; j < 3; ++j)
-      if (tv_[nb][next3(j)] == w && tv_[nb][prev3(j)] == u) tc_[nb] |= static_cast<std::uint8_t>(1 << j);
+      if (tri_[nb].v[next3(j)] == w && tri_[nb].v[prev3(j)] == u) tri_[nb].c |= static_cast<std::uint8_t>(1 << j);
   };
   auto onSegmentError = [&](int v) {
     std::ostringstream os;
@@ -468,7 +473,7 @@ void Mesher::recoverEdge(int a, int b) {
   int u = -1, w = -1;
   for (int guard = 0;; ++guard) {
     require(guard < 1000000, ErrorCode::Internal, "meshPlanarBoundary: boundary recovery: no start triangle");
-    const auto& v = tv_[cur];
+    const auto& v = tri_[cur].v;
     const int i = v[0] == a ? 0 : (v[1] == a ? 1 : 2);
     const int x = v[next3(i)], y = v[prev3(i)];
     const double ox = orient2d(pa, pb, pts_[x]), oy = orient2d(pa, pb, pts_[y]);
@@ -478,13 +483,13 @@ void Mesher::recoverEdge(int a, int b) {
       w = y;
       break;
     }
-    cur = tn_[cur][next3(i)];
+    cur = tri_[cur].n[next3(i)];
   }
   // Walk along ab collecting the crossed edges.
   for (int guard = 0;; ++guard) {
     require(guard < 10000000, ErrorCode::Internal, "meshPlanarBoundary: boundary recovery walk failed");
     int i = 0;
-    while (tv_[cur][i] == u || tv_[cur][i] == w) ++i;
+    while (tri_[cur].v[i] == u || tri_[cur].v[i] == w) ++i;
     if (cons(cur, i)) {
       std::ostringstream os;
       os << "meshPlanarBoundary: boundary segment (" << pa.x() << ", " << pa.y() << ")-(" << pb.x() << ", "
@@ -492,10 +497,10 @@ void Mesher::recoverEdge(int a, int b) {
       throw Error(ErrorCode::SelfIntersectingContour, os.str());
     }
     crossing.emplace_back(u, w);
-    const int nb = tn_[cur][i];
+    const int nb = tri_[cur].n[i];
     int j = 0;
-    while (tv_[nb][j] == u || tv_[nb][j] == w) ++j;
-    const int z = tv_[nb][j];
+    while (tri_[nb].v[j] == u || tri_[nb].v[j] == w) ++j;
+    const int z = tri_[nb].v[j];
     cur = nb;
     if (z == b) break;
     const double oz = orient2d(pa, pb, pts_[z]);
@@ -514,11 +519,11 @@ void Mesher::recoverEdge(int a, int b) {
     int ti;
     const int tt = findEdge(e.first, e.second, &ti);
     require(tt >= 0, ErrorCode::Internal, "meshPlanarBoundary: boundary recovery lost an edge");
-    const int nb = tn_[tt][ti];
-    const int p = tv_[tt][ti];
+    const int nb = tri_[tt].n[ti];
+    const int p = tri_[tt].v[ti];
     int j = 0;
-    while (tv_[nb][j] == e.first || tv_[nb][j] == e.second) ++j;
-    const int q = tv_[nb][j];
+    while (tri_[nb].v[j] == e.first || tri_[nb].v[j] == e.second) ++j;
+    const int q = tri_[nb].v[j];
     // t = (p, u, w); flipping gives (p, u, q) and (q, w, p): both must be counter-clockwise.
     if (orient2d(pts_[p], pts_[e.first], pts_[q]) <= 0.0 || orient2d(pts_[q], pts_[e.second], pts_[p]) <= 0.0) {
       crossing.push_back(e);
@@ -537,11 +542,11 @@ void Mesher::recoverEdge(int a, int b) {
 // Keeps the triangles separated from the super-box by an odd number of constrained
 // edges (inside the outer loop, outside every hole), whatever the loops' orientation.
 void Mesher::removeOutside() {
-  const int nt = static_cast<int>(tv_.size());
+  const int nt = static_cast<int>(tri_.size());
   std::vector<int> depth(nt, -1);
   std::deque<int> dq;
   for (int t = 0; t < nt; ++t) {
-    const auto& v = tv_[t];
+    const auto& v = tri_[t].v;
     if (v[0] >= 0 && (v[0] < kSuper || v[1] < kSuper || v[2] < kSuper)) {
       depth[t] = 0;
       dq.push_back(t);
@@ -551,7 +556,7 @@ void Mesher::removeOutside() {
     const int t = dq.front();
     dq.pop_front();
     for (int i = 0; i < 3; ++i) {
-      const int nb = tn_[t][i];
+      const int nb = tri_[t].n[i];
       if (nb < 0) continue;
       const int d = depth[t] + (cons(t, i) ? 1 : 0);
       if (depth[nb] < 0 || d < depth[nb]) {
@@ -566,20 +571,16 @@ void Mesher::removeOutside() {
   std::vector<int> remap(nt, -1);
   int kept = 0;
   for (int t = 0; t < nt; ++t)
-    if (tv_[t][0] >= 0 && depth[t] >= 0 && (depth[t] & 1)) remap[t] = kept++;
+    if (tri_[t].v[0] >= 0 && depth[t] >= 0 && (depth[t] & 1)) remap[t] = kept++;
   require(kept > 0, ErrorCode::InvalidDomain, "meshPlanarBoundary: the boundary loops enclose no area");
-  std::vector<std::array<int, 3>> tv(kept), tn(kept);
-  std::vector<std::uint8_t> tc(kept);
+  std::vector<Tri> tris(kept);
   for (int t = 0; t < nt; ++t) {
     const int k = remap[t];
     if (k < 0) continue;
-    tv[k] = tv_[t];
-    tc[k] = tc_[t];
-    for (int i = 0; i < 3; ++i) tn[k][i] = tn_[t][i] >= 0 ? remap[tn_[t][i]] : -1;
+    tris[k] = tri_[t];
+    for (int i = 0; i < 3; ++i) tris[k].n[i] = tri_[t].n[i] >= 0 ? remap[tri_[t].n[i]] : -1;
   }
-  tv_.swap(tv);
-  tn_.swap(tn);
-  tc_.swap(tc);
+  tri_.swap(tris);
   freeTris_.clear();
   mark_.assign(kept, 0);
   forbid_.assign(kept, 0);
@@ -589,7 +590,7 @@ void Mesher::removeOutside() {
   cache_.assign(kept, TriCache());
   std::fill(vtri_.begin(), vtri_.end(), -1);
   for (int t = 0; t < kept; ++t)
-    for (int i = 0; i < 3; ++i) vtri_[tv_[t][i]] = t;
+    for (int i = 0; i < 3; ++i) vtri_[tri_[t].v[i]] = t;
   for (int v = kSuper; v < static_cast<int>(pts_.size()); ++v)
     require(vtri_[v] >= 0, ErrorCode::HoleOutsideDomain,
             "meshPlanarBoundary: a boundary point is not on the meshed region (hole outside the outer loop?)");
@@ -618,7 +619,8 @@ double Mesher::metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double
 double Mesher::estimateMetricArea() {
   std::int64_t budget = 400000;
   double sum = 0.0;
-  for (const auto& t : tv_) {
+  for (const auto& tr : tri_) {
+    const auto& t = tr.v;
     const Vec2 &a = pts_[t[0]], &b = pts_[t[1]], &c = pts_[t[2]];
     sum += metricAreaRec(a, b, c, vmt_[t[0]].det(), vmt_[t[1]].det(), vmt_[t[2]].det(), 0, budget);
   }
@@ -627,7 +629,7 @@ double Mesher::estimateMetricArea() {
 
 // ---------------------------------------------------------------------------------
 void Mesher::computeCache(int t) {
-  const auto& v = tv_[t];
+  const auto& v = tri_[t].v;
   TriCache& c = cache_[t];
   c.m = SymMt::average3(vmt_[v[0]], vmt_[v[1]], vmt_[v[2]]);
   const Vec2& pa = pts_[v[0]];
@@ -656,21 +658,27 @@ double Mesher::triQuality(int a, int b, int c, const Vec2& pa) const {
 
 void Mesher::insertInnerNodes() {
   metricMode_ = true;
+  // Bucket queue on the metric radius (4 buckets per doubling of r^2), last in first out
+  // within a bucket: the largest triangles go first as in Rebay's method, while the LIFO
+  // order keeps consecutive insertions close together (cache locality).
   struct Item {
-    double r2;
     int t;
     std::uint32_t stamp;
-    bool operator<(const Item& o) const { return r2 < o.r2 || (r2 == o.r2 && t > o.t); }
   };
-  std::vector<Item> heapStore;
-  heapStore.reserve(1024);
-  std::priority_queue<Item> heap(std::less<Item>(), std::move(heapStore));
+  std::vector<std::vector<Item>> buckets(2 * kBucketOffset);
+  int top = -1;
+  auto bucketOf = [](double r2) {
+    int e;
+    const double m = std::frexp(r2, &e);  // r2 = m 2^e, m in [0.5, 1)
+    const int b = 4 * e + static_cast<int>((m - 0.5) * 8.0) + kBucketOffset;
+    return std::min(std::max(b, 0), 2 * kBucketOffset - 1);
+  };
   const double acc2 = kAcceptRadius * kAcceptRadius;
 
   auto isActive = [&](int t) {
     if (accepted_[t]) return false;
     for (int i = 0; i < 3; ++i) {
-      const int nb = tn_[t][i];
+      const int nb = tri_[t].n[i];
       if (nb < 0 || cons(t, i) || accepted_[nb]) return true;
     }
     return false;
@@ -678,10 +686,12 @@ void Mesher::insertInnerNodes() {
   auto pushIfActive = [&](int t) {
     if (queued_[t] != stamp_[t] && isActive(t)) {
       queued_[t] = stamp_[t];
-      heap.push({cache_[t].r2, t, stamp_[t]});
+      const int b = bucketOf(cache_[t].r2);
+      buckets[b].push_back({t, stamp_[t]});
+      top = std::max(top, b);
     }
   };
-  const int nt0 = static_cast<int>(tv_.size());
+  const int nt0 = static_cast<int>(tri_.size());
   for (int t = 0; t < nt0; ++t) {
     computeCache(t);
     accepted_[t] = cache_[t].r2 <= acc2;
@@ -691,11 +701,13 @@ void Mesher::insertInnerNodes() {
   const double minDist2 = opt_.minNodeDistance * opt_.minNodeDistance;
   const double budget = static_cast<double>(opt_.maxElements);
   std::int64_t inserted = 0;
-  while (!heap.empty()) {
-    const Item it = heap.top();
-    heap.pop();
+  for (;;) {
+    while (top >= 0 && buckets[top].empty()) --top;
+    if (top < 0) break;
+    const Item it = buckets[top].back();
+    buckets[top].pop_back();
     const int t = it.t;
-    if (stamp_[t] != it.stamp || tv_[t][0] < 0 || accepted_[t]) continue;
+    if (stamp_[t] != it.stamp || tri_[t].v[0] < 0 || accepted_[t]) continue;
     queued_[t] = std::numeric_limits<std::uint32_t>::max();
     // Front edge: an edge on the boundary or next to an accepted triangle, the one
     // whose metric length is closest to 1.
@@ -703,9 +715,9 @@ void Mesher::insertInnerNodes() {
     int edge = -1;
     double bestDev = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 3; ++i) {
-      const int nb = tn_[t][i];
+      const int nb = tri_[t].n[i];
       if (!(nb < 0 || cons(t, i) || accepted_[nb])) continue;
-      const double len = tc.m.length(pts_[tv_[t][prev3(i)]] - pts_[tv_[t][next3(i)]]);
+      const double len = tc.m.length(pts_[tri_[t].v[prev3(i)]] - pts_[tri_[t].v[next3(i)]]);
       const double dev = std::fabs(len - 1.0);
       if (dev < bestDev) {
         bestDev = dev;
@@ -713,8 +725,8 @@ void Mesher::insertInnerNodes() {
       }
     }
     if (edge < 0) continue;  // not on the front any more; re-queued when a neighbour is accepted
-    const Vec2& pa = pts_[tv_[t][next3(edge)]];
-    const Vec2& pb = pts_[tv_[t][prev3(edge)]];
+    const Vec2& pa = pts_[tri_[t].v[next3(edge)]];
+    const Vec2& pb = pts_[tri_[t].v[prev3(edge)]];
     // Rebay's point placement in the triangle's metric space.
     const Vec2 mid = 0.5 * (pa + pb);
     const Vec2 e = tc.m.apply(pb - pa);
@@ -747,7 +759,7 @@ void Mesher::insertInnerNodes() {
     if (!ok) {
       accepted_[t] = 1;  // give up on this triangle; its neighbours join the front
       for (int i = 0; i < 3; ++i)
-        if (tn_[t][i] >= 0) pushIfActive(tn_[t][i]);
+        if (tri_[t].n[i] >= 0) pushIfActive(tri_[t].n[i]);
       continue;
     }
     const int v = static_cast<int>(pts_.size());
@@ -763,7 +775,7 @@ void Mesher::insertInnerNodes() {
     for (const int nt : newTris_) {
       if (accepted_[nt]) {
         for (int i = 0; i < 3; ++i)
-          if (tn_[nt][i] >= 0) pushIfActive(tn_[nt][i]);
+          if (tri_[nt].n[i] >= 0) pushIfActive(tri_[nt].n[i]);
       } else {
         pushIfActive(nt);
       }
@@ -787,14 +799,14 @@ void Mesher::insertInnerNodes() {
 int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
   int swaps = 0;
   for (const int t : work) {
-    if (tv_[t][0] < 0) continue;
+    if (tri_[t].v[0] < 0) continue;
     for (int i = 0; i < 3; ++i) {
-      const int nb = tn_[t][i];
+      const int nb = tri_[t].n[i];
       if (nb < 0 || cons(t, i)) continue;
-      const int p = tv_[t][i], u = tv_[t][next3(i)], w = tv_[t][prev3(i)];
+      const int p = tri_[t].v[i], u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
       int j = 0;
-      while (tv_[nb][j] == u || tv_[nb][j] == w) ++j;
-      const int q = tv_[nb][j];
+      while (tri_[nb].v[j] == u || tri_[nb].v[j] == w) ++j;
+      const int q = tri_[nb].v[j];
       const double before = std::min(tq_[t], tq_[nb]);
       const double qa = triQuality(p, u, q);
       if (!(qa > before + 1e-6)) continue;
@@ -827,11 +839,11 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     const int t0 = vtri_[v];
     int t = t0;
     for (int guard = 0; guard < 1000; ++guard) {
-      const auto& tv = tv_[t];
+      const auto& tv = tri_[t].v;
       const int i = tv[0] == v ? 0 : (tv[1] == v ? 1 : 2);
       ballTri.push_back(t);
       ring.push_back(tv[next3(i)]);
-      t = tn_[t][next3(i)];
+      t = tri_[t].n[next3(i)];
       if (t < 0 || t == t0) break;
     }
     if (t != t0) continue;
@@ -934,30 +946,26 @@ void Mesher::renumberSpatially() {
     vbnd_.swap(b);
   }
   // Triangles: counting sort by their smallest new vertex index (stable, linear).
-  const int nt = static_cast<int>(tv_.size());
+  const int nt = static_cast<int>(tri_.size());
   std::vector<int> count(nv + 1, 0);
   for (int t = 0; t < nt; ++t) {
-    if (tv_[t][0] < 0) continue;
-    for (int i = 0; i < 3; ++i) tv_[t][i] = vmap[tv_[t][i]];
-    ++count[std::min({tv_[t][0], tv_[t][1], tv_[t][2]}) + 1];
+    if (tri_[t].v[0] < 0) continue;
+    for (int i = 0; i < 3; ++i) tri_[t].v[i] = vmap[tri_[t].v[i]];
+    ++count[std::min({tri_[t].v[0], tri_[t].v[1], tri_[t].v[2]}) + 1];
   }
   for (int v = 0; v < nv; ++v) count[v + 1] += count[v];
   const int live = count[nv];
   std::vector<int> tmap(nt, -1);
   for (int t = 0; t < nt; ++t)
-    if (tv_[t][0] >= 0) tmap[t] = count[std::min({tv_[t][0], tv_[t][1], tv_[t][2]})]++;
-  std::vector<std::array<int, 3>> tv(live), tn(live);
-  std::vector<std::uint8_t> tc(live);
+    if (tri_[t].v[0] >= 0) tmap[t] = count[std::min({tri_[t].v[0], tri_[t].v[1], tri_[t].v[2]})]++;
+  std::vector<Tri> tris(live);
   for (int t = 0; t < nt; ++t) {
     const int k = tmap[t];
     if (k < 0) continue;
-    tv[k] = tv_[t];
-    tc[k] = tc_[t];
-    for (int i = 0; i < 3; ++i) tn[k][i] = tn_[t][i] >= 0 ? tmap[tn_[t][i]] : -1;
+    tris[k] = tri_[t];
+    for (int i = 0; i < 3; ++i) tris[k].n[i] = tri_[t].n[i] >= 0 ? tmap[tri_[t].n[i]] : -1;
   }
-  tv_.swap(tv);
-  tn_.swap(tn);
-  tc_.swap(tc);
+  tri_.swap(tris);
   freeTris_.clear();
   mark_.assign(live, 0);
   forbid_.assign(live, 0);
@@ -968,16 +976,16 @@ void Mesher::renumberSpatially() {
   cache_.shrink_to_fit();
   vtri_.assign(nv, -1);
   for (int t = 0; t < live; ++t)
-    for (int i = 0; i < 3; ++i) vtri_[tv_[t][i]] = t;
+    for (int i = 0; i < 3; ++i) vtri_[tri_[t].v[i]] = t;
 }
 
 void Mesher::improve() {
-  const int nt = static_cast<int>(tv_.size());
+  const int nt = static_cast<int>(tri_.size());
   tq_.assign(nt, 0.0);
   std::vector<int> work, next;
   for (int t = 0; t < nt; ++t)
-    if (tv_[t][0] >= 0) {
-      tq_[t] = triQuality(tv_[t][0], tv_[t][1], tv_[t][2]);
+    if (tri_[t].v[0] >= 0) {
+      tq_[t] = triQuality(tri_[t].v[0], tri_[t].v[1], tri_[t].v[2]);
       work.push_back(t);
     }
   // Removes repeated triangles keeping the first occurrence (deterministic, no sort).
@@ -1006,7 +1014,7 @@ void Mesher::improve() {
     // The ball triangles of moved vertices are reconsidered for swaps (the vertex metric
     // changed too, so their cached quality is refreshed).
     dedupe(work);
-    for (const int t : work) tq_[t] = triQuality(tv_[t][0], tv_[t][1], tv_[t][2]);
+    for (const int t : work) tq_[t] = triQuality(tri_[t].v[0], tri_[t].v[1], tri_[t].v[2]);
     checkProgress(0.8 + 0.15 * (pass + 1) / opt_.improvementPasses);
   }
   if (opt_.improvementPasses > 0) swaps(6);
@@ -1028,8 +1036,9 @@ Mesh Mesher::output() const {
     m.edges.push_back({bedges_[e][0] - kSuper, bedges_[e][1] - kSuper});
     m.edgeRefs.push_back(bedgeRefs_[e]);
   }
-  m.triangles.reserve(tv_.size());
-  for (const auto& t : tv_) {
+  m.triangles.reserve(tri_.size());
+  for (const auto& tr : tri_) {
+    const auto& t = tr.v;
     if (t[0] < 0) continue;
     m.triangles.push_back({t[0] - kSuper, t[1] - kSuper, t[2] - kSuper});
   }
