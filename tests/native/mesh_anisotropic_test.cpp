@@ -41,6 +41,11 @@ QualityReport meshAndReport(const AnalyticControlSpace& cs, const char* name, Me
   std::cout << name << ": " << qualityReportToJson(r).dump() << "\n";
   EXPECT_EQ(r.inverted, 0);
   EXPECT_EQ(r.degenerate, 0);
+  // The early element estimate (budget check) is within 30% on these layers.
+  if (r.edgesWithinSqrt2 > 0.9) {
+    EXPECT_GT(timings.estimatedElements, 0.7 * r.triangles);
+    EXPECT_LT(timings.estimatedElements, 1.3 * r.triangles);
+  }
   if (out) *out = m;
   return r;
 }
