@@ -85,3 +85,30 @@ TEST(MeshAnisotropic, CircularShearLayerAspect100StaysValid) {
   const QualityReport r = meshAndReport(cs, "shear layer AR 100");
   EXPECT_GT(r.qualityMin, 0.05);
 }
+
+// Constant but strongly anisotropic, rotated metric (aspect ratio 10 at 30 degrees). In
+// metric space two corners of the square become 13 degree angles, which bounds the best
+// possible quality of the triangle there (isosceles with that apex angle, Q = 0.38): the
+// minimum is checked against 90% of that bound instead of 0.4.
+TEST(MeshAnisotropic, RotatedUniformAnisotropicMetric) {
+  const Metric metric = Metric::fromSizes(M_PI / 6, 0.01, 0.1);
+  AnalyticControlSpace cs(kUnit, [metric](const Vec2&) { return metric; });
+  const Vec2 ex = metric.apply(Vec2(1, 0)), ey = metric.apply(Vec2(0, 1));
+  const double theta = std::acos(ex.dot(ey) / (ex.norm() * ey.norm()));
+  const double cornerBound = 4.0 * std::sqrt(3.0) * 0.5 * std::sin(theta) / (4.0 - 2.0 * std::cos(theta));
+  EXPECT_NEAR(cornerBound, 0.38, 0.01);
+  const QualityReport r = meshAndReport(cs, "rotated uniform AR 10");
+  EXPECT_GE(r.edgesWithinSqrt2, 0.98);
+  EXPECT_GE(r.qualityMean, 0.93);
+  EXPECT_GE(r.qualityMin, 0.9 * cornerBound);
+}
+
+// A boundary far coarser than the metric (metric length 10 per boundary edge) is bad
+// input, but the mesher must terminate with a valid mesh.
+TEST(MeshAnisotropic, CoarseBoundaryFineMetricTerminates) {
+  UniformControlSpace cs(kUnit, Metric::isotropic(0.025));
+  const std::vector<BoundaryLoop> loops{polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 4)};
+  const Mesh m = meshPlanarBoundary(loops, cs);
+  checkPlanarMesh(m, loops);
+  EXPECT_GT(m.triangles.size(), 1000u);
+}

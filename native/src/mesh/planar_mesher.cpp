@@ -38,6 +38,7 @@ constexpr double kAcceptRadius = 0.70710678118654752; // triangles with metric r
 
 constexpr int kBucketOffset = 4 * 1100;          // bucket index offset: covers every double exponent
 constexpr double kEstimateFactor = 1.0;  // measured: within ~10% on the layer test cases
+constexpr double kSwapSkipQuality = 0.97;    // pairs whose worse triangle is better are not swapped
 constexpr double kSmoothSkipQuality = 0.9;     // balls whose worst triangle is better are not smoothed
 
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
@@ -842,6 +843,7 @@ int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
       while (tri_[nb].v[j] == u || tri_[nb].v[j] == w) ++j;
       const int q = tri_[nb].v[j];
       const double before = std::min(tq_[t], tq_[nb]);
+      if (before >= kSwapSkipQuality) continue;  // both nearly ideal: nothing to gain
       const double qa = triQuality(p, u, q);
       if (!(qa > before + 1e-6)) continue;
       const double qb = triQuality(q, w, p);
@@ -1089,14 +1091,15 @@ Mesh Mesher::run() {
   removeOutside();
   vmt_.resize(pts_.size());
   for (int v = kSuper; v < static_cast<int>(pts_.size()); ++v) vmt_[v] = queryMetric(pts_[v]);
-  timings_.boundary = secondsSince(t0);
 
   Mesh mesh;
   if (opt_.boundaryOnly) {
+    timings_.boundary = secondsSince(t0);
     mesh = output();
   } else {
     // Budget check before the expensive work: one unit equilateral triangle per sqrt(3)/4 of metric area.
     const double metricArea = estimateMetricArea();
+    timings_.boundary = secondsSince(t0);
     estimate_ = std::max(static_cast<double>(liveTriangles()), kEstimateFactor * metricArea / (std::sqrt(3.0) / 4.0));
     timings_.estimatedElements = static_cast<std::int64_t>(estimate_ * elementRatio_);
     if (estimate_ * elementRatio_ > static_cast<double>(opt_.maxElements)) {
