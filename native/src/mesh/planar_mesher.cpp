@@ -101,8 +101,12 @@ class Mesher {
   const ControlSpace& cs_;
   const PlanarMesherOptions& opt_;
 
-  std::vector<Vec2> pts_;
-  std::vector<SymMt> vmt_;
+  // Vertex: position and cached metric Mt side by side (one cache miss, not two).
+  struct Vtx {
+    Vec2 p;
+    SymMt m;
+  };
+  std::vector<Vtx> vx_;
   std::vector<std::uint8_t> vbnd_;  // 1: boundary or super vertex (never moved)
   std::vector<int> vtri_;
   // Triangle: vertices (counter-clockwise), neighbours (n[i] across the edge opposite
@@ -241,7 +245,7 @@ int Mesher::locate(const Vec2& x, int t, bool stopAtConstraints) {
     for (int k = 0; k < 3; ++k) {
       const int i = (r + k) % 3;
       const auto& v = tri_[t].v;
-      if (orient2d(pts_[v[next3(i)]], pts_[v[prev3(i)]], x) < 0.0) {
+      if (orient2d(vx_[v[next3(i)]].p, vx_[v[prev3(i)]].p, x) < 0.0) {
         if (stopAtConstraints && cons(t, i)) return -1;
         const int nb = tri_[t].n[i];
         if (nb < 0) return -1;
@@ -285,7 +289,7 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
         const int nb = tri_[t].n[i];
         if (nb >= 0 && mark_[nb] == epoch_ && !cons(t, i)) continue;
         const int a = tri_[t].v[next3(i)], b = tri_[t].v[prev3(i)];
-        if (orient2d(pts_[a], pts_[b], x) <= 0.0) {
+        if (orient2d(vx_[a].p, vx_[b].p, x) <= 0.0) {
           if (t == t0) return false;
           forbid_[t] = fepoch_;
           ok = false;
@@ -298,7 +302,7 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
     if (bnd_.size() == cav_.size() + 2) return true;  // a disc without inner vertices
     // A vertex whose whole ball is in the cavity would be lost (possible with per-triangle
     // metrics): take its triangles out of the cavity and retry.
-    if (vmark_.size() < pts_.size() + 1) vmark_.resize(pts_.size() + 1024, 0);
+    if (vmark_.size() < vx_.size() + 1) vmark_.resize(vx_.size() + 1024, 0);
     for (const auto& e : bnd_) vmark_[e.a] = epoch_;
     for (const int t : cav_)
       for (int i = 0; i < 3; ++i)
@@ -311,9 +315,9 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
 }
 
 int Mesher::commitCavity(int v) {
-  if (static_cast<int>(startAt_.size()) < static_cast<int>(pts_.size())) {
-    startAt_.resize(pts_.size() + 1024, -1);
-    endAt_.resize(pts_.size() + 1024, -1);
+  if (static_cast<int>(startAt_.size()) < static_cast<int>(vx_.size())) {
+    startAt_.resize(vx_.size() + 1024, -1);
+    endAt_.resize(vx_.size() + 1024, -1);
   }
   newTris_.clear();
   size_t reuse = 0;
@@ -393,23 +397,23 @@ void Mesher::triangulateBoundary() {
     }
   const Vec2 c = 0.5 * (lo + hi);
   const double r = std::max(1e-300, 4.0 * std::max(hi.x() - lo.x(), hi.y() - lo.y()));
-  pts_.reserve(n + kSuper);
-  pts_.push_back(c + Vec2(-r, -r));
-  pts_.push_back(c + Vec2(r, -r));
-  pts_.push_back(c + Vec2(r, r));
-  pts_.push_back(c + Vec2(-r, r));
+  vx_.reserve(n + kSuper);
+  vx_.push_back({c + Vec2(-r, -r), SymMt()});
+  vx_.push_back({c + Vec2(r, -r), SymMt()});
+  vx_.push_back({c + Vec2(r, r), SymMt()});
+  vx_.push_back({c + Vec2(-r, r), SymMt()});
   for (const auto& lp : loops_) {
-    const int base = static_cast<int>(pts_.size());
+    const int base = static_cast<int>(vx_.size());
     const int m = static_cast<int>(lp.points.size());
     for (int i = 0; i < m; ++i) {
-      pts_.push_back(lp.points[i]);
+      vx_.push_back({lp.points[i], SymMt()});
       bedges_.push_back({base + i, base + (i + 1) % m});
       bedgeRefs_.push_back(lp.edgeRefs[i]);
     }
   }
   nBoundary_ = n;
-  vbnd_.assign(pts_.size(), 1);
-  vtri_.assign(pts_.size(), -1);
+  vbnd_.assign(vx_.size(), 1);
+  vtri_.assign(vx_.size(), -1);
   const int t0 = allocTri(), t1 = allocTri();
   tri_[t0].v = {0, 1, 2};
   tri_[t1].v = {0, 2, 3};
@@ -419,25 +423,25 @@ void Mesher::triangulateBoundary() {
   vtri_[3] = t1;
 
   int last = t0;
-  for (int v = kSuper; v < static_cast<int>(pts_.size()); ++v) {
-    const Vec2 x = pts_[v];
+  for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v) {
+    const Vec2 x = vx_[v].p;
     int t = locate(x, last, false);
     if (t < 0) {  // cannot happen inside the super-box; scan as a last resort
       for (int k = 0; k < static_cast<int>(tri_.size()) && t < 0; ++k)
-        if (tri_[k].v[0] >= 0 && orient2d(pts_[tri_[k].v[0]], pts_[tri_[k].v[1]], x) >= 0 &&
-            orient2d(pts_[tri_[k].v[1]], pts_[tri_[k].v[2]], x) >= 0 && orient2d(pts_[tri_[k].v[2]], pts_[tri_[k].v[0]], x) >= 0)
+        if (tri_[k].v[0] >= 0 && orient2d(vx_[tri_[k].v[0]].p, vx_[tri_[k].v[1]].p, x) >= 0 &&
+            orient2d(vx_[tri_[k].v[1]].p, vx_[tri_[k].v[2]].p, x) >= 0 && orient2d(vx_[tri_[k].v[2]].p, vx_[tri_[k].v[0]].p, x) >= 0)
           t = k;
       require(t >= 0, ErrorCode::Internal, "meshPlanarBoundary: point location failed");
     }
     for (int k = 0; k < 3; ++k)
-      if (pts_[tri_[t].v[k]] == x) {
+      if (vx_[tri_[t].v[k]].p == x) {
         std::ostringstream os;
         os << "meshPlanarBoundary: duplicate boundary point (" << x.x() << ", " << x.y() << ")";
         throw Error(ErrorCode::InvalidArgument, os.str());
       }
     const bool ok = buildCavity(x, t, [&](int nb) {
       const auto& tv = tri_[nb].v;
-      return incircle(pts_[tv[0]], pts_[tv[1]], pts_[tv[2]], x) > 0.0;
+      return incircle(vx_[tv[0]].p, vx_[tv[1]].p, vx_[tv[2]].p, x) > 0.0;
     });
     require(ok, ErrorCode::Internal, "meshPlanarBoundary: Delaunay cavity is not star-shaped");
     last = commitCavity(v);
@@ -456,9 +460,9 @@ void Mesher::recoverEdge(int a, int b) {
   };
   auto onSegmentError = [&](int v) {
     std::ostringstream os;
-    os << "meshPlanarBoundary: boundary point (" << pts_[v].x() << ", " << pts_[v].y()
-       << ") lies on the boundary segment (" << pts_[a].x() << ", " << pts_[a].y() << ")-(" << pts_[b].x() << ", "
-       << pts_[b].y() << ")";
+    os << "meshPlanarBoundary: boundary point (" << vx_[v].p.x() << ", " << vx_[v].p.y()
+       << ") lies on the boundary segment (" << vx_[a].p.x() << ", " << vx_[a].p.y() << ")-(" << vx_[b].p.x() << ", "
+       << vx_[b].p.y() << ")";
     throw Error(ErrorCode::SelfIntersectingContour, os.str());
   };
   int idx;
@@ -467,8 +471,8 @@ void Mesher::recoverEdge(int a, int b) {
     setConstrained(t, idx);
     return;
   }
-  const Vec2& pa = pts_[a];
-  const Vec2& pb = pts_[b];
+  const Vec2& pa = vx_[a].p;
+  const Vec2& pb = vx_[b].p;
   // Find the triangle around a through which segment ab leaves a.
   std::deque<std::pair<int, int>> crossing;
   int cur = vtri_[a];
@@ -478,8 +482,8 @@ void Mesher::recoverEdge(int a, int b) {
     const auto& v = tri_[cur].v;
     const int i = v[0] == a ? 0 : (v[1] == a ? 1 : 2);
     const int x = v[next3(i)], y = v[prev3(i)];
-    const double ox = orient2d(pa, pb, pts_[x]), oy = orient2d(pa, pb, pts_[y]);
-    if (ox == 0.0 && (pts_[x] - pa).dot(pb - pa) > 0.0) onSegmentError(x);
+    const double ox = orient2d(pa, pb, vx_[x].p), oy = orient2d(pa, pb, vx_[y].p);
+    if (ox == 0.0 && (vx_[x].p - pa).dot(pb - pa) > 0.0) onSegmentError(x);
     if (ox < 0.0 && oy > 0.0) {
       u = x;
       w = y;
@@ -505,7 +509,7 @@ void Mesher::recoverEdge(int a, int b) {
     const int z = tri_[nb].v[j];
     cur = nb;
     if (z == b) break;
-    const double oz = orient2d(pa, pb, pts_[z]);
+    const double oz = orient2d(pa, pb, vx_[z].p);
     if (oz == 0.0) onSegmentError(z);
     if (oz < 0.0)
       u = z;
@@ -527,13 +531,13 @@ void Mesher::recoverEdge(int a, int b) {
     while (tri_[nb].v[j] == e.first || tri_[nb].v[j] == e.second) ++j;
     const int q = tri_[nb].v[j];
     // t = (p, u, w); flipping gives (p, u, q) and (q, w, p): both must be counter-clockwise.
-    if (orient2d(pts_[p], pts_[e.first], pts_[q]) <= 0.0 || orient2d(pts_[q], pts_[e.second], pts_[p]) <= 0.0) {
+    if (orient2d(vx_[p].p, vx_[e.first].p, vx_[q].p) <= 0.0 || orient2d(vx_[q].p, vx_[e.second].p, vx_[p].p) <= 0.0) {
       crossing.push_back(e);
       continue;
     }
     flip(tt, ti);
     if (p == a || p == b || q == a || q == b) continue;
-    const double op = orient2d(pa, pb, pts_[p]), oq = orient2d(pa, pb, pts_[q]);
+    const double op = orient2d(pa, pb, vx_[p].p), oq = orient2d(pa, pb, vx_[q].p);
     if ((op < 0.0 && oq > 0.0) || (op > 0.0 && oq < 0.0)) crossing.emplace_back(p, q);
   }
   t = findEdge(a, b, &idx);
@@ -593,7 +597,7 @@ void Mesher::removeOutside() {
   std::fill(vtri_.begin(), vtri_.end(), -1);
   for (int t = 0; t < kept; ++t)
     for (int i = 0; i < 3; ++i) vtri_[tri_[t].v[i]] = t;
-  for (int v = kSuper; v < static_cast<int>(pts_.size()); ++v)
+  for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v)
     require(vtri_[v] >= 0, ErrorCode::HoleOutsideDomain,
             "meshPlanarBoundary: a boundary point is not on the meshed region (hole outside the outer loop?)");
 }
@@ -627,13 +631,13 @@ double Mesher::estimateMetricArea() {
   double adaptive = 0.0;
   for (const auto& tr : tri_) {
     const auto& t = tr.v;
-    const Vec2 &a = pts_[t[0]], &b = pts_[t[1]], &c = pts_[t[2]];
-    adaptive += metricAreaRec(a, b, c, vmt_[t[0]].det(), vmt_[t[1]].det(), vmt_[t[2]].det(), 0, budget);
+    const Vec2 &a = vx_[t[0]].p, &b = vx_[t[1]].p, &c = vx_[t[2]].p;
+    adaptive += metricAreaRec(a, b, c, vx_[t[0]].m.det(), vx_[t[1]].m.det(), vx_[t[2]].m.det(), 0, budget);
   }
-  Vec2 lo = pts_[kSuper], hi = lo;
+  Vec2 lo = vx_[kSuper].p, hi = lo;
   for (int v = kSuper; v < kSuper + nBoundary_; ++v) {
-    lo = lo.cwiseMin(pts_[v]);
-    hi = hi.cwiseMax(pts_[v]);
+    lo = lo.cwiseMin(vx_[v].p);
+    hi = hi.cwiseMax(vx_[v].p);
   }
   constexpr int kRows = 256;
   const double dy = (hi.y() - lo.y()) / kRows, dx = (hi.x() - lo.x()) / kRows;
@@ -644,7 +648,7 @@ double Mesher::estimateMetricArea() {
     const double y = lo.y() + (r + 0.5) * dy;
     xs.clear();
     for (const auto& e : bedges_) {
-      const Vec2 &p = pts_[e[0]], &q = pts_[e[1]];
+      const Vec2 &p = vx_[e[0]].p, &q = vx_[e[1]].p;
       if ((p.y() > y) != (q.y() > y)) xs.push_back(p.x() + (y - p.y()) / (q.y() - p.y()) * (q.x() - p.x()));
     }
     std::sort(xs.begin(), xs.end());
@@ -666,9 +670,9 @@ double Mesher::estimateMetricArea() {
 void Mesher::computeCache(int t) {
   const auto& v = tri_[t].v;
   TriCache& c = cache_[t];
-  c.m = SymMt::average3(vmt_[v[0]], vmt_[v[1]], vmt_[v[2]]);
-  const Vec2& pa = pts_[v[0]];
-  const Vec2 b = c.m.apply(pts_[v[1]] - pa), cc = c.m.apply(pts_[v[2]] - pa);
+  c.m = SymMt::average3(vx_[v[0]].m, vx_[v[1]].m, vx_[v[2]].m);
+  const Vec2& pa = vx_[v[0]].p;
+  const Vec2 b = c.m.apply(vx_[v[1]].p - pa), cc = c.m.apply(vx_[v[2]].p - pa);
   const double d = 2.0 * (b.x() * cc.y() - b.y() * cc.x());
   if (!(d > 0.0)) {  // degenerate in floating point: never refine it, never absorb points
     c.r2 = 0.0;
@@ -684,11 +688,11 @@ void Mesher::computeCache(int t) {
   c.cy = center.y();
 }
 
-double Mesher::triQuality(int a, int b, int c) const { return triQuality(a, b, c, pts_[a]); }
+double Mesher::triQuality(int a, int b, int c) const { return triQuality(a, b, c, vx_[a].p); }
 
 double Mesher::triQuality(int a, int b, int c, const Vec2& pa) const {
-  const SymMt m = SymMt::average3(vmt_[a], vmt_[b], vmt_[c]);
-  return metricTriangleQuality(m, pa, pts_[b], pts_[c]);
+  const SymMt m = SymMt::average3(vx_[a].m, vx_[b].m, vx_[c].m);
+  return metricTriangleQuality(m, pa, vx_[b].p, vx_[c].p);
 }
 
 void Mesher::insertInnerNodes() {
@@ -752,7 +756,7 @@ void Mesher::insertInnerNodes() {
     for (int i = 0; i < 3; ++i) {
       const int nb = tri_[t].n[i];
       if (!(nb < 0 || cons(t, i) || accepted_[nb])) continue;
-      const double len = tc.m.length(pts_[tri_[t].v[prev3(i)]] - pts_[tri_[t].v[next3(i)]]);
+      const double len = tc.m.length(vx_[tri_[t].v[prev3(i)]].p - vx_[tri_[t].v[next3(i)]].p);
       const double dev = std::fabs(len - 1.0);
       if (dev < bestDev) {
         bestDev = dev;
@@ -760,8 +764,8 @@ void Mesher::insertInnerNodes() {
       }
     }
     if (edge < 0) continue;  // not on the front any more; re-queued when a neighbour is accepted
-    const Vec2& pa = pts_[tri_[t].v[next3(edge)]];
-    const Vec2& pb = pts_[tri_[t].v[prev3(edge)]];
+    const Vec2& pa = vx_[tri_[t].v[next3(edge)]].p;
+    const Vec2& pb = vx_[tri_[t].v[prev3(edge)]].p;
     // Rebay's point placement in the triangle's metric space.
     const Vec2 mid = 0.5 * (pa + pb);
     const Vec2 e = tc.m.apply(pb - pa);
@@ -785,7 +789,7 @@ void Mesher::insertInnerNodes() {
     }
     if (ok) {
       for (const auto& be : bnd_) {
-        if (tc.m.apply(pts_[be.a] - x).squaredNorm() < minDist2) {
+        if (tc.m.apply(vx_[be.a].p - x).squaredNorm() < minDist2) {
           ok = false;
           break;
         }
@@ -797,9 +801,8 @@ void Mesher::insertInnerNodes() {
         if (tri_[t].n[i] >= 0) pushIfActive(tri_[t].n[i]);
       continue;
     }
-    const int v = static_cast<int>(pts_.size());
-    pts_.push_back(x);
-    vmt_.push_back(queryMetric(x));
+    const int v = static_cast<int>(vx_.size());
+    vx_.push_back({x, queryMetric(x)});
     vbnd_.push_back(0);
     vtri_.push_back(-1);
     commitCavity(v);
@@ -849,7 +852,7 @@ int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
       const double qb = triQuality(q, w, p);
       if (!(qb > before + 1e-6)) continue;
       // Positive metric quality means counter-clockwise in floating point; confirm exactly.
-      if (orient2d(pts_[p], pts_[u], pts_[q]) <= 0.0 || orient2d(pts_[q], pts_[w], pts_[p]) <= 0.0) continue;
+      if (orient2d(vx_[p].p, vx_[u].p, vx_[q].p) <= 0.0 || orient2d(vx_[q].p, vx_[w].p, vx_[p].p) <= 0.0) continue;
       flip(t, i);
       tq_[t] = qa;
       tq_[nb] = qb;
@@ -867,7 +870,7 @@ int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
 int Mesher::smoothPass(std::vector<int>& touched) {
   int moved = 0;
   std::vector<int> ring, ballTri;
-  const int nv = static_cast<int>(pts_.size());
+  const int nv = static_cast<int>(vx_.size());
   for (int v = kSuper; v < nv; ++v) {
     if (vbnd_[v]) continue;
     ring.clear();
@@ -883,12 +886,12 @@ int Mesher::smoothPass(std::vector<int>& touched) {
       if (t < 0 || t == t0) break;
     }
     if (t != t0) continue;
-    const Vec2 p = pts_[v];
+    const Vec2 p = vx_[v].p;
     Vec2 target(0.0, 0.0);
     for (const int r : ring) {
-      const Vec2 dv = p - pts_[r];
-      const double len = SymMt::average2(vmt_[v], vmt_[r]).length(dv);
-      target += len > 0.0 ? Vec2(pts_[r] + dv / len) : p;
+      const Vec2 dv = p - vx_[r].p;
+      const double len = SymMt::average2(vx_[v].m, vx_[r].m).length(dv);
+      target += len > 0.0 ? Vec2(vx_[r].p + dv / len) : p;
     }
     target /= static_cast<double>(ring.size());
     double before = std::numeric_limits<double>::infinity();
@@ -898,7 +901,7 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     // then the ring centroid (Laplacian; the same in any constant metric) and halfway to
     // it as fallbacks for the worst balls; the first that improves the worst triangle wins.
     Vec2 centroid(0.0, 0.0);
-    for (const int r : ring) centroid += pts_[r];
+    for (const int r : ring) centroid += vx_[r].p;
     centroid /= static_cast<double>(ring.size());
     const Vec2 cands[4] = {target, 0.5 * (p + target), centroid, 0.5 * (p + centroid)};
     int best = -1;
@@ -913,15 +916,15 @@ int Mesher::smoothPass(std::vector<int>& touched) {
       if (!(after > bestQ)) continue;
       bool valid = true;
       for (size_t k = 0; k < ballTri.size() && valid; ++k)
-        valid = orient2d(cand, pts_[ring[k]], pts_[ring[k + 1 == ring.size() ? 0 : k + 1]]) > 0.0;
+        valid = orient2d(cand, vx_[ring[k]].p, vx_[ring[k + 1 == ring.size() ? 0 : k + 1]].p) > 0.0;
       if (!valid) continue;
       best = ci;
       bestQ = after;
       break;
     }
     if (best < 0) continue;
-    pts_[v] = cands[best];
-    vmt_[v] = queryMetric(cands[best]);
+    vx_[v].p = cands[best];
+    vx_[v].m = queryMetric(cands[best]);
     for (size_t k = 0; k < ballTri.size(); ++k) touched.push_back(ballTri[k]);
     ++moved;
   }
@@ -950,18 +953,18 @@ std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
 // vertex, dropping free slots: the frontal insertion creates them in order of size, not
 // of position, and the later passes walk around vertices (cache misses dominate otherwise).
 void Mesher::renumberSpatially() {
-  const int nv = static_cast<int>(pts_.size());
+  const int nv = static_cast<int>(vx_.size());
   const int first = kSuper + nBoundary_;
-  Vec2 lo = pts_[kSuper], hi = lo;
+  Vec2 lo = vx_[kSuper].p, hi = lo;
   for (int v = kSuper; v < nv; ++v) {
-    lo = lo.cwiseMin(pts_[v]);
-    hi = hi.cwiseMax(pts_[v]);
+    lo = lo.cwiseMin(vx_[v].p);
+    hi = hi.cwiseMax(vx_[v].p);
   }
   const Vec2 ext = (hi - lo).cwiseMax(Vec2(1e-300, 1e-300));
   std::vector<std::pair<std::uint64_t, int>> keyed;
   keyed.reserve(nv - first);
   for (int v = first; v < nv; ++v) {
-    const Vec2 f = (pts_[v] - lo).cwiseQuotient(ext) * 65535.0;
+    const Vec2 f = (vx_[v].p - lo).cwiseQuotient(ext) * 65535.0;
     keyed.emplace_back(hilbertIndex(static_cast<std::uint32_t>(f.x()), static_cast<std::uint32_t>(f.y())), v);
   }
   std::sort(keyed.begin(), keyed.end());
@@ -969,16 +972,13 @@ void Mesher::renumberSpatially() {
   for (int v = 0; v < first; ++v) vmap[v] = v;
   for (size_t k = 0; k < keyed.size(); ++k) vmap[keyed[k].second] = first + static_cast<int>(k);
   {
-    std::vector<Vec2> p(nv);
-    std::vector<SymMt> m(nv);
+    std::vector<Vtx> x(nv);
     std::vector<std::uint8_t> b(nv);
     for (int v = 0; v < nv; ++v) {
-      p[vmap[v]] = pts_[v];
-      m[vmap[v]] = vmt_[v];
+      x[vmap[v]] = vx_[v];
       b[vmap[v]] = vbnd_[v];
     }
-    pts_.swap(p);
-    vmt_.swap(m);
+    vx_.swap(x);
     vbnd_.swap(b);
   }
   // Triangles: counting sort by their smallest new vertex index (stable, linear).
@@ -1060,12 +1060,12 @@ void Mesher::improve() {
 Mesh Mesher::output() const {
   Mesh m;
   m.dimension = 2;
-  const int nv = static_cast<int>(pts_.size()) - kSuper;
+  const int nv = static_cast<int>(vx_.size()) - kSuper;
   m.points.reserve(nv);
   m.params.reserve(nv);
-  for (int v = kSuper; v < static_cast<int>(pts_.size()); ++v) {
-    m.points.emplace_back(pts_[v].x(), pts_[v].y(), 0.0);
-    m.params.push_back(pts_[v]);
+  for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v) {
+    m.points.emplace_back(vx_[v].p.x(), vx_[v].p.y(), 0.0);
+    m.params.push_back(vx_[v].p);
   }
   m.pointRefs.assign(nv, 0);
   for (size_t e = 0; e < bedges_.size(); ++e) {
@@ -1089,8 +1089,7 @@ Mesh Mesher::run() {
   checkProgress(0.0);
   triangulateBoundary();
   removeOutside();
-  vmt_.resize(pts_.size());
-  for (int v = kSuper; v < static_cast<int>(pts_.size()); ++v) vmt_[v] = queryMetric(pts_[v]);
+  for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v) vx_[v].m = queryMetric(vx_[v].p);
 
   Mesh mesh;
   if (opt_.boundaryOnly) {
@@ -1119,7 +1118,9 @@ Mesh Mesher::run() {
     mesh = output();
     if (opt_.quads || opt_.allQuads) {
       t0 = Clock::now();
-      std::vector<SymMt> vm(vmt_.begin() + kSuper, vmt_.end());
+      std::vector<SymMt> vm;
+      vm.reserve(vx_.size() - kSuper);
+      for (size_t v = kSuper; v < vx_.size(); ++v) vm.push_back(vx_[v].m);
       convertToQuads(mesh, vm, opt_.allQuads, cs_);
       timings_.quads = secondsSince(t0);
     }
