@@ -18,6 +18,16 @@ struct BoundaryLoop {
   std::vector<int> edgeRefs;
 };
 
+// Wall-clock seconds spent in each stage of one meshPlanarBoundary run, and the element
+// estimate used for the budget check (copied into QualityReport by the caller).
+struct MesherTimings {
+  double boundary = 0.0;     // boundary triangulation, recovery, outside removal
+  double insertion = 0.0;    // inner node insertion
+  double improvement = 0.0;  // edge swaps and node smoothing
+  double quads = 0.0;        // quad conversion
+  std::int64_t estimatedElements = 0;
+};
+
 struct PlanarMesherOptions {
   bool quads = false;                   // convert to a quad-dominant mesh
   bool allQuads = false;                // then split into an all-quad mesh
@@ -26,6 +36,9 @@ struct PlanarMesherOptions {
   bool boundaryOnly = false;            // stop after the boundary triangulation (section 3.2 checks)
   // Called with a fraction in [0, 1]; returning false cancels the run (ErrorCode::Cancelled).
   std::function<bool(double)> progress;
+  // Candidate inner nodes closer than this (metric length) to an existing vertex are rejected.
+  double minNodeDistance = 0.6;
+  MesherTimings* timings = nullptr;     // optional output: stage times
 };
 
 // Meshes the region inside loops[0] and outside loops[1..]; every boundary point is a

@@ -1,0 +1,61 @@
+#pragma once
+// Internal helpers of the mesh area shared by the mesher, the quad conversion and the
+// quality report: a compact symmetric Mt and the metric element qualities.
+#include <cmath>
+#include <vector>
+
+#include "anisomesh/controlspace/control_space.h"
+#include "anisomesh/core/types.h"
+#include "anisomesh/mesh/mesh.h"
+
+namespace anisomesh {
+
+// Symmetric transformation matrix Mt = [a b; b c], three doubles (cache friendly).
+struct SymMt {
+  double a = 1.0, b = 0.0, c = 1.0;
+  static SymMt from(const Mat2& m) { return {m(0, 0), 0.5 * (m(0, 1) + m(1, 0)), m(1, 1)}; }
+  static SymMt average3(const SymMt& x, const SymMt& y, const SymMt& z) {
+    constexpr double k = 1.0 / 3.0;
+    return {(x.a + y.a + z.a) * k, (x.b + y.b + z.b) * k, (x.c + y.c + z.c) * k};
+  }
+  static SymMt average2(const SymMt& x, const SymMt& y) {
+    return {0.5 * (x.a + y.a), 0.5 * (x.b + y.b), 0.5 * (x.c + y.c)};
+  }
+  double det() const { return a * c - b * b; }
+  Vec2 apply(const Vec2& v) const { return {a * v.x() + b * v.y(), b * v.x() + c * v.y()}; }
+  // Mt^-1 v.
+  Vec2 solve(const Vec2& v) const {
+    const double d = det();
+    return {(c * v.x() - b * v.y()) / d, (a * v.y() - b * v.x()) / d};
+  }
+  double length(const Vec2& v) const { return apply(v).norm(); }
+};
+
+// Q = 4 sqrt(3) A_M / sum l_M^2 under the constant metric m: 1 for the equilateral
+// triangle in metric space, 0 when flat, negative when clockwise.
+inline double metricTriangleQuality(const SymMt& m, const Vec2& a, const Vec2& b, const Vec2& c) {
+  const Vec2 e1 = m.apply(b - a), e2 = m.apply(c - b), e3 = m.apply(a - c);
+  const double cross = e1.x() * (-e3.y()) - e1.y() * (-e3.x());  // 2 A_M
+  const double sum = e1.squaredNorm() + e2.squaredNorm() + e3.squaredNorm();
+  return sum > 0.0 ? 2.0 * std::sqrt(3.0) * cross / sum : 0.0;
+}
+
+// Quad quality under the constant metric m: the minimum over the four corners of
+// 2 |e1 x e2| / (|e1|^2 + |e2|^2), signed; 1 for a square in metric space, <= 0 when a
+// corner is reflex or the quad is inverted.
+inline double metricQuadQuality(const SymMt& m, const Vec2* p) {
+  double q = 1.0;
+  for (int k = 0; k < 4; ++k) {
+    const Vec2 e1 = m.apply(p[(k + 1) % 4] - p[k]), e2 = m.apply(p[(k + 3) % 4] - p[k]);
+    const double cross = e1.x() * e2.y() - e1.y() * e2.x();
+    const double sum = e1.squaredNorm() + e2.squaredNorm();
+    q = std::min(q, sum > 0.0 ? 2.0 * cross / sum : 0.0);
+  }
+  return q;
+}
+
+// Quad-dominant conversion (greedy merge of triangle pairs by metric quad quality) and,
+// with allQuads, the split of every element into quads. vertexMt holds Mt per vertex.
+void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, bool allQuads, const ControlSpace& cs);
+
+}  // namespace anisomesh

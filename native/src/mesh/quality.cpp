@@ -1,0 +1,144 @@
+#include "anisomesh/mesh/quality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "anisomesh/mesh/predicates.h"
+#include "mesh_internal.h"
+
+namespace anisomesh {
+namespace {
+
+void addToHistogram(QualityReport& r, double q) {
+  const int bin = q <= 0.0 ? 0 : std::min(9, static_cast<int>(q * 10.0));
+  ++r.qualityHistogram[bin];
+}
+
+}  // namespace
+
+QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace) {
+  QualityReport r;
+  const int nv = mesh.vertexCount();
+  r.vertices = nv;
+  r.triangles = static_cast<int>(mesh.triangles.size());
+  r.quads = static_cast<int>(mesh.quads.size());
+  std::vector<Vec2> uv(nv);
+  for (int v = 0; v < nv; ++v)
+    uv[v] = mesh.params.size() == static_cast<size_t>(nv) ? mesh.params[v] : Vec2(mesh.points[v].x(), mesh.points[v].y());
+  std::vector<SymMt> mt(nv);
+  for (int v = 0; v < nv; ++v) mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
+
+  // Distinct edges of all elements.
+  std::vector<std::uint64_t> keys;
+  keys.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
+  auto addEdge = [&](int a, int b) {
+    if (a > b) std::swap(a, b);
+    keys.push_back((static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b));
+  };
+  for (const auto& t : mesh.triangles)
+    for (int i = 0; i < 3; ++i) addEdge(t[i], t[(i + 1) % 3]);
+  for (const auto& q : mesh.quads)
+    for (int i = 0; i < 4; ++i) addEdge(q[i], q[(i + 1) % 4]);
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  r.edges = static_cast<int>(keys.size());
+  double lsum = 0.0;
+  int in1 = 0, in2 = 0;
+  r.edgeLengthMin = keys.empty() ? 0.0 : std::numeric_limits<double>::infinity();
+  for (const auto k : keys) {
+    const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffffu);
+    const double l = SymMt::average2(mt[a], mt[b]).length(uv[b] - uv[a]);
+    lsum += l;
+    r.edgeLengthMin = std::min(r.edgeLengthMin, l);
+    r.edgeLengthMax = std::max(r.edgeLengthMax, l);
+    if (l >= std::sqrt(0.5) && l <= std::sqrt(2.0)) ++in1;
+    if (l >= 0.6 && l <= 1.3) ++in2;
+  }
+  if (!keys.empty()) {
+    r.edgeLengthMean = lsum / keys.size();
+    r.edgesWithinSqrt2 = static_cast<double>(in1) / keys.size();
+    r.edgesWithin06_13 = static_cast<double>(in2) / keys.size();
+  }
+
+  double qsum = 0.0, tsum = 0.0, qdsum = 0.0;
+  r.qualityMin = r.triangleQualityMin = r.quadQualityMin = std::numeric_limits<double>::infinity();
+  for (const auto& t : mesh.triangles) {
+    const SymMt m = SymMt::average3(mt[t[0]], mt[t[1]], mt[t[2]]);
+    const double q = metricTriangleQuality(m, uv[t[0]], uv[t[1]], uv[t[2]]);
+    const double o = orient2d(uv[t[0]], uv[t[1]], uv[t[2]]);
+    if (o < 0.0)
+      ++r.inverted;
+    else if (o == 0.0 || q < 1e-3)
+      ++r.degenerate;
+    r.triangleQualityMin = std::min(r.triangleQualityMin, q);
+    tsum += q;
+    addToHistogram(r, q);
+  }
+  for (const auto& qd : mesh.quads) {
+    Vec2 p[4];
+    SymMt m{0.0, 0.0, 0.0};
+    for (int k = 0; k < 4; ++k) {
+      p[k] = uv[qd[k]];
+      m.a += 0.25 * mt[qd[k]].a;
+      m.b += 0.25 * mt[qd[k]].b;
+      m.c += 0.25 * mt[qd[k]].c;
+    }
+    const double q = metricQuadQuality(m, p);
+    bool inv = false, flat = false;
+    for (int k = 0; k < 4; ++k) {
+      const double o = orient2d(p[(k + 3) % 4], p[k], p[(k + 1) % 4]);
+      inv = inv || o < 0.0;
+      flat = flat || o == 0.0;
+    }
+    if (inv)
+      ++r.inverted;
+    else if (flat || q < 1e-3)
+      ++r.degenerate;
+    r.quadQualityMin = std::min(r.quadQualityMin, q);
+    qdsum += q;
+    addToHistogram(r, q);
+  }
+  qsum = tsum + qdsum;
+  const int ne = r.triangles + r.quads;
+  r.qualityMin = std::min(r.triangleQualityMin, r.quadQualityMin);
+  if (ne == 0) r.qualityMin = 0.0;
+  r.qualityMean = ne ? qsum / ne : 0.0;
+  r.triangleQualityMean = r.triangles ? tsum / r.triangles : 0.0;
+  if (!r.triangles) r.triangleQualityMin = 0.0;
+  r.quadQualityMean = r.quads ? qdsum / r.quads : 0.0;
+  if (!r.quads) r.quadQualityMin = 0.0;
+  return r;
+}
+
+nlohmann::json qualityReportToJson(const QualityReport& r) {
+  nlohmann::json j;
+  j["vertices"] = r.vertices;
+  j["triangles"] = r.triangles;
+  j["quads"] = r.quads;
+  j["edges"] = r.edges;
+  j["edgeLength"] = {{"min", r.edgeLengthMin},
+                     {"mean", r.edgeLengthMean},
+                     {"max", r.edgeLengthMax},
+                     {"fractionWithinSqrt2", r.edgesWithinSqrt2},
+                     {"fractionWithin0.6_1.3", r.edgesWithin06_13}};
+  j["quality"] = {{"min", r.qualityMin},
+                  {"mean", r.qualityMean},
+                  {"triangleMin", r.triangleQualityMin},
+                  {"triangleMean", r.triangleQualityMean},
+                  {"quadMin", r.quadQualityMin},
+                  {"quadMean", r.quadQualityMean},
+                  {"histogram", r.qualityHistogram}};
+  j["inverted"] = r.inverted;
+  j["degenerate"] = r.degenerate;
+  j["timings"] = {{"boundary", r.timings.boundary},
+                  {"insertion", r.timings.insertion},
+                  {"improvement", r.timings.improvement},
+                  {"quads", r.timings.quads},
+                  {"estimatedElements", r.timings.estimatedElements}};
+  return j;
+}
+
+}  // namespace anisomesh
