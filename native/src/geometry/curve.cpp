@@ -8,6 +8,10 @@
 #include "anisomesh/geometry/quadrature.h"
 
 namespace anisomesh {
+namespace {
+// Not M_PI: strict C++17 headers (libc++/musl under Emscripten) need not define it.
+constexpr double kPiValue = 3.14159265358979323846;
+}  // namespace
 
 std::string formatPoint(const Vec2& p) {
   std::ostringstream os;
@@ -54,17 +58,17 @@ ArcCurve ArcCurve::throughPoints(const Vec2& a, const Vec2& b, const Vec2& c, in
   // Sweep from a to c counter-clockwise when b lies left of a->c turn order (d > 0).
   double sweepB = ang(b) - a0, sweepC = ang(c) - a0;
   if (d > 0) {
-    while (sweepB <= 0) sweepB += 2 * M_PI;
-    while (sweepC <= 0) sweepC += 2 * M_PI;
+    while (sweepB <= 0) sweepB += 2 * kPiValue;
+    while (sweepC <= 0) sweepC += 2 * kPiValue;
   } else {
-    while (sweepB >= 0) sweepB -= 2 * M_PI;
-    while (sweepC >= 0) sweepC -= 2 * M_PI;
+    while (sweepB >= 0) sweepB -= 2 * kPiValue;
+    while (sweepC >= 0) sweepC -= 2 * kPiValue;
   }
   return ArcCurve(center, r, a0, a0 + sweepC, ref);
 }
 
 ArcCurve ArcCurve::circle(const Vec2& center, double radius, int ref) {
-  return ArcCurve(center, radius, 0.0, 2.0 * M_PI, ref);
+  return ArcCurve(center, radius, 0.0, 2.0 * kPiValue, ref);
 }
 
 Vec2 ArcCurve::point(double t) const {

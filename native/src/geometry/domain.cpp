@@ -230,13 +230,19 @@ void validateDomain(const Domain& domain, const DomainValidationOptions& options
         }
       }
 
-  // With no crossings, one point decides containment.
+  // With no crossings, one point decides containment (bounding boxes skip far holes).
+  std::vector<Box2> boxes;
+  for (const auto& poly : polygons) {
+    Box2 b{poly[0], poly[0]};
+    for (const Vec2& p : poly) b.lo = b.lo.cwiseMin(p), b.hi = b.hi.cwiseMax(p);
+    boxes.push_back(b);
+  }
   for (size_t k = 1; k < contours.size(); ++k) {
     const Vec2 p = polygons[k][0];
     require(pointInPolygon(polygons[0], p), ErrorCode::HoleOutsideDomain,
             contourName(int(k)) + " is not inside the outer contour: its point " + formatPoint(p) + " lies outside");
     for (size_t j = 1; j < contours.size(); ++j) {
-      if (j == k) continue;
+      if (j == k || !boxes[j].contains(p)) continue;
       require(!pointInPolygon(polygons[j], p), ErrorCode::HoleOutsideDomain,
               contourName(int(k)) + " lies inside " + contourName(int(j)) + " (holes must not overlap): its point " +
                   formatPoint(p) + " is inside " + contourName(int(j)));

@@ -7,6 +7,10 @@
 
 namespace anisomesh {
 namespace {
+// Not M_PI: strict C++17 headers (libc++/musl under Emscripten) need not define it.
+constexpr double kPiValue = 3.14159265358979323846;
+}  // namespace
+namespace {
 
 double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
   const Vec2 ab = b - a;
@@ -62,7 +66,7 @@ bool sourceMetricAt(const SourceSpec& s, const Vec2& p, double slope, Metric* ou
       if (f.field == "shear_layer_circle") {
         const Vec2 r = p - f.center;
         const double theta = std::atan2(r.y(), r.x());
-        return layerMetric(f, theta + M_PI / 2, std::abs(r.norm() - f.radius), slope, out);
+        return layerMetric(f, theta + kPiValue / 2, std::abs(r.norm() - f.radius), slope, out);
       }
       throw Error(ErrorCode::InvalidArgument, "unknown analytic field '" + f.field + "'");
     }
