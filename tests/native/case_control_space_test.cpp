@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/geometry/discretize.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/pipeline/case_control_space.h"
@@ -184,4 +185,51 @@ TEST(RemeshGeometry, ClampMetricSizes) {
   EXPECT_NEAR(out[0].sizeAlong({std::cos(0.4), std::sin(0.4)}), 0.01, 1e-12);
   EXPECT_NEAR(out[0].sizeAlong({-std::sin(0.4), std::cos(0.4)}), 1.0, 1e-12);
   EXPECT_NEAR(out[1].sizeAlong({1, 0}), 0.5, 1e-12);
+}
+
+TEST(CaseControlSpace, ExampleBoundariesHaveUnitMetricSegments) {
+  for (const char* name : {"point_source.json", "fig7_rect_holes_dr2.json", "shear_layer.json"}) {
+    SCOPED_TRACE(name);
+    const CaseSpec spec = readCaseFile(std::string(ANISOMESH_SOURCE_DIR) + "/examples/" + name);
+    const auto cs = buildCaseControlSpace(spec);
+    std::vector<const Contour*> contours{&spec.domain.outer};
+    for (const Contour& h : spec.domain.holes) contours.push_back(&h);
+    for (const Contour* c : contours)
+      for (const CurveUse& u : c->curves) {
+        const double total = metricLength(*u.curve, *cs);
+        if (total < 5 || !u.curve->breakpoints().empty()) continue;  // rounding dominates short curves
+        const auto ts = discretizeCurve(*u.curve, *cs);
+        for (size_t i = 0; i + 1 < ts.size(); ++i) {
+          const double m = metricLength(*u.curve, *cs, ts[i], ts[i + 1]);
+          EXPECT_GE(m, 0.9);
+          EXPECT_LE(m, 1.1);
+        }
+      }
+  }
+}
+
+TEST(RemeshGeometry, DiscretizeUnderMeshMetricField) {
+  // The remesh geometry path without the mesher: boundary loops -> domain -> discretization.
+  const Mesh m = squareMesh();
+  std::vector<Metric> metrics;
+  for (const Vec3& p : m.points) metrics.push_back(Metric::isotropic(0.05 + 0.05 * p.x()));
+  const TriangleMeshMetricField field(m, metrics);
+  const Domain d = domainFromBoundaryLoops(boundaryLoopsFromMesh(m));
+  ASSERT_NO_THROW(validateDomain(d));
+  const auto loops = discretizeDomain(d, field);
+  ASSERT_EQ(loops.size(), 1u);
+  EXPECT_GT(loops[0].points.size(), 40u);
+  // Corners stay boundary points and refs are carried to the new edges.
+  for (const Vec2& corner : {Vec2(0, 0), Vec2(2, 0), Vec2(2, 2), Vec2(0, 2)}) {
+    bool found = false;
+    for (const Vec2& p : loops[0].points) found = found || (p - corner).norm() < 1e-12;
+    EXPECT_TRUE(found) << corner.transpose();
+  }
+  int fives = 0;
+  for (size_t i = 0; i < loops[0].points.size(); ++i)
+    if (loops[0].edgeRefs[i] == 5) {
+      ++fives;
+      EXPECT_NEAR(loops[0].points[i].y(), 0.0, 1e-14);
+    }
+  EXPECT_GT(fives, 10);
 }

@@ -157,3 +157,24 @@ TEST(GeometryDiscretize, BudgetExceeded) {
     EXPECT_NE(std::string(e.what()).find("1000"), std::string::npos);
   }
 }
+
+TEST(GeometryDiscretize, CurvedSegmentsUnderAnisotropicVaryingMetric) {
+  // Every segment of a long enough curve has metric length L / n in [0.9, 1.1].
+  const AnalyticControlSpace cs(bigBox(), [](const Vec2& p) {
+    return Metric::fromSizes(0.3 + 0.2 * p.x(), 0.02 + 0.01 * std::abs(p.y()), 0.15);
+  });
+  const std::vector<std::shared_ptr<Curve>> curves{
+      std::make_shared<BezierCurve>(Vec2(0, 0), Vec2(1, 2), Vec2(2, -1), Vec2(3, 1)),
+      std::make_shared<BSplineCurve>(std::vector<Vec2>{{0, 0}, {1, 1}, {2, -1}, {3, 1}, {4, 0}}),
+      std::make_shared<ArcCurve>(Vec2(1, 1), 1.0, -1.0, 2.5)};
+  for (const auto& c : curves) {
+    SCOPED_TRACE(c->typeName());
+    const auto ts = discretizeCurve(*c, cs);
+    ASSERT_GT(ts.size(), 6u);
+    for (size_t i = 0; i + 1 < ts.size(); ++i) {
+      const double m = metricLength(*c, cs, ts[i], ts[i + 1]);
+      EXPECT_GE(m, 0.9);
+      EXPECT_LE(m, 1.1);
+    }
+  }
+}

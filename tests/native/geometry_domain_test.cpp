@@ -145,3 +145,10 @@ TEST(GeometryDomain, PointInPolygonAndArea) {
   EXPECT_FALSE(pointInPolygon(sq, {1.5, 0.5}));
   EXPECT_DOUBLE_EQ(signedArea(sq), 1.0);
 }
+
+TEST(GeometryDomain, HoleTouchingOuterIsRejected) {
+  Domain d;
+  d.outer = rectangle(0, 0, 4, 4);
+  d.holes = {circle(3, 2, 1)};  // tangent to x = 4 at (4, 2)
+  expectInvalid(d, ErrorCode::SelfIntersectingContour, "near (4, 2)");
+}
