@@ -113,7 +113,7 @@ TEST(CaseCli, RemeshBadInputsExit1) {
   writeFile(mesh, "MeshVersionFormatted 2\nDimension 2\nVertices\n3\n0 0 0\n1 0\n");
   const CliRun bad = run("remesh " + mesh + " -sol " + sol + " -o " + out);
   EXPECT_EQ(bad.code, 1);
-  EXPECT_NE(bad.err.find("error PARSE_ERROR: Medit mesh line 4"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("error PARSE_ERROR: Medit mesh line 6: expected the reference of vertex 2"), std::string::npos) << bad.err;
   EXPECT_EQ(run("remesh /nonexistent.mesh -sol " + sol + " -o " + out).code, 1);
   EXPECT_FALSE(exists(out));
 }

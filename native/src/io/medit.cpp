@@ -32,15 +32,16 @@ void readElements(TokenStream& ts, const char* name, int vertexCount, std::vecto
     std::array<int, N> e;
     for (size_t k = 0; k < N; ++k) {
       const int line = ts.line();
-      const long long v = ts.integer(std::string("vertex index ") + std::to_string(k + 1) + " of " + name + " " +
-                                     std::to_string(i + 1));
+      const long long v = ts.integer([&] {
+        return std::string("vertex index ") + std::to_string(k + 1) + " of " + name + " " + std::to_string(i + 1);
+      });
       if (v < 1 || v > vertexCount)
         ts.failAt(line, std::string("vertex index ") + std::to_string(v) + " of " + name + " " + std::to_string(i + 1) +
                             " is out of range 1.." + std::to_string(vertexCount));
       e[k] = int(v - 1);
     }
     elems->push_back(e);
-    refs->push_back(int(ts.integer(std::string("the reference of ") + name + " " + std::to_string(i + 1))));
+    refs->push_back(int(ts.integer([&] { return std::string("the reference of ") + name + " " + std::to_string(i + 1); })));
   }
 }
 
@@ -117,9 +118,9 @@ Mesh parseMedit(const std::string& text) {
       for (long long i = 0; i < n; ++i) {
         Vec3 p = Vec3::Zero();
         for (int k = 0; k < dimension; ++k)
-          p[k] = ts.number(std::string("coordinate ") + "xyz"[k] + " of vertex " + std::to_string(i + 1));
+          p[k] = ts.number([&] { return std::string("coordinate ") + "xyz"[k] + " of vertex " + std::to_string(i + 1); });
         mesh.points.push_back(p);
-        mesh.pointRefs.push_back(int(ts.integer("the reference of vertex " + std::to_string(i + 1))));
+        mesh.pointRefs.push_back(int(ts.integer([&] { return "the reference of vertex " + std::to_string(i + 1); })));
       }
       haveVertices = true;
     } else if (key == "Edges" || key == "Triangles" || key == "Quadrilaterals") {
@@ -192,7 +193,7 @@ SolData parseSol(const std::string& text) {
       sol.values.reserve(size_t(n) * size_t(per));
       for (long long i = 0; i < n; ++i)
         for (int k = 0; k < per; ++k)
-          sol.values.push_back(ts.number("value " + std::to_string(k + 1) + " of vertex " + std::to_string(i + 1)));
+          sol.values.push_back(ts.number([&] { return "value " + std::to_string(k + 1) + " of vertex " + std::to_string(i + 1); }));
       haveField = true;
     } else {
       ts.failAt(line, "expected MeshVersionFormatted, Dimension, SolAtVertices or End, got '" + key + "'");

@@ -92,7 +92,8 @@ Mesh parseVtk(const std::string& text) {
   std::getline(lines, l2);
   const size_t skip = std::min(text.size(), l1.size() + 1 + l2.size() + 1);
   // Tokenize the rest, keeping line numbers (offset by the two header lines).
-  TokenStream ts(text.substr(skip), "VTK", 0, 3);
+  const std::string body = text.substr(skip);
+  TokenStream ts(body, "VTK", 0, 3);
   expectKeyword(ts, "ASCII");
   expectKeyword(ts, "DATASET");
   expectKeyword(ts, "UNSTRUCTURED_GRID");
@@ -109,7 +110,8 @@ Mesh parseVtk(const std::string& text) {
       ts.next();  // data type (float, double)
       for (long long i = 0; i < n; ++i) {
         Vec3 p;
-        for (int k = 0; k < 3; ++k) p[k] = ts.number(std::string("coordinate ") + "xyz"[k] + " of point " + std::to_string(i));
+        for (int k = 0; k < 3; ++k)
+          p[k] = ts.number([&] { return std::string("coordinate ") + "xyz"[k] + " of point " + std::to_string(i); });
         mesh.points.push_back(p);
       }
     } else if (key == "CELLS") {
@@ -121,7 +123,7 @@ Mesh parseVtk(const std::string& text) {
         if (k < 1 || k > 8) ts.failAt(cl, "cell " + std::to_string(i) + " has an unsupported vertex count " + std::to_string(k));
         std::vector<int> c;
         for (long long j = 0; j < k; ++j) {
-          const long long v = ts.integer("a vertex index of cell " + std::to_string(i));
+          const long long v = ts.integer([&] { return "a vertex index of cell " + std::to_string(i); });
           if (v < 0 || v >= (long long)mesh.points.size())
             ts.failAt(cl, "vertex index " + std::to_string(v) + " of cell " + std::to_string(i) + " is out of range 0.." +
                               std::to_string((long long)mesh.points.size() - 1));
@@ -134,7 +136,7 @@ Mesh parseVtk(const std::string& text) {
       const long long n = ts.count("the number of cell types", 1);
       if (n != (long long)cells.size())
         ts.failAt(line, "CELL_TYPES has " + std::to_string(n) + " entries but CELLS has " + std::to_string(cells.size()));
-      for (long long i = 0; i < n; ++i) cellTypes.push_back(int(ts.integer("the type of cell " + std::to_string(i))));
+      for (long long i = 0; i < n; ++i) cellTypes.push_back(int(ts.integer([&] { return "the type of cell " + std::to_string(i); })));
     } else if (key == "CELL_DATA") {
       const long long n = ts.count("the number of cell data values", 1);
       if (n != (long long)cells.size())
@@ -145,7 +147,8 @@ Mesh parseVtk(const std::string& text) {
       if (!ts.atEnd() && ts.peek().str() != "LOOKUP_TABLE") ts.integer("the number of components");
       expectKeyword(ts, "LOOKUP_TABLE");
       ts.next();
-      for (long long i = 0; i < n; ++i) refs.push_back(int(std::lround(ts.number("the value of cell " + std::to_string(i)))));
+      for (long long i = 0; i < n; ++i)
+        refs.push_back(int(std::lround(ts.number([&] { return "the value of cell " + std::to_string(i); }))));
       break;  // further attributes are not needed
     } else if (key == "POINT_DATA") {
       break;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "anisomesh/core/error.h"
@@ -19,44 +20,47 @@ struct Token {
   std::string str() const { return std::string(begin, size); }
 };
 
+// A message given as text, or as a callable building it on demand.
+inline std::string describe(const std::string& s) { return s; }
+inline std::string describe(const char* s) { return s; }
+template <class F, class = decltype(std::declval<const F&>()())>
+std::string describe(const F& f) { return f(); }
+
 class TokenStream {
  public:
-  // Splits text into tokens; everything from commentChar (when nonzero) to the end of a line is dropped.
+  // Scans text lazily (constant memory, also for huge meshes); everything from
+  // commentChar (when nonzero) to the end of a line is dropped.
   TokenStream(const std::string& text, std::string format, char commentChar, int firstLine = 1)
-      : format_(std::move(format)), text_(text) {
-    int line = firstLine;
-    const char* p = text_.data();
-    const char* end = p + text_.size();
-    while (p < end) {
-      const char ch = *p;
-      if (ch == '\n') { ++line; ++p; continue; }
-      if (ch == ' ' || ch == '\t' || ch == '\r' || ch == '\f' || ch == '\v') { ++p; continue; }
-      if (commentChar && ch == commentChar) {
-        while (p < end && *p != '\n') ++p;
-        continue;
-      }
-      const char* b = p;
-      while (p < end && !(*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n' || *p == '\f' || *p == '\v') &&
-             !(commentChar && *p == commentChar))
-        ++p;
-      tokens_.push_back({b, size_t(p - b), line});
-    }
-    lastLine_ = line;
+      : format_(std::move(format)), text_(text), comment_(commentChar), line_(firstLine), lastLine_(firstLine) {
+    p_ = text_.data();
+    end_ = p_ + text_.size();
+    skipSpace();
   }
-
   TokenStream(const TokenStream&) = delete;
   TokenStream& operator=(const TokenStream&) = delete;
 
-  bool atEnd() const { return pos_ >= tokens_.size(); }
-  const Token& peek() const { return tokens_[pos_]; }
-  const Token& next() {
-    if (atEnd()) fail("more data");
-    return tokens_[pos_++];
+  bool atEnd() const { return p_ >= end_; }
+  // The next token without consuming it (atEnd() must be false).
+  Token peek() const {
+    const char* b = p_;
+    const char* e = b;
+    while (e < end_ && !isSpace(*e) && !(comment_ && *e == comment_)) ++e;
+    return {b, size_t(e - b), line_};
   }
-  int line() const { return atEnd() ? lastLine_ : tokens_[pos_].line; }
+  // Consumes the next token; fails at the end of the text.
+  Token next() {
+    if (atEnd()) fail("more data");
+    const Token t = peek();
+    lastLine_ = t.line;
+    p_ += t.size;
+    skipSpace();
+    return t;
+  }
+  // The line of the next token, or at the end the line of the last one.
+  int line() const { return atEnd() ? lastLine_ : line_; }
 
   [[noreturn]] void fail(const std::string& expected) const {
-    const std::string got = atEnd() ? std::string("end of file") : "'" + tokens_[pos_].str() + "'";
+    const std::string got = atEnd() ? std::string("end of file") : "'" + peek().str() + "'";
     throw Error(ErrorCode::ParseError, format_ + " line " + std::to_string(line()) + ": expected " + expected +
                                            ", got " + got);
   }
@@ -65,45 +69,67 @@ class TokenStream {
   }
 
   // The next token as a double; fails naming what was expected.
-  double number(const std::string& what) {
-    if (atEnd()) fail(what);
-    const Token& t = tokens_[pos_];
-    const std::string s = t.str();
+  // what is a string or a callable returning one (built only on failure: hot loops).
+  template <class What>
+  double number(const What& what) {
+    if (atEnd()) fail(describe(what));
+    // strtod directly on the text (it is NUL-terminated) stops at the token's end.
+    const Token t = peek();
     char* stop = nullptr;
-    errno = 0;
-    const double v = std::strtod(s.c_str(), &stop);
-    if (stop != s.c_str() + s.size() || s.empty()) fail(what);
-    ++pos_;
+    const double v = std::strtod(t.begin, &stop);
+    if (t.size == 0 || stop != t.begin + t.size) fail(describe(what));
+    next();
     return v;
   }
   // The next token as an integer; fails naming what was expected.
-  long long integer(const std::string& what) {
-    if (atEnd()) fail(what);
-    const std::string s = tokens_[pos_].str();
+  template <class What>
+  long long integer(const What& what) {
+    if (atEnd()) fail(describe(what));
+    const Token t = peek();
     char* stop = nullptr;
     errno = 0;
-    const long long v = std::strtoll(s.c_str(), &stop, 10);
-    if (stop != s.c_str() + s.size() || s.empty() || errno == ERANGE) fail(what);
-    ++pos_;
+    const long long v = std::strtoll(t.begin, &stop, 10);
+    if (t.size == 0 || stop != t.begin + t.size || errno == ERANGE) fail(describe(what));
+    next();
     return v;
   }
-  // A count: a nonnegative integer no larger than the tokens left (guards huge allocations).
+  // A count: a nonnegative integer that the remaining text can hold (every token takes
+  // at least two characters with its separator), which guards huge allocations.
   long long count(const std::string& what, int tokensPerItem) {
     const int ln = line();
     const long long n = integer(what);
     if (n < 0) failAt(ln, "expected " + what + " (a nonnegative integer), got " + std::to_string(n));
-    if (tokensPerItem > 0 && n > (long long)((tokens_.size() - pos_) / tokensPerItem + 1))
+    const long long room = (long long)(end_ - p_) / 2 + 1;
+    if (tokensPerItem > 0 && n > room / tokensPerItem + 1)
       failAt(ln, what + " " + std::to_string(n) + " is larger than the data that follows");
     return n;
   }
   const std::string& format() const { return format_; }
 
  private:
+  static bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+  // Moves past blanks, newlines (counting them) and comments.
+  void skipSpace() {
+    while (p_ < end_) {
+      if (*p_ == '\n') {
+        ++line_;
+        ++p_;
+      } else if (isSpace(*p_)) {
+        ++p_;
+      } else if (comment_ && *p_ == comment_) {
+        while (p_ < end_ && *p_ != '\n') ++p_;
+      } else {
+        break;
+      }
+    }
+  }
   std::string format_;
-  std::string text_;  // owned: tokens point into it
-  std::vector<Token> tokens_;
-  size_t pos_ = 0;
+  const std::string& text_;  // the caller's text, alive for the whole parse
+  char comment_;
+  int line_;
   int lastLine_ = 1;
+  const char* p_ = nullptr;
+  const char* end_ = nullptr;
 };
 
 // Appends v with round-trip precision.
