@@ -193,3 +193,7 @@ TEST(IoFile, Extension) {
   EXPECT_EQ(fileExtension("a.b/c"), "");
   EXPECT_EQ(fileExtension("out.vtk"), "vtk");
 }
+
+TEST(IoFile, ReadingADirectoryIsIoError) {
+  expectError([] { readTextFile(::testing::TempDir()); }, ErrorCode::IoError, "");
+}

@@ -5,21 +5,25 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <random>
-#include <sstream>
 
 #include "anisomesh/core/error.h"
 
 namespace anisomesh {
 
 std::string readTextFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  require(in.good(), ErrorCode::IoError, "cannot open '" + path + "' for reading: " + std::strerror(errno));
-  std::ostringstream os;
-  os << in.rdbuf();
-  require(!in.bad(), ErrorCode::IoError, "error while reading '" + path + "'");
-  return os.str();
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  require(f != nullptr, ErrorCode::IoError, "cannot open '" + path + "' for reading: " + std::strerror(errno));
+  std::string out;
+  char buf[1 << 16];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
+  // ferror also catches a directory opened as a file (EISDIR on the first read).
+  const bool failed = std::ferror(f) != 0;
+  const std::string why = failed ? std::strerror(errno) : "";
+  std::fclose(f);
+  require(!failed, ErrorCode::IoError, "error while reading '" + path + "': " + why);
+  return out;
 }
 
 void writeTextFileAtomic(const std::string& path, const std::string& contents) {

@@ -112,7 +112,7 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     if (best >= 0 && foundRing < 0) foundRing = r;
     if (foundRing >= 0 && r >= foundRing + 1) break;
   }
-  require(best >= 0, ErrorCode::Internal, "metric field: no triangle found");
+  require(best >= 0, ErrorCode::InvalidArgument, "metric field: every triangle of the mesh is degenerate");
   return interpolateAt(best, bestPoint);
 }
 
