@@ -1,18 +1,162 @@
 // anisomesh command-line interface (native).
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "anisomesh/anisomesh.h"
+#include "anisomesh/io/case_json.h"
+#include "anisomesh/io/medit.h"
+#include "anisomesh/io/mesh_formats.h"
+#include "anisomesh/pipeline/case_control_space.h"
+#include "anisomesh/pipeline/mesh_metric_field.h"
+#include "anisomesh/pipeline/pipeline.h"
+#include "anisomesh/pipeline/remesh_geometry.h"
 
 namespace {
+
+using namespace anisomesh;
 
 int usage(std::ostream& os, int code) {
   os << "usage: anisomesh <command> [options]\n"
         "commands:\n"
+        "  mesh CASE.json -o OUT [--quads] [--all-quads] [--stats] [--max-elements N]\n"
+        "                            mesh a JSON case (OUT: .mesh, .vtk or .obj)\n"
+        "  remesh IN.mesh -sol IN.sol -o OUT [-hgrad R] [-hmin H] [-hmax H] [--stats]\n"
+        "                            remesh the domain of IN.mesh under the metric IN.sol\n"
+        "                            (-hgrad is accepted but not applied yet)\n"
         "  metric ALPHA H1 H2        print the metric tensor for sizes (h1, h2) at angle ALPHA (radians)\n"
-        "  --version                 print the version\n";
+        "  --version                 print the version\n"
+        "--stats prints one JSON object on stdout. Errors: exit 1 (bad input), 2 (bad usage).\n";
   return code;
+}
+
+// A command-line mistake: reported with the usage text, exit code 2.
+struct UsageError {
+  std::string message;
+};
+
+double parseNumber(const std::string& option, const char* text) {
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !(v >= 0) || v > 1e300)
+    throw UsageError{option + " expects a nonnegative number, got '" + text + "'"};
+  return v;
+}
+
+long long parseCount(const std::string& option, const char* text) {
+  char* end = nullptr;
+  const long long v = std::strtoll(text, &end, 10);
+  if (end == text || *end != '\0' || v <= 0) throw UsageError{option + " expects a positive integer, got '" + text + "'"};
+  return v;
+}
+
+// Walks argv after the command: positionals, flags and options with a value.
+class Args {
+ public:
+  Args(int argc, char** argv) : argc_(argc), argv_(argv) {}
+  bool done() const { return i_ >= argc_; }
+  std::string next() { return argv_[i_++]; }
+  const char* value(const std::string& option) {
+    if (i_ >= argc_) throw UsageError{option + " expects a value"};
+    return argv_[i_++];
+  }
+
+ private:
+  int argc_;
+  char** argv_;
+  int i_ = 2;
+};
+
+// The --stats JSON. Switching to the mesher's quality report is this one line:
+//   return qualityReportToJson(measureQuality(mesh, cs)) (plus the report fields).
+std::string statsJson(const Mesh& mesh, const ControlSpace& /*cs*/, const PipelineReport& report) {
+  nlohmann::json j;
+  j["vertices"] = mesh.vertexCount();
+  j["triangles"] = mesh.triangles.size();
+  j["quads"] = mesh.quads.size();
+  j["edges"] = mesh.edges.size();
+  j["boundaryPoints"] = report.boundaryPoints;
+  j["secondsGeometry"] = report.secondsGeometry;
+  j["secondsMeshing"] = report.secondsMeshing;
+  j["notes"] = report.notes;
+  return j.dump();
+}
+
+void requireOutput(const std::string& out) {
+  if (out.empty()) throw UsageError{"missing -o OUT"};
+  try {
+    meshFormatFromPath(out);
+  } catch (const Error& e) {
+    throw UsageError{e.what()};
+  }
+}
+
+int runMesh(int argc, char** argv) {
+  Args args(argc, argv);
+  std::string input, output;
+  bool stats = false, quads = false, allQuads = false;
+  long long maxElements = -1;
+  while (!args.done()) {
+    const std::string a = args.next();
+    if (a == "-o" || a == "--output") output = args.value(a);
+    else if (a == "--quads") quads = true;
+    else if (a == "--all-quads") allQuads = true;
+    else if (a == "--stats") stats = true;
+    else if (a == "--max-elements") maxElements = parseCount(a, args.value(a));
+    else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option '" + a + "' for mesh"};
+    else if (input.empty()) input = a;
+    else throw UsageError{"unexpected argument '" + a + "'"};
+  }
+  if (input.empty()) throw UsageError{"missing CASE.json"};
+  requireOutput(output);
+
+  CaseSpec spec = readCaseFile(input);
+  if (quads) spec.options.quads = true;
+  if (allQuads) spec.options.allQuads = true;
+  if (maxElements > 0) spec.options.maxElements = maxElements;
+  PipelineReport report;
+  const Mesh mesh = meshCase(spec, &report);
+  writeMeshFile(output, mesh);
+  if (stats) std::cout << statsJson(mesh, *buildCaseControlSpace(spec), report) << "\n";
+  return 0;
+}
+
+int runRemesh(int argc, char** argv) {
+  Args args(argc, argv);
+  std::string input, sol, output;
+  bool stats = false;
+  RemeshOptions options;
+  while (!args.done()) {
+    const std::string a = args.next();
+    if (a == "-o" || a == "--output") output = args.value(a);
+    else if (a == "-sol" || a == "--sol") sol = args.value(a);
+    else if (a == "-hgrad" || a == "--hgrad") options.hgrad = parseNumber(a, args.value(a));
+    else if (a == "-hmin" || a == "--hmin") options.hmin = parseNumber(a, args.value(a));
+    else if (a == "-hmax" || a == "--hmax") options.hmax = parseNumber(a, args.value(a));
+    else if (a == "--stats") stats = true;
+    else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option '" + a + "' for remesh"};
+    else if (input.empty()) input = a;
+    else throw UsageError{"unexpected argument '" + a + "'"};
+  }
+  if (input.empty()) throw UsageError{"missing IN.mesh"};
+  if (sol.empty()) throw UsageError{"missing -sol IN.sol"};
+  requireOutput(output);
+  if (options.hmin > 0 && options.hmax > 0 && options.hmin > options.hmax)
+    throw UsageError{"-hmin must not exceed -hmax"};
+
+  const Mesh in = readMeditFile(input);
+  const std::vector<Metric> metrics = solToMetrics(readSolFile(sol), in.vertexCount());
+  PipelineReport report;
+  const Mesh mesh = remesh(in, metrics, options, &report);
+  writeMeshFile(output, mesh);
+  if (stats) {
+    const TriangleMeshMetricField field(in, clampMetricSizes(metrics, options.hmin, options.hmax));
+    std::cout << statsJson(mesh, field, report) << "\n";
+  }
+  return 0;
 }
 
 }  // namespace
@@ -33,7 +177,12 @@ int main(int argc, char** argv) {
       std::cout << "{\"m11\":" << t(0, 0) << ",\"m12\":" << t(0, 1) << ",\"m22\":" << t(1, 1) << "}\n";
       return 0;
     }
+    if (cmd == "mesh") return runMesh(argc, argv);
+    if (cmd == "remesh") return runRemesh(argc, argv);
     std::cerr << "anisomesh: unknown command '" << cmd << "'\n";
+    return usage(std::cerr, 2);
+  } catch (const UsageError& e) {
+    std::cerr << "anisomesh: usage error: " << e.message << "\n";
     return usage(std::cerr, 2);
   } catch (const anisomesh::Error& e) {
     std::cerr << "anisomesh: error " << anisomesh::errorCodeName(e.code()) << ": " << e.what() << "\n";

@@ -1,0 +1,70 @@
+#pragma once
+// The JSON case format (documented in examples/CASE_FORMAT.md): domain curves, control
+// space settings, metric sources and meshing options, parsed into plain structs.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "anisomesh/geometry/domain.h"
+#include "anisomesh/metric/metric.h"
+
+namespace anisomesh {
+
+// "controlSpace": the settings of the control structure.
+struct CaseControlSpaceSpec {
+  std::string kind = "quadtree";          // "quadtree" | "background"
+  double hmin = 0.0;                      // smallest allowed size (0: no clamp)
+  double hmax = 1.0;                      // largest size, also the default metric
+  std::optional<double> gradation;        // dr >= 1, or none (no smoothing)
+  std::string interpolation = "bilinear"; // "bilinear" | "serendipity"
+};
+
+enum class SourceType { Radial, Segment, Analytic };
+
+// A named analytic metric field and its parameters (unused ones stay 0).
+struct AnalyticFieldSpec {
+  std::string field;      // "boundary_layer" | "shear_layer_circle" | "point"
+  Vec2 p1{0, 0}, p2{0, 0}; // boundary_layer: the wall line through p1, p2
+  Vec2 center{0, 0};      // shear_layer_circle, point
+  double radius = 0.0;    // shear_layer_circle
+  double h0 = 0.0;        // size across the layer at the wall / circle, or at the point
+  double hTangent = 0.0;  // size along the layer (boundary_layer, shear_layer_circle)
+  double thickness = 0.0; // distance over which the normal size grows from h0 to hTangent
+  double growth = 0.0;    // point: size slope with distance, h(d) = h0 + growth d
+};
+
+// One entry of "sources".
+struct SourceSpec {
+  SourceType type = SourceType::Radial;
+  Vec2 center{0, 0};        // radial
+  Vec2 p1{0, 0}, p2{0, 0};  // segment
+  MetricSizes metric;       // radial, segment: (alpha, h1, h2)
+  double radius = 0.0;      // radial, segment: influence radius
+  AnalyticFieldSpec analytic;
+};
+
+// "options": meshing options.
+struct CaseOptions {
+  bool quads = false;
+  bool allQuads = false;
+  std::int64_t maxElements = 50000000;
+};
+
+struct CaseSpec {
+  Domain domain;
+  CaseControlSpaceSpec controlSpace;
+  std::vector<SourceSpec> sources;
+  CaseOptions options;
+};
+
+// Parses a JSON case; throws ParseError naming the JSON path (e.g.
+// "sources[2].radius: expected a number") on malformed JSON, missing fields, wrong
+// types or unknown fields, InvalidArgument / InvalidMetric (with the path) on values out
+// of range. The domain is built but not validated (see validateDomain).
+CaseSpec parseCaseJson(const std::string& text);
+
+// Reads and parses a case file (IoError when unreadable).
+CaseSpec readCaseFile(const std::string& path);
+
+}  // namespace anisomesh

@@ -1,0 +1,18 @@
+#pragma once
+// Whole-file text I/O. Writes are atomic (temporary file in the same folder, then
+// rename), so a failed run never leaves a partial output file.
+#include <string>
+
+namespace anisomesh {
+
+// Contents of the file at path; throws IoError naming the path when it cannot be read.
+std::string readTextFile(const std::string& path);
+
+// Writes contents to path through a temporary sibling file and a rename; throws IoError
+// (and removes the temporary) on any failure, leaving path untouched.
+void writeTextFileAtomic(const std::string& path, const std::string& contents);
+
+// Lower-case extension without the dot ("mesh" for "a/b.MESH"), empty when there is none.
+std::string fileExtension(const std::string& path);
+
+}  // namespace anisomesh

@@ -1,0 +1,32 @@
+#pragma once
+// The geometry of a remeshing run: the boundary of an input mesh chained into closed
+// loops (keeping edge references), turned into a domain of polyline curves.
+#include <vector>
+
+#include "anisomesh/geometry/domain.h"
+#include "anisomesh/mesh/mesh.h"
+#include "anisomesh/mesh/planar_mesher.h"
+#include "anisomesh/metric/metric.h"
+
+namespace anisomesh {
+
+// Boundary edges of the mesh chained into closed loops: the element edges used once
+// (refs from the matching Edges entry, else 0), or the Edges themselves when the mesh
+// has no elements. loops[0] is the outer loop (largest area, counter-clockwise), the
+// others holes (clockwise). Throws OpenContour when the edges do not form closed loops,
+// InvalidDomain for nested loops (islands) or a non-planar mesh.
+std::vector<BoundaryLoop> boundaryLoopsFromMesh(const Mesh& mesh);
+
+struct LoopDomainOptions {
+  // A vertex whose direction turns by more than this (radians) stays a boundary point.
+  double cornerAngle = 0.5;
+};
+
+// A domain whose curves are the loops split where the edge reference changes and at
+// corners; each piece is a polyline whose inner vertices may be moved across.
+Domain domainFromBoundaryLoops(const std::vector<BoundaryLoop>& loops, const LoopDomainOptions& options = {});
+
+// The metrics with their requested sizes clamped to [hmin, hmax] (a bound <= 0 is off).
+std::vector<Metric> clampMetricSizes(const std::vector<Metric>& metrics, double hmin, double hmax);
+
+}  // namespace anisomesh

@@ -1,0 +1,179 @@
+#include "anisomesh/geometry/discretize.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "anisomesh/core/error.h"
+#include "anisomesh/geometry/quadrature.h"
+
+namespace anisomesh {
+namespace {
+
+using Integrand = std::function<double(double)>;
+
+struct Leaf {
+  double a, b, value;
+};
+
+// Adaptive bisection that keeps its leaves, so the cumulative metric length can be
+// inverted locally; leaves are also capped in width so the inversion stays accurate.
+void collectLeaves(const Integrand& f, double a, double b, double whole, double tol, double maxWidth, int depth,
+                   std::vector<Leaf>* out) {
+  const double m = 0.5 * (a + b);
+  const double left = gaussLegendre5(f, a, m), right = gaussLegendre5(f, m, b);
+  const bool converged = std::abs(left + right - whole) <= tol * (1.0 + std::abs(left + right));
+  if (depth <= 0 || (converged && b - a <= maxWidth)) {
+    out->push_back({a, m, left});
+    out->push_back({m, b, right});
+    return;
+  }
+  collectLeaves(f, a, m, left, tol, maxWidth, depth - 1, out);
+  collectLeaves(f, m, b, right, tol, maxWidth, depth - 1, out);
+}
+
+// Solves start + integral_{leaf.a}^{t} f = target for t inside the leaf (Newton, bracketed).
+double invertInLeaf(const Integrand& f, const Leaf& leaf, double start, double target) {
+  double lo = leaf.a, hi = leaf.b;
+  double t = leaf.value > 0 ? leaf.a + (leaf.b - leaf.a) * (target - start) / leaf.value : 0.5 * (lo + hi);
+  t = std::min(std::max(t, lo), hi);
+  for (int it = 0; it < 40; ++it) {
+    const double g = start + gaussLegendre5(f, leaf.a, t) - target;
+    if (std::abs(g) <= 1e-12 * (1.0 + std::abs(target))) break;
+    if (g > 0) hi = t; else lo = t;
+    const double d = f(t);
+    double next = d > 0 ? t - g / d : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (hi - lo <= 1e-15 * (1.0 + std::abs(t))) break;
+    t = next;
+  }
+  return t;
+}
+
+struct Piece {
+  double a, b;
+  std::vector<Leaf> leaves;
+  double length = 0.0;
+  int segments = 1;
+};
+
+}  // namespace
+
+double metricLength(const Curve& c, const ControlSpace& cs, double a, double b, double tolerance) {
+  return integrateAdaptive([&](double t) { return cs.metricAt(c.point(t)).length(c.derivative(t)); }, a, b, tolerance);
+}
+
+std::vector<double> discretizeCurve(const Curve& c, const ControlSpace& cs, int minSegments,
+                                    const DiscretizeOptions& options) {
+  const Integrand f = [&](double t) { return cs.metricAt(c.point(t)).length(c.derivative(t)); };
+  std::vector<double> bounds{0.0};
+  for (double t : c.breakpoints())
+    if (t > bounds.back() && t < 1.0) bounds.push_back(t);
+  bounds.push_back(1.0);
+
+  std::vector<Piece> pieces;
+  std::int64_t total = 0;
+  for (size_t k = 0; k + 1 < bounds.size(); ++k) {
+    Piece p{bounds[k], bounds[k + 1], {}, 0.0, 1};
+    const double w = p.b - p.a;
+    collectLeaves(f, p.a, p.b, gaussLegendre5(f, p.a, p.b), options.tolerance, w / 16.0, 24, &p.leaves);
+    for (const Leaf& l : p.leaves) p.length += l.value;
+    require(std::isfinite(p.length), ErrorCode::InvalidMetric,
+            std::string("metric length of a ") + c.typeName() + " curve is not finite");
+    const double n = std::max(1.0, std::round(p.length));
+    require(n <= double(options.maxSegments), ErrorCode::ElementBudgetExceeded,
+            std::string("discretizing a ") + c.typeName() + " curve of metric length " + std::to_string(p.length) +
+                " would exceed the budget of " + std::to_string(options.maxSegments) + " boundary segments");
+    p.segments = int(n);
+    total += p.segments;
+    pieces.push_back(std::move(p));
+  }
+  // Too few segments in total: add them where the segments are longest in the metric.
+  while (total < minSegments) {
+    auto it = std::max_element(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) {
+      return x.length / x.segments < y.length / y.segments;
+    });
+    ++it->segments;
+    ++total;
+  }
+
+  std::vector<double> ts{0.0};
+  for (const Piece& p : pieces) {
+    size_t leaf = 0;
+    double cum = 0.0;  // metric length up to leaves[leaf].a
+    for (int k = 1; k < p.segments; ++k) {
+      const double target = p.length * k / p.segments;
+      while (leaf + 1 < p.leaves.size() && cum + p.leaves[leaf].value < target) cum += p.leaves[leaf++].value;
+      ts.push_back(std::max(ts.back(), invertInLeaf(f, p.leaves[leaf], cum, target)));
+    }
+    ts.push_back(p.b);
+  }
+  return ts;
+}
+
+std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const Domain*>& faces,
+                                                         const ControlSpace& cs, const DiscretizeOptions& options) {
+  // Minimum segment count per curve: a closed contour must have at least 3 segments.
+  std::map<const Curve*, int> minimum;
+  auto contoursOf = [](const Domain& d) {
+    std::vector<const Contour*> cs{&d.outer};
+    for (const Contour& h : d.holes) cs.push_back(&h);
+    return cs;
+  };
+  for (const Domain* face : faces)
+    for (const Contour* contour : contoursOf(*face)) {
+      const int n = int(contour->curves.size());
+      const int need = n == 1 ? options.minSegmentsClosedCurve : n == 2 ? 2 : 1;
+      for (const CurveUse& u : contour->curves) minimum[u.curve.get()] = std::max(minimum[u.curve.get()], need);
+    }
+
+  std::map<const Curve*, std::vector<Vec2>> points;  // discretized once, shared by every use
+  std::int64_t total = 0;
+  for (const auto& entry : minimum) {
+    const Curve& c = *entry.first;
+    std::vector<Vec2> pts;
+    for (double t : discretizeCurve(c, cs, entry.second, options)) pts.push_back(c.point(t));
+    total += std::int64_t(pts.size()) - 1;
+    require(total <= options.maxSegments, ErrorCode::ElementBudgetExceeded,
+            "the contour discretization exceeds the budget of " + std::to_string(options.maxSegments) +
+                " boundary segments");
+    points[&c] = std::move(pts);
+  }
+
+  std::vector<std::vector<BoundaryLoop>> result;
+  for (const Domain* face : faces) {
+    std::vector<BoundaryLoop> loops;
+    const auto contours = contoursOf(*face);
+    for (size_t k = 0; k < contours.size(); ++k) {
+      BoundaryLoop loop;
+      for (const CurveUse& u : contours[k]->curves) {
+        std::vector<Vec2> pts = points.at(u.curve.get());
+        if (u.reversed) std::reverse(pts.begin(), pts.end());
+        // The last point is the next curve's first point.
+        loop.points.insert(loop.points.end(), pts.begin(), pts.end() - 1);
+        loop.edgeRefs.insert(loop.edgeRefs.end(), pts.size() - 1, u.curve->ref());
+      }
+      // Outer counter-clockwise, holes clockwise.
+      const bool ccw = signedArea(loop.points) > 0;
+      if (ccw != (k == 0)) {
+        const int n = int(loop.points.size());
+        BoundaryLoop rev;
+        for (int i = 0; i < n; ++i) {
+          rev.points.push_back(loop.points[n - 1 - i]);
+          rev.edgeRefs.push_back(loop.edgeRefs[((n - 2 - i) % n + n) % n]);
+        }
+        loop = std::move(rev);
+      }
+      loops.push_back(std::move(loop));
+    }
+    result.push_back(std::move(loops));
+  }
+  return result;
+}
+
+std::vector<BoundaryLoop> discretizeDomain(const Domain& domain, const ControlSpace& cs,
+                                           const DiscretizeOptions& options) {
+  return discretizeDomains({&domain}, cs, options).front();
+}
+
+}  // namespace anisomesh

@@ -1,0 +1,253 @@
+#include "anisomesh/geometry/domain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "anisomesh/core/error.h"
+
+namespace anisomesh {
+namespace {
+
+// Parameters splitting a curve into its smooth pieces: 0, breakpoints..., 1.
+std::vector<double> pieceBounds(const Curve& c) {
+  std::vector<double> b{0.0};
+  for (double t : c.breakpoints())
+    if (t > b.back() && t < 1.0) b.push_back(t);
+  b.push_back(1.0);
+  return b;
+}
+
+bool isStraight(const Curve& c) {
+  const std::string type = c.typeName();
+  return type == "line" || type == "polyline";
+}
+
+// Samples of one curve use, from its start up to but excluding its end.
+void sampleUse(const CurveUse& use, int samples, std::vector<Vec2>* out) {
+  const Curve& c = *use.curve;
+  if (const auto* poly = dynamic_cast<const PolylineCurve*>(&c)) {
+    // Exactly its vertices, whether or not they are breakpoints.
+    std::vector<Vec2> pts = poly->points();
+    if (use.reversed) std::reverse(pts.begin(), pts.end());
+    out->insert(out->end(), pts.begin(), pts.end() - 1);
+    return;
+  }
+  const std::vector<double> b = pieceBounds(c);
+  std::vector<double> ts;
+  const int per = isStraight(c) ? 1 : std::max(1, samples);
+  for (size_t k = 0; k + 1 < b.size(); ++k)
+    for (int i = 0; i < per; ++i) ts.push_back(b[k] + (b[k + 1] - b[k]) * i / per);
+  if (use.reversed) {
+    // Backwards: the same parameters from t = 1 down to (but excluding) t = 0.
+    ts.push_back(1.0);
+    ts.erase(ts.begin());
+    std::reverse(ts.begin(), ts.end());
+  }
+  for (double t : ts) out->push_back(c.point(t));
+}
+
+struct Segment {
+  Vec2 a, b;
+  int contour;  // 0 = outer, k = holes[k - 1]
+  int curve;    // index of the curve in its contour
+  int index;    // index of the segment in its contour
+  int count;    // number of segments of its contour
+};
+
+std::string curveName(const Domain& d, int contour, int curve) {
+  const Contour& c = contour == 0 ? d.outer : d.holes[contour - 1];
+  std::ostringstream os;
+  os << contourName(contour) << ", curve " << curve << " (" << c.curves[curve].curve->typeName() << ")";
+  return os.str();
+}
+
+double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+// Where segments s and t meet (crossing, touching, overlapping), if they do.
+bool segmentsMeet(const Segment& s, const Segment& t, double eps, Vec2* where) {
+  const double o1 = cross(s.b - s.a, t.a - s.a), o2 = cross(s.b - s.a, t.b - s.a);
+  const double o3 = cross(t.b - t.a, s.a - t.a), o4 = cross(t.b - t.a, s.b - t.a);
+  if (((o1 > eps && o2 < -eps) || (o1 < -eps && o2 > eps)) && ((o3 > eps && o4 < -eps) || (o3 < -eps && o4 > eps))) {
+    const double u = o3 / (o3 - o4);
+    *where = s.a + u * (s.b - s.a);
+    return true;
+  }
+  // Touching: an end point of one lies on the other.
+  auto onSegment = [eps](const Vec2& p, const Vec2& a, const Vec2& b, double o) {
+    if (std::abs(o) > eps) return false;
+    const Vec2 ab = b - a;
+    const double l2 = ab.squaredNorm();
+    if (l2 == 0) return (p - a).squaredNorm() == 0;
+    const double u = (p - a).dot(ab) / l2;
+    return u >= -1e-12 && u <= 1 + 1e-12;
+  };
+  if (onSegment(t.a, s.a, s.b, o1)) return *where = t.a, true;
+  if (onSegment(t.b, s.a, s.b, o2)) return *where = t.b, true;
+  if (onSegment(s.a, t.a, t.b, o3)) return *where = s.a, true;
+  if (onSegment(s.b, t.a, t.b, o4)) return *where = s.b, true;
+  return false;
+}
+
+// Adjacent segments of one contour share their common end point; they only "meet"
+// when they fold back onto each other.
+bool adjacentFold(const Segment& s, const Segment& t, double eps) {
+  const Segment& first = (t.index == (s.index + 1) % s.count) ? s : t;
+  const Segment& second = (&first == &s) ? t : s;
+  const Vec2 u = first.b - first.a, v = second.b - second.a;
+  return std::abs(cross(u, v)) <= eps && u.dot(v) < 0;
+}
+
+}  // namespace
+
+std::string contourName(int contourIndex) {
+  return contourIndex == 0 ? std::string("outer") : "holes[" + std::to_string(contourIndex - 1) + "]";
+}
+
+std::vector<Vec2> sampleContour(const Contour& contour, int samplesPerCurve) {
+  std::vector<Vec2> pts;
+  for (const CurveUse& use : contour.curves) sampleUse(use, samplesPerCurve, &pts);
+  return pts;
+}
+
+Box2 domainBounds(const Domain& domain) {
+  Box2 box{Vec2::Constant(INFINITY), Vec2::Constant(-INFINITY)};
+  auto add = [&box](const Contour& c) {
+    for (const Vec2& p : sampleContour(c, 16)) {
+      box.lo = box.lo.cwiseMin(p);
+      box.hi = box.hi.cwiseMax(p);
+    }
+  };
+  add(domain.outer);
+  for (const Contour& h : domain.holes) add(h);
+  if (!(box.lo.x() <= box.hi.x())) box = Box2{};
+  return box;
+}
+
+double signedArea(const std::vector<Vec2>& polygon) {
+  double a = 0.0;
+  for (size_t i = 0, n = polygon.size(); i < n; ++i) a += cross(polygon[i], polygon[(i + 1) % n]);
+  return 0.5 * a;
+}
+
+bool pointInPolygon(const std::vector<Vec2>& polygon, const Vec2& p) {
+  bool inside = false;
+  for (size_t i = 0, n = polygon.size(), j = n - 1; i < n; j = i++) {
+    const Vec2& a = polygon[i];
+    const Vec2& b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+  }
+  return inside;
+}
+
+void validateDomain(const Domain& domain, const DomainValidationOptions& options) {
+  std::vector<const Contour*> contours{&domain.outer};
+  for (const Contour& h : domain.holes) contours.push_back(&h);
+
+  for (size_t k = 0; k < contours.size(); ++k)
+    require(!contours[k]->curves.empty(), ErrorCode::OpenContour, contourName(int(k)) + ": contour has no curves");
+  const Box2 box = domainBounds(domain);
+  const double diag = box.size().norm() > 0 ? box.size().norm() : 1.0;
+
+  // Zero-length curves first: they would also make the closure test meaningless.
+  for (size_t k = 0; k < contours.size(); ++k)
+    for (size_t i = 0; i < contours[k]->curves.size(); ++i) {
+      const CurveUse& u = contours[k]->curves[i];
+      require(u.curve != nullptr, ErrorCode::InvalidArgument, contourName(int(k)) + ", curve " + std::to_string(i) + ": null curve");
+      require(u.curve->length() > options.zeroLengthTolerance * diag, ErrorCode::ZeroLengthCurve,
+              curveName(domain, int(k), int(i)) + ": zero length at " + formatPoint(u.curve->start()));
+    }
+
+  // Closed chains.
+  for (size_t k = 0; k < contours.size(); ++k) {
+    const auto& cs = contours[k]->curves;
+    for (size_t i = 0; i < cs.size(); ++i) {
+      const size_t j = (i + 1) % cs.size();
+      const Vec2 e = cs[i].end(), s = cs[j].start();
+      const double gap = (e - s).norm();
+      if (gap > options.closeTolerance * diag) {
+        std::ostringstream os;
+        os << curveName(domain, int(k), int(i)) << " ends at " << formatPoint(e) << " but "
+           << (j == 0 ? "the first curve, " : "the next curve, ") << "curve " << j << ", starts at "
+           << formatPoint(s) << " (gap " << gap << "): the contour is not closed";
+        throw Error(ErrorCode::OpenContour, os.str());
+      }
+    }
+  }
+
+  // Polyline approximation with the curve index of each segment.
+  std::vector<Segment> segs;
+  std::vector<std::vector<Vec2>> polygons;
+  for (size_t k = 0; k < contours.size(); ++k) {
+    std::vector<Vec2> pts;
+    std::vector<int> owner;
+    for (size_t i = 0; i < contours[k]->curves.size(); ++i) {
+      const size_t before = pts.size();
+      sampleUse(contours[k]->curves[i], options.samplesPerCurve, &pts);
+      owner.insert(owner.end(), pts.size() - before, int(i));
+    }
+    const int n = int(pts.size());
+    for (int i = 0; i < n; ++i) segs.push_back({pts[i], pts[(i + 1) % n], int(k), owner[i], i, n});
+    polygons.push_back(std::move(pts));
+  }
+
+  // Uniform grid over the bounding box; every segment is binned in the cells its box covers.
+  const double eps = 1e-12 * diag * diag;
+  const int side = std::max(1, std::min(1024, int(std::sqrt(double(segs.size())))));
+  const Vec2 lo = box.lo, extent = box.size().cwiseMax(Vec2::Constant(1e-300));
+  auto cellOf = [&](double v, int axis) {
+    const int c = int((v - lo[axis]) / extent[axis] * side);
+    return std::min(std::max(c, 0), side - 1);
+  };
+  std::vector<std::vector<int>> cells(size_t(side) * side);
+  for (int s = 0; s < int(segs.size()); ++s) {
+    const Vec2 a = segs[s].a.cwiseMin(segs[s].b), b = segs[s].a.cwiseMax(segs[s].b);
+    for (int x = cellOf(a.x(), 0); x <= cellOf(b.x(), 0); ++x)
+      for (int y = cellOf(a.y(), 1); y <= cellOf(b.y(), 1); ++y) cells[size_t(y) * side + x].push_back(s);
+  }
+  for (const auto& cell : cells)
+    for (size_t i = 0; i < cell.size(); ++i)
+      for (size_t j = i + 1; j < cell.size(); ++j) {
+        const Segment& s = segs[cell[i]];
+        const Segment& t = segs[cell[j]];
+        Vec2 where;
+        bool meet;
+        const bool sameContour = s.contour == t.contour;
+        if (sameContour && s.count > 1 &&
+            (t.index == (s.index + 1) % s.count || s.index == (t.index + 1) % s.count)) {
+          if (s.count == 2) continue;
+          meet = adjacentFold(s, t, eps);
+          where = (t.index == (s.index + 1) % s.count) ? s.b : s.a;
+        } else {
+          meet = segmentsMeet(s, t, eps, &where);
+        }
+        if (meet) {
+          const std::string what = sameContour ? "the contour intersects itself" : "the contours cross or touch";
+          throw Error(ErrorCode::SelfIntersectingContour, curveName(domain, s.contour, s.curve) + " meets " +
+                                                              curveName(domain, t.contour, t.curve) + " near " +
+                                                              formatPoint(where) + ": " + what);
+        }
+      }
+
+  // With no crossings, one point decides containment (bounding boxes skip far holes).
+  std::vector<Box2> boxes;
+  for (const auto& poly : polygons) {
+    Box2 b{poly[0], poly[0]};
+    for (const Vec2& p : poly) b.lo = b.lo.cwiseMin(p), b.hi = b.hi.cwiseMax(p);
+    boxes.push_back(b);
+  }
+  for (size_t k = 1; k < contours.size(); ++k) {
+    const Vec2 p = polygons[k][0];
+    require(pointInPolygon(polygons[0], p), ErrorCode::HoleOutsideDomain,
+            contourName(int(k)) + " is not inside the outer contour: its point " + formatPoint(p) + " lies outside");
+    for (size_t j = 1; j < contours.size(); ++j) {
+      if (j == k || !boxes[j].contains(p)) continue;
+      require(!pointInPolygon(polygons[j], p), ErrorCode::HoleOutsideDomain,
+              contourName(int(k)) + " lies inside " + contourName(int(j)) + " (holes must not overlap): its point " +
+                  formatPoint(p) + " is inside " + contourName(int(j)));
+    }
+  }
+}
+
+}  // namespace anisomesh

@@ -1,0 +1,241 @@
+#include "anisomesh/io/medit.h"
+
+#include <map>
+
+#include "anisomesh/core/error.h"
+#include "anisomesh/io/file_io.h"
+#include "tokens.h"
+
+namespace anisomesh {
+namespace {
+
+using io_detail::appendInt;
+using io_detail::appendNumber;
+using io_detail::TokenStream;
+
+// Sections we read past without keeping: tokens per record (-1: one per dimension).
+const std::map<std::string, int>& skippedSections() {
+  static const std::map<std::string, int> s{
+      {"Corners", 1},           {"Ridges", 1},           {"RequiredVertices", 1}, {"RequiredEdges", 1},
+      {"RequiredTriangles", 1}, {"RequiredQuadrilaterals", 1}, {"Tetrahedra", 5}, {"Hexahedra", 9},
+      {"Prisms", 7},            {"Normals", -1},         {"NormalAtVertices", 2}, {"Tangents", -1},
+      {"TangentAtVertices", 2}};
+  return s;
+}
+
+template <size_t N>
+void readElements(TokenStream& ts, const char* name, int vertexCount, std::vector<std::array<int, N>>* elems,
+                  std::vector<int>* refs) {
+  const long long n = ts.count(std::string("the number of ") + name, int(N) + 1);
+  elems->reserve(elems->size() + size_t(n));
+  for (long long i = 0; i < n; ++i) {
+    std::array<int, N> e;
+    for (size_t k = 0; k < N; ++k) {
+      const int line = ts.line();
+      const long long v = ts.integer([&] {
+        return std::string("vertex index ") + std::to_string(k + 1) + " of " + name + " " + std::to_string(i + 1);
+      });
+      if (v < 1 || v > vertexCount)
+        ts.failAt(line, std::string("vertex index ") + std::to_string(v) + " of " + name + " " + std::to_string(i + 1) +
+                            " is out of range 1.." + std::to_string(vertexCount));
+      e[k] = int(v - 1);
+    }
+    elems->push_back(e);
+    refs->push_back(int(ts.integer([&] { return std::string("the reference of ") + name + " " + std::to_string(i + 1); })));
+  }
+}
+
+template <size_t N>
+void writeElements(std::string* out, const char* name, const std::vector<std::array<int, N>>& elems,
+                   const std::vector<int>& refs) {
+  if (elems.empty()) return;
+  out->append(name);
+  out->append("\n");
+  appendInt(out, (long long)elems.size());
+  out->append("\n");
+  for (size_t i = 0; i < elems.size(); ++i) {
+    for (size_t k = 0; k < N; ++k) {
+      appendInt(out, elems[i][k] + 1LL);
+      out->push_back(' ');
+    }
+    appendInt(out, i < refs.size() ? refs[i] : 0);
+    out->push_back('\n');
+  }
+}
+
+void readHeader(TokenStream& ts, const std::string& key, int* version, int* dimension) {
+  if (key == "MeshVersionFormatted") {
+    const int line = ts.line();
+    *version = int(ts.integer("the version number after MeshVersionFormatted"));
+    if (*version < 1 || *version > 4) ts.failAt(line, "unsupported MeshVersionFormatted " + std::to_string(*version));
+  } else {
+    const int line = ts.line();
+    *dimension = int(ts.integer("the dimension after Dimension"));
+    if (*dimension != 2 && *dimension != 3)
+      ts.failAt(line, "expected Dimension 2 or 3, got " + std::to_string(*dimension));
+  }
+}
+
+}  // namespace
+
+std::string writeMedit(const Mesh& mesh) {
+  require(mesh.dimension == 2 || mesh.dimension == 3, ErrorCode::InvalidArgument,
+          "Medit output needs dimension 2 or 3, got " + std::to_string(mesh.dimension));
+  std::string out = "MeshVersionFormatted 2\nDimension " + std::to_string(mesh.dimension) + "\n\n";
+  out += "Vertices\n" + std::to_string(mesh.points.size()) + "\n";
+  for (size_t i = 0; i < mesh.points.size(); ++i) {
+    for (int k = 0; k < mesh.dimension; ++k) {
+      appendNumber(&out, mesh.points[i][k]);
+      out.push_back(' ');
+    }
+    appendInt(&out, i < mesh.pointRefs.size() ? mesh.pointRefs[i] : 0);
+    out.push_back('\n');
+  }
+  writeElements<2>(&out, "Edges", mesh.edges, mesh.edgeRefs);
+  writeElements<3>(&out, "Triangles", mesh.triangles, mesh.triangleRefs);
+  writeElements<4>(&out, "Quadrilaterals", mesh.quads, mesh.quadRefs);
+  out += "End\n";
+  return out;
+}
+
+Mesh parseMedit(const std::string& text) {
+  TokenStream ts(text, "Medit mesh", '#');
+  Mesh mesh;
+  int version = 0, dimension = 0;
+  bool haveVertices = false;
+  while (!ts.atEnd()) {
+    const int line = ts.line();
+    const std::string key = ts.next().str();
+    if (key == "End") break;
+    if (key == "MeshVersionFormatted" || key == "Dimension") {
+      readHeader(ts, key, &version, &dimension);
+    } else if (key == "Vertices") {
+      if (version == 0) ts.failAt(line, "expected MeshVersionFormatted before Vertices");
+      if (dimension == 0) ts.failAt(line, "expected Dimension before Vertices");
+      const long long n = ts.count("the number of vertices", dimension + 1);
+      mesh.dimension = dimension;
+      mesh.points.reserve(size_t(n));
+      for (long long i = 0; i < n; ++i) {
+        Vec3 p = Vec3::Zero();
+        for (int k = 0; k < dimension; ++k)
+          p[k] = ts.number([&] { return std::string("coordinate ") + "xyz"[k] + " of vertex " + std::to_string(i + 1); });
+        mesh.points.push_back(p);
+        mesh.pointRefs.push_back(int(ts.integer([&] { return "the reference of vertex " + std::to_string(i + 1); })));
+      }
+      haveVertices = true;
+    } else if (key == "Edges" || key == "Triangles" || key == "Quadrilaterals") {
+      if (!haveVertices) ts.failAt(line, "expected Vertices before " + key);
+      const int nv = mesh.vertexCount();
+      if (key == "Edges") readElements<2>(ts, "Edges", nv, &mesh.edges, &mesh.edgeRefs);
+      else if (key == "Triangles") readElements<3>(ts, "Triangles", nv, &mesh.triangles, &mesh.triangleRefs);
+      else readElements<4>(ts, "Quadrilaterals", nv, &mesh.quads, &mesh.quadRefs);
+    } else if (skippedSections().count(key)) {
+      int per = skippedSections().at(key);
+      if (per < 0) per = dimension > 0 ? dimension : 3;
+      const long long n = ts.count("the number of " + key, per);
+      for (long long i = 0; i < n * per; ++i) ts.number("a value of " + key);
+    } else {
+      ts.failAt(line, "expected a Medit keyword (Vertices, Edges, Triangles, Quadrilaterals, End, ...), got '" + key + "'");
+    }
+  }
+  if (version == 0) ts.failAt(1, "expected MeshVersionFormatted");
+  if (dimension != 0) mesh.dimension = dimension;
+  return mesh;
+}
+
+Mesh readMeditFile(const std::string& path) { return parseMedit(readTextFile(path)); }
+
+void writeMeditFile(const std::string& path, const Mesh& mesh) { writeTextFileAtomic(path, writeMedit(mesh)); }
+
+std::string writeSol(const SolData& sol) {
+  require(sol.type == 1 || sol.type == 3, ErrorCode::InvalidArgument,
+          "Medit solutions of type " + std::to_string(sol.type) + " are not supported (1 or 3)");
+  require(sol.dimension == 2 || sol.dimension == 3, ErrorCode::InvalidArgument, "solution dimension must be 2 or 3");
+  const int per = sol.valuesPerVertex();
+  require(sol.values.size() % size_t(per) == 0, ErrorCode::InvalidArgument,
+          "solution has " + std::to_string(sol.values.size()) + " values, not a multiple of " + std::to_string(per));
+  std::string out = "MeshVersionFormatted 2\nDimension " + std::to_string(sol.dimension) + "\n\nSolAtVertices\n";
+  out += std::to_string(sol.count()) + "\n1 " + std::to_string(sol.type) + "\n";
+  for (size_t i = 0; i < sol.values.size(); ++i) {
+    appendNumber(&out, sol.values[i]);
+    out.push_back((i + 1) % size_t(per) == 0 ? '\n' : ' ');
+  }
+  out += "\nEnd\n";
+  return out;
+}
+
+SolData parseSol(const std::string& text) {
+  TokenStream ts(text, "Medit sol", '#');
+  SolData sol;
+  int version = 0, dimension = 0;
+  bool haveField = false;
+  while (!ts.atEnd()) {
+    const int line = ts.line();
+    const std::string key = ts.next().str();
+    if (key == "End") break;
+    if (key == "MeshVersionFormatted" || key == "Dimension") {
+      readHeader(ts, key, &version, &dimension);
+    } else if (key == "SolAtVertices") {
+      if (dimension == 0) ts.failAt(line, "expected Dimension before SolAtVertices");
+      if (haveField) ts.failAt(line, "only one SolAtVertices section is supported");
+      const long long n = ts.count("the number of vertices of SolAtVertices", 1);
+      const int fieldsLine = ts.line();
+      const long long fields = ts.integer("the number of solution fields");
+      if (fields != 1) ts.failAt(fieldsLine, "expected 1 solution field, got " + std::to_string(fields));
+      const int typeLine = ts.line();
+      const long long type = ts.integer("the solution type (1 = scalar, 3 = tensor)");
+      if (type != 1 && type != 3)
+        ts.failAt(typeLine, "expected solution type 1 (scalar) or 3 (symmetric tensor), got " + std::to_string(type));
+      sol.dimension = dimension;
+      sol.type = int(type);
+      const int per = sol.valuesPerVertex();
+      if (n > 0 && ts.atEnd()) ts.fail("the values of vertex 1");
+      sol.values.reserve(size_t(n) * size_t(per));
+      for (long long i = 0; i < n; ++i)
+        for (int k = 0; k < per; ++k)
+          sol.values.push_back(ts.number([&] { return "value " + std::to_string(k + 1) + " of vertex " + std::to_string(i + 1); }));
+      haveField = true;
+    } else {
+      ts.failAt(line, "expected MeshVersionFormatted, Dimension, SolAtVertices or End, got '" + key + "'");
+    }
+  }
+  if (!haveField) ts.failAt(ts.line(), "expected a SolAtVertices section");
+  return sol;
+}
+
+SolData readSolFile(const std::string& path) { return parseSol(readTextFile(path)); }
+
+void writeSolFile(const std::string& path, const SolData& sol) { writeTextFileAtomic(path, writeSol(sol)); }
+
+std::vector<Metric> solToMetrics(const SolData& sol, int vertexCount) {
+  require(sol.count() == vertexCount, ErrorCode::ParseError,
+          "the solution has " + std::to_string(sol.count()) + " values but the mesh has " +
+              std::to_string(vertexCount) + " vertices");
+  require(sol.dimension == 2 || sol.type == 1, ErrorCode::InvalidArgument,
+          "3D tensor solutions cannot drive a planar metric");
+  std::vector<Metric> metrics;
+  metrics.reserve(size_t(vertexCount));
+  const int per = sol.valuesPerVertex();
+  for (int i = 0; i < vertexCount; ++i) {
+    const double* v = &sol.values[size_t(i) * per];
+    try {
+      metrics.push_back(sol.type == 1 ? Metric::isotropic(v[0]) : Metric::fromTensor(v[0], v[1], v[2]));
+    } catch (const Error& e) {
+      throw Error(e.code(), "solution value of vertex " + std::to_string(i + 1) + ": " + e.what());
+    }
+  }
+  return metrics;
+}
+
+SolData metricsToSol(const std::vector<Metric>& metrics) {
+  SolData sol;
+  sol.dimension = 2;
+  sol.type = 3;
+  for (const Metric& m : metrics) {
+    const Mat2 t = m.tensor();
+    sol.values.insert(sol.values.end(), {t(0, 0), t(0, 1), t(1, 1)});
+  }
+  return sol;
+}
+
+}  // namespace anisomesh

@@ -1,0 +1,199 @@
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "anisomesh/core/error.h"
+#include "anisomesh/io/file_io.h"
+#include "anisomesh/io/medit.h"
+
+using namespace anisomesh;
+
+namespace {
+
+Mesh sampleMesh(int dimension) {
+  Mesh m;
+  m.dimension = dimension;
+  const double z = dimension == 3 ? 0.25 : 0.0;
+  m.points = {Vec3(0, 0, 0), Vec3(1, 0, z), Vec3(1, 1, 0), Vec3(0, 1, z), Vec3(2, 0.5, 0), Vec3(0.1, 1.0 / 3.0, 0)};
+  m.pointRefs = {1, 2, 3, 4, 5, 0};
+  m.edges = {{0, 1}, {1, 4}};
+  m.edgeRefs = {7, 8};
+  m.triangles = {{1, 4, 2}, {0, 1, 5}};
+  m.triangleRefs = {3, 9};
+  m.quads = {{0, 1, 2, 3}};
+  m.quadRefs = {11};
+  return m;
+}
+
+void expectSameMesh(const Mesh& a, const Mesh& b) {
+  EXPECT_EQ(a.dimension, b.dimension);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (size_t i = 0; i < a.points.size(); ++i) EXPECT_EQ(a.points[i], b.points[i]) << i;  // exact round trip
+  EXPECT_EQ(a.pointRefs, b.pointRefs);
+  EXPECT_EQ(a.edges, b.edges);
+  EXPECT_EQ(a.edgeRefs, b.edgeRefs);
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.triangleRefs, b.triangleRefs);
+  EXPECT_EQ(a.quads, b.quads);
+  EXPECT_EQ(a.quadRefs, b.quadRefs);
+}
+
+// Parses text and checks the error code and a message fragment.
+template <class F>
+void expectError(F f, ErrorCode code, const std::string& fragment) {
+  try {
+    f();
+    FAIL() << "no error, expected " << errorCodeName(code);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+std::string tempPath(const std::string& name) { return ::testing::TempDir() + "anisomesh_io_" + name; }
+
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+
+}  // namespace
+
+TEST(IoMedit, RoundTrip2D) {
+  const Mesh m = sampleMesh(2);
+  const std::string text = writeMedit(m);
+  EXPECT_NE(text.find("Dimension 2"), std::string::npos);
+  EXPECT_NE(text.find("Quadrilaterals"), std::string::npos);
+  expectSameMesh(m, parseMedit(text));
+}
+
+TEST(IoMedit, RoundTrip3D) {
+  const Mesh m = sampleMesh(3);
+  expectSameMesh(m, parseMedit(writeMedit(m)));
+}
+
+TEST(IoMedit, FileRoundTripIsAtomic) {
+  const std::string path = tempPath("round.mesh");
+  writeMeditFile(path, sampleMesh(2));
+  expectSameMesh(sampleMesh(2), readMeditFile(path));
+  std::remove(path.c_str());
+}
+
+TEST(IoMedit, ParsesVersion1CommentsAndSkippedSections) {
+  const std::string text =
+      "# a comment\n"
+      "MeshVersionFormatted 1 # trailing comment\n"
+      "Dimension\n3\n"
+      "Vertices\n3\n0 0 0 1\n1 0 0 1\n0 1 0 2\n"
+      "Corners\n1\n1\n"
+      "Triangles\n1\n1 2 3 4\n"
+      "End\n";
+  const Mesh m = parseMedit(text);
+  EXPECT_EQ(m.dimension, 3);
+  EXPECT_EQ(m.vertexCount(), 3);
+  ASSERT_EQ(m.triangles.size(), 1u);
+  EXPECT_EQ(m.triangles[0], (std::array<int, 3>{0, 1, 2}));
+  EXPECT_EQ(m.triangleRefs[0], 4);
+}
+
+TEST(IoMedit, MalformedFilesNameLineAndExpectation) {
+  const std::string head = "MeshVersionFormatted 2\nDimension 2\n";
+  expectError([&] { parseMedit(head + "Vertices\n2\n0 0 0\n1 x 0\nEnd\n"); }, ErrorCode::ParseError,
+              "line 6: expected coordinate y of vertex 2, got 'x'");
+  expectError([&] { parseMedit(head + "Vertices\n2\n0 0 0\n1 1 0\nTriangles\n1\n1 2 3 0\n"); }, ErrorCode::ParseError,
+              "line 9: vertex index 3 of Triangles 1 is out of range 1..2");
+  expectError([&] { parseMedit(head + "Vertices\n3\n0 0 0\n"); }, ErrorCode::ParseError, "larger than the data");
+  expectError([&] { parseMedit(head + "Vertices\n1\n0 0\n"); }, ErrorCode::ParseError, "expected the reference of vertex 1, got end of file");
+  expectError([&] { parseMedit(head + "Vertex\n1\n0 0 0\n"); }, ErrorCode::ParseError, "line 3: expected a Medit keyword");
+  expectError([&] { parseMedit("MeshVersionFormatted 2\nDimension 4\n"); }, ErrorCode::ParseError, "line 2: expected Dimension 2 or 3");
+  expectError([&] { parseMedit("Dimension 2\nVertices\n0\n"); }, ErrorCode::ParseError, "expected MeshVersionFormatted before Vertices");
+  expectError([&] { parseMedit(head + "Triangles\n0\n"); }, ErrorCode::ParseError, "expected Vertices before Triangles");
+  expectError([&] { parseMedit(head + "Vertices\n-1\n"); }, ErrorCode::ParseError, "nonnegative");
+  // Keywords are case-sensitive, as in Medit.
+  expectError([&] { parseMedit(head + "vertices\n0\n"); }, ErrorCode::ParseError, "got 'vertices'");
+}
+
+TEST(IoMedit, UnreadableFileIsIoError) {
+  expectError([] { readMeditFile("/nonexistent/dir/x.mesh"); }, ErrorCode::IoError, "/nonexistent/dir/x.mesh");
+}
+
+TEST(IoSol, ScalarAndTensorRoundTrip) {
+  SolData s;
+  s.type = 1;
+  s.values = {0.1, 0.25, 1.0 / 3.0};
+  const SolData back = parseSol(writeSol(s));
+  EXPECT_EQ(back.type, 1);
+  EXPECT_EQ(back.dimension, 2);
+  EXPECT_EQ(back.values, s.values);
+  const std::vector<Metric> metrics{Metric::fromSizes(0.3, 0.01, 0.5), Metric::isotropic(2.0)};
+  const SolData t = metricsToSol(metrics);
+  const SolData tb = parseSol(writeSol(t));
+  EXPECT_EQ(tb.type, 3);
+  EXPECT_EQ(tb.values, t.values);
+  const std::vector<Metric> mb = solToMetrics(tb, 2);
+  for (size_t i = 0; i < 2; ++i) EXPECT_LT((mb[i].tensor() - metrics[i].tensor()).norm(), 1e-9 * metrics[i].tensor().norm());
+}
+
+TEST(IoSol, ScalarIsIsotropicSize) {
+  SolData s;
+  s.values = {0.5};
+  const auto m = solToMetrics(s, 1);
+  EXPECT_NEAR(m[0].sizeAlong(Vec2(1, 0)), 0.5, 1e-14);
+  EXPECT_NEAR(m[0].sizeAlong(Vec2(1, 1)), 0.5, 1e-14);
+}
+
+TEST(IoSol, FileRoundTrip) {
+  const std::string path = tempPath("round.sol");
+  SolData s;
+  s.type = 3;
+  s.values = {4, 0, 1, 2, 0.5, 3};
+  writeSolFile(path, s);
+  EXPECT_EQ(readSolFile(path).values, s.values);
+  std::remove(path.c_str());
+}
+
+TEST(IoSol, Errors) {
+  const std::string head = "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n2\n";
+  expectError([&] { parseSol(head + "1 2\n1 1\n2 2\nEnd\n"); }, ErrorCode::ParseError,
+              "line 5: expected solution type 1 (scalar) or 3 (symmetric tensor), got 2");
+  expectError([&] { parseSol(head + "2 1 1\n1 1\n"); }, ErrorCode::ParseError, "line 5: expected 1 solution field, got 2");
+  expectError([&] { parseSol(head + "1 3\n1 0 1\n1 0 oops\n"); }, ErrorCode::ParseError,
+              "line 7: expected value 3 of vertex 2, got 'oops'");
+  expectError([&] { parseSol("MeshVersionFormatted 2\nDimension 2\nEnd\n"); }, ErrorCode::ParseError, "expected a SolAtVertices section");
+  SolData s;
+  s.values = {1, 2, 3};
+  expectError([&] { solToMetrics(s, 5); }, ErrorCode::ParseError, "the solution has 3 values but the mesh has 5 vertices");
+  s.values = {1, -2, 3};
+  expectError([&] { solToMetrics(s, 3); }, ErrorCode::InvalidMetric, "vertex 2");
+  expectError([] { readSolFile("/nonexistent/x.sol"); }, ErrorCode::IoError, "cannot open");
+}
+
+TEST(IoFile, AtomicWriteLeavesNoFileOnFailure) {
+  // The folder does not exist: nothing may be created, neither the file nor a temporary.
+  const std::string path = tempPath("missing_dir/out.mesh");
+  expectError([&] { writeTextFileAtomic(path, "data"); }, ErrorCode::IoError, "out.mesh");
+  EXPECT_FALSE(exists(path));
+  // A failure while producing the contents never reaches the file.
+  const std::string path2 = tempPath("never.mesh");
+  std::remove(path2.c_str());
+  Mesh bad;
+  bad.dimension = 5;
+  EXPECT_THROW(writeMeditFile(path2, bad), Error);
+  EXPECT_FALSE(exists(path2));
+}
+
+TEST(IoFile, AtomicWriteReplacesExistingFile) {
+  const std::string path = tempPath("replace.txt");
+  writeTextFileAtomic(path, "first");
+  writeTextFileAtomic(path, "second");
+  EXPECT_EQ(readTextFile(path), "second");
+  std::remove(path.c_str());
+}
+
+TEST(IoFile, Extension) {
+  EXPECT_EQ(fileExtension("a/b.MESH"), "mesh");
+  EXPECT_EQ(fileExtension("a.b/c"), "");
+  EXPECT_EQ(fileExtension("out.vtk"), "vtk");
+}
+
+TEST(IoFile, ReadingADirectoryIsIoError) {
+  expectError([] { readTextFile(::testing::TempDir()); }, ErrorCode::IoError, "");
+}
