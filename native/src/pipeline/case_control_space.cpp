@@ -35,7 +35,6 @@ bool layerMetric(const AnalyticFieldSpec& f, double alpha, double d, double slop
 
 }  // namespace
 
-double gradationSlope(double dr) { return 2.0 * (dr - 1.0) / (dr + 1.0); }
 
 bool sourceMetricAt(const SourceSpec& s, const Vec2& p, double slope, Metric* out) {
   switch (s.type) {

@@ -5,13 +5,10 @@
 #include <memory>
 
 #include "anisomesh/controlspace/control_space.h"
+#include "anisomesh/controlspace/control_space_algorithms.h"  // gradationSlope
 #include "anisomesh/io/case_json.h"
 
 namespace anisomesh {
-
-// Slope of the requested size away from a source for the ratio dr of neighbouring
-// element sizes: a_max = 2 (dr - 1) / (dr + 1) (paper eq. 4).
-double gradationSlope(double dr);
 
 // The metric one source asks for at p, or false when it does not reach p (outside its
 // radius and no gradation). slope < 0 means no gradation.
