@@ -348,7 +348,8 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
   auto key = [&](int i) {
     const SymMt& m = cs.nodeMt(i);
     // Largest eigenvalue of Mt = 1 / smallest size.
-    const double mean = 0.5 * (m.a + m.c), r = std::hypot(0.5 * (m.a - m.c), m.b);
+    const double half = 0.5 * (m.a - m.c);
+    const double mean = 0.5 * (m.a + m.c), r = std::sqrt(half * half + m.b * m.b);
     return -(mean + r);
   };
   using Entry = std::pair<double, int>;  // (key, node): max-heap on -1/h_min
