@@ -249,8 +249,16 @@ TEST(ControlSpaceMinimum, BackgroundAndCrossStructureMinimum) {
 }
 
 TEST(ControlSpaceGradation, SizeGrowsNoFasterThanTheBoundAlongEveryEdge) {
-  for (bool quadtree : {true, false}) {
-    auto field = makeSpace(quadtree, 6);
+  for (int kind : {0, 1, 2}) {  // quadtree bilinear, quadtree serendipity, background mesh
+    std::unique_ptr<AdaptiveControlSpace> field;
+    if (kind == 1) {
+      QuadtreeOptions o;
+      o.maxLevel = 6;
+      o.interpolation = QuadtreeInterpolation::Serendipity;
+      field = std::make_unique<QuadtreeControlSpace>(unitBox(), o);
+    } else {
+      field = makeSpace(kind == 0, 6);
+    }
     insertMetricFunction(*field, sharpField, insertion());
     for (double dr : {1.5, 2.0, 8.0}) {
       auto cs = field->clone();
@@ -260,7 +268,8 @@ TEST(ControlSpaceGradation, SizeGrowsNoFasterThanTheBoundAlongEveryEdge) {
       EXPECT_GT(updates, 0);
       expectBalanced(*cs);
       const double amax = gradationSlope(dr);
-      for (const auto& e : cs->controlEdges()) {
+      // Every side edge of the structure, hanging nodes included.
+      for (const auto& e : cs->structureEdges()) {
         const Vec2 pi = cs->nodePosition(e[0]), pj = cs->nodePosition(e[1]);
         const Vec2 u = pj - pi;
         const double hi = cs->nodeMetric(e[0]).sizeAlong(u), hj = cs->nodeMetric(e[1]).sizeAlong(u);
