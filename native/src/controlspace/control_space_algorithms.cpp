@@ -334,10 +334,11 @@ bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj
   const Mat2 ij = mj.transform().inverse();
   const Mat2 q = ij * mi.tensor() * ij / (s * s);
   const double half = 0.5 * (q(0, 0) - q(1, 1)), off = 0.5 * (q(0, 1) + q(1, 0));
-  if (0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off) <= 1.0) return false;
+  const double lmax = 0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off);
+  // sqrt(lmax) - 1: the largest relative shrink of mj's sizes the limit asks for.
+  if (std::sqrt(std::max(lmax, 0.0)) - 1.0 <= tolerance) return false;
   const Metric cand = intersect(mj, mi.scaled(s));
   if (cand.transform() == mj.transform()) return false;
-  if (difference(mj, cand) <= tolerance) return false;
   mj = cand;
   return true;
 }
@@ -472,24 +473,40 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
   bool settled = false;
   std::vector<SymMt> before(hanging.size());
   for (int round = 0; round < 48; ++round) {
+    // Hanging nodes moved by the work-set, finest first (max-heap on the index, which
+    // follows the level); a hanging master that shrinks joins the heap, so the shrink
+    // reaches free masters within the round.
     std::vector<int> dirty;
+    std::vector<char> inDirty(hanging.size(), 0);
     for (int i = 0; i < n; ++i)
-      if (changed[i] && hangingOf[i] >= 0) dirty.push_back(hangingOf[i]);
+      if (changed[i] && hangingOf[i] >= 0) {
+        dirty.push_back(hangingOf[i]);
+        inDirty[hangingOf[i]] = 1;
+      }
     std::fill(changed.begin(), changed.end(), 0);
-    std::sort(dirty.rbegin(), dirty.rend());  // finest first
+    std::make_heap(dirty.begin(), dirty.end());
     std::vector<int> movedMasters;
-    for (int k : dirty) {
+    while (!dirty.empty()) {
+      std::pop_heap(dirty.begin(), dirty.end());
+      const int k = dirty.back();
+      dirty.pop_back();
       const auto& h = hanging[k];
       const Metric smoothed = cs.nodeMetric(h.node);
       if (difference(toMetric(interpolateHanging(cs, h)), smoothed) <= tol) continue;
       for (int j = 0; j < 3; ++j) {
         if (h.weights[j] <= 0.0) continue;
-        const Metric m = cs.nodeMetric(h.masters[j]);
+        const int mk = h.masters[j];
+        const Metric m = cs.nodeMetric(mk);
         const Metric cand = intersect(m, smoothed);
-        if (difference(m, cand) > tol) {
-          cs.setNodeMetric(h.masters[j], cand);
-          ++updates;
-          movedMasters.push_back(h.masters[j]);
+        if (difference(m, cand) <= tol) continue;
+        cs.setNodeMetric(mk, cand);
+        ++updates;
+        movedMasters.push_back(mk);
+        const int km = hangingOf[mk];
+        if (km >= 0 && !inDirty[km]) {
+          inDirty[km] = 1;
+          dirty.push_back(km);
+          std::push_heap(dirty.begin(), dirty.end());
         }
       }
     }
@@ -501,8 +518,9 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
     std::fill(seeded.begin(), seeded.end(), 0);
     for (size_t k = 0; k < hanging.size(); ++k) {
       const SymMt& now = cs.nodeMt(hanging[k].node);
-      if (now.a == before[k].a && now.b == before[k].b && now.c == before[k].c) continue;
-      if (difference(toMetric(now), toMetric(before[k])) <= tol) continue;
+      const SymMt& was = before[k];
+      const double scale = std::max({std::abs(was.a), std::abs(was.b), std::abs(was.c)});
+      if (std::max({std::abs(now.a - was.a), std::abs(now.b - was.b), std::abs(now.c - was.c)}) <= tol * scale) continue;
       seedWithNeighbours(hanging[k].node);
     }
     for (int m : movedMasters) seedWithNeighbours(m);

@@ -68,7 +68,7 @@ void intersectControlSpace(AdaptiveControlSpace& cs1, const AdaptiveControlSpace
 
 struct GradationOptions {
   double ratio = 2.0;        // dr >= 1: largest ratio of neighbouring element sizes
-  double tolerance = 1e-12;  // relative change below which a node is not re-queued
+  double tolerance = 1e-10;  // relative change below which a node is not re-queued
   // Also enforce the bound on edges at hanging nodes (quadtree) by shrinking their
   // masters; false = only edges between free nodes (controlEdges()), faster.
   bool throughHangingNodes = true;
