@@ -521,7 +521,21 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
       const SymMt& was = before[k];
       const double scale = std::max({std::abs(was.a), std::abs(was.b), std::abs(was.c)});
       if (std::max({std::abs(now.a - was.a), std::abs(now.b - was.b), std::abs(now.c - was.c)}) <= tol * scale) continue;
-      seedWithNeighbours(hanging[k].node);
+      const int d = hanging[k].node;
+      // Finer than before: limiting its neighbours (taking it) is enough. Otherwise its
+      // neighbours must limit it again too.
+      const Mat2 iw = toMetric(now).transform().inverse();
+      const Mat2 q = iw * toMetric(was).tensor() * iw;
+      const double half = 0.5 * (q(0, 0) - q(1, 1)), off = q(0, 1);
+      const bool finer = 0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off) <= 1.0 + tol;
+      if (finer) {
+        if (!seeded[d]) {
+          seeded[d] = 1;
+          seeds.push_back(d);
+        }
+      } else {
+        seedWithNeighbours(d);
+      }
     }
     for (int m : movedMasters) seedWithNeighbours(m);
     if (seeds.empty()) {
