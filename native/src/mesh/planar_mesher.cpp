@@ -624,7 +624,7 @@ double Mesher::metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double
 
 // Metric area of the domain, the larger of two estimates: adaptive quadrature over the
 // boundary triangles (resolves metric features that touch the boundary) and a scanline
-// sampling on a 256-row grid with even-odd coverage (sees features inside the domain that
+// sampling on a grid of up to 256 rows with even-odd coverage (sees features inside the domain that
 // no boundary triangle vertex samples).
 double Mesher::estimateMetricArea() {
   std::int64_t budget = 200000;
@@ -639,7 +639,8 @@ double Mesher::estimateMetricArea() {
     lo = lo.cwiseMin(vx_[v].p);
     hi = hi.cwiseMax(vx_[v].p);
   }
-  constexpr int kRows = 256;
+  // As many rows as boundary points (64..256): the sampling stays cheap next to the mesh.
+  const int kRows = std::min(256, std::max(64, nBoundary_));
   const double dy = (hi.y() - lo.y()) / kRows, dx = (hi.x() - lo.x()) / kRows;
   if (!(dx > 0.0) || !(dy > 0.0)) return adaptive;
   double grid = 0.0;
