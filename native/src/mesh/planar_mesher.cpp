@@ -574,6 +574,27 @@ void Mesher::removeOutside() {
       }
     }
   }
+  // The region inside the outer loop has depth 1 and each hole's inside depth 2; anything
+  // else is a hole outside the outer loop, or a hole inside another hole.
+  int firstEdge = 0;
+  for (size_t l = 0; l < loops_.size(); ++l) {
+    const int m = static_cast<int>(loops_[l].points.size());
+    const int a = bedges_[firstEdge][0], b = bedges_[firstEdge][1];
+    int idx;
+    const int t = findEdge(a, b, &idx);
+    require(t >= 0, ErrorCode::Internal, "meshPlanarBoundary: boundary edge lost");
+    const int nb = tri_[t].n[idx];
+    const int deeper = std::max(depth[t], nb >= 0 ? depth[nb] : 0);
+    if (l == 0) {
+      require(deeper == 1, ErrorCode::HoleOutsideDomain,
+              "meshPlanarBoundary: the outer loop (loop 0) lies inside another loop");
+    } else {
+      require(deeper == 2, ErrorCode::HoleOutsideDomain,
+              "meshPlanarBoundary: hole loop " + std::to_string(l) +
+                  (deeper < 2 ? " lies outside the outer loop" : " lies inside another hole"));
+    }
+    firstEdge += m;
+  }
   std::vector<int> remap(nt, -1);
   int kept = 0;
   for (int t = 0; t < nt; ++t)
