@@ -164,3 +164,17 @@ TEST(MeshPlanar, CancellationThroughProgress) {
   EXPECT_EQ(last, 1.0);
   EXPECT_GT(m.triangles.size(), 10000u);
 }
+
+// Far from the origin and tiny: the exact predicates keep the topology right.
+TEST(MeshPlanar, LargeOffsetAndTinyScale) {
+  const Vec2 o(1.0e6, -3.0e6);
+  const double s = 1e-3;
+  std::vector<Vec2> corners{o, o + Vec2(s, 0), o + Vec2(s, s), o + Vec2(0, s)};
+  const std::vector<BoundaryLoop> loops{polygonLoop(corners, 20), circleLoop(o + Vec2(0.5 * s, 0.5 * s), 0.25 * s, 24)};
+  UniformControlSpace cs(Box2{o - Vec2(1, 1), o + Vec2(1, 1)}, Metric::isotropic(0.05 * s));
+  const Mesh m = meshPlanarBoundary(loops, cs);
+  checkPlanarMesh(m, loops);
+  const QualityReport r = measureQuality(m, cs);
+  EXPECT_EQ(r.inverted, 0);
+  EXPECT_GT(r.qualityMean, 0.9);
+}
