@@ -114,7 +114,9 @@ class Mesher {
   struct Tri {
     std::array<int, 3> v;
     std::array<int, 3> n;
-    std::uint8_t c;
+    std::uint8_t c;         // constrained-edge bits
+    std::uint8_t acc;       // frontal insertion: accepted (done)
+    std::uint32_t mark;     // cavity / work-list epoch
   };
   std::vector<Tri> tri_;
   std::vector<int> freeTris_;
@@ -123,7 +125,7 @@ class Mesher {
   int nBoundary_ = 0;
 
   // cavity scratch (reused)
-  std::vector<std::uint32_t> mark_, forbid_, vmark_;
+  std::vector<std::uint32_t> forbid_, vmark_;
   std::uint32_t epoch_ = 0, fepoch_ = 0;
   std::vector<int> cav_;
   struct BndEdge {
@@ -136,7 +138,6 @@ class Mesher {
 
   // frontal state
   std::vector<TriCache> cache_;
-  std::vector<std::uint8_t> accepted_;
   std::vector<std::uint32_t> stamp_, queued_;
   std::vector<double> tq_;  // triangle metric quality (improvement stage)
   bool metricMode_ = false;
@@ -181,12 +182,10 @@ int Mesher::allocTri() {
     ++stamp_[t];
     return t;
   }
-  tri_.push_back(Tri{{-1, -1, -1}, {-1, -1, -1}, 0});
-  mark_.push_back(0);
+  tri_.push_back(Tri{{-1, -1, -1}, {-1, -1, -1}, 0, 0, 0});
   forbid_.push_back(0);
   stamp_.push_back(0);
   queued_.push_back(std::numeric_limits<std::uint32_t>::max());
-  accepted_.push_back(0);
   cache_.emplace_back();
   return static_cast<int>(tri_.size()) - 1;
 }
@@ -269,15 +268,15 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
     ++epoch_;
     cav_.clear();
     cav_.push_back(t0);
-    mark_[t0] = epoch_;
+    tri_[t0].mark = epoch_;
     for (size_t k = 0; k < cav_.size(); ++k) {
       const int t = cav_[k];
       for (int i = 0; i < 3; ++i) {
         if (cons(t, i)) continue;
         const int nb = tri_[t].n[i];
-        if (nb < 0 || mark_[nb] == epoch_ || forbid_[nb] == fepoch_) continue;
+        if (nb < 0 || tri_[nb].mark == epoch_ || (attempt > 0 && forbid_[nb] == fepoch_)) continue;
         if (inCircle(nb)) {
-          mark_[nb] = epoch_;
+          tri_[nb].mark = epoch_;
           cav_.push_back(nb);
         }
       }
@@ -287,7 +286,7 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
     for (const int t : cav_) {
       for (int i = 0; i < 3; ++i) {
         const int nb = tri_[t].n[i];
-        if (nb >= 0 && mark_[nb] == epoch_ && !cons(t, i)) continue;
+        if (nb >= 0 && tri_[nb].mark == epoch_ && !cons(t, i)) continue;
         const int a = tri_[t].v[next3(i)], b = tri_[t].v[prev3(i)];
         if (orient2d(vx_[a].p, vx_[b].p, x) <= 0.0) {
           if (t == t0) return false;
@@ -315,7 +314,10 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
 }
 
 int Mesher::commitCavity(int v) {
-  if (static_cast<int>(startAt_.size()) < static_cast<int>(vx_.size())) {
+  // Small cavities link their new triangles by a scan of the boundary list (no random
+  // access into per-vertex arrays); large ones through startAt_/endAt_.
+  const bool small = bnd_.size() <= 24;
+  if (!small && static_cast<int>(startAt_.size()) < static_cast<int>(vx_.size())) {
     startAt_.resize(vx_.size() + 1024, -1);
     endAt_.resize(vx_.size() + 1024, -1);
   }
@@ -341,15 +343,26 @@ int Mesher::commitCavity(int v) {
     tri_[t].v = {e.a, e.b, v};
     tri_[t].n[2] = e.outer;
     tri_[t].c = e.c ? 4 : 0;
-    accepted_[t] = 0;
+    tri_[t].acc = 0;
     if (e.outer >= 0) setNbrAcross(e.outer, e.a, e.b, t);
-    startAt_[e.a] = t;
-    endAt_[e.b] = t;
+    if (!small) {
+      startAt_[e.a] = t;
+      endAt_[e.b] = t;
+    }
   }
-  for (size_t k = 0; k < bnd_.size(); ++k) {
+  const size_t nb = bnd_.size();
+  for (size_t k = 0; k < nb; ++k) {
     const int t = newTris_[k];
-    tri_[t].n[0] = startAt_[bnd_[k].b];
-    tri_[t].n[1] = endAt_[bnd_[k].a];
+    if (small) {
+      // Edge (b, v) borders the new triangle starting at b; edge (v, a) the one ending at a.
+      for (size_t j = 0; j < nb; ++j) {
+        if (bnd_[j].a == bnd_[k].b) tri_[t].n[0] = newTris_[j];
+        if (bnd_[j].b == bnd_[k].a) tri_[t].n[1] = newTris_[j];
+      }
+    } else {
+      tri_[t].n[0] = startAt_[bnd_[k].b];
+      tri_[t].n[1] = endAt_[bnd_[k].a];
+    }
     vtri_[bnd_[k].a] = t;
   }
   vtri_[v] = newTris_[0];
@@ -605,15 +618,15 @@ void Mesher::removeOutside() {
     const int k = remap[t];
     if (k < 0) continue;
     tris[k] = tri_[t];
+    tris[k].acc = 0;
+    tris[k].mark = 0;
     for (int i = 0; i < 3; ++i) tris[k].n[i] = tri_[t].n[i] >= 0 ? remap[tri_[t].n[i]] : -1;
   }
   tri_.swap(tris);
   freeTris_.clear();
-  mark_.assign(kept, 0);
   forbid_.assign(kept, 0);
   stamp_.assign(kept, 0);
   queued_.assign(kept, std::numeric_limits<std::uint32_t>::max());
-  accepted_.assign(kept, 0);
   cache_.assign(kept, TriCache());
   std::fill(vtri_.begin(), vtri_.end(), -1);
   for (int t = 0; t < kept; ++t)
@@ -737,10 +750,10 @@ void Mesher::insertInnerNodes() {
   const double acc2 = kAcceptRadius * kAcceptRadius;
 
   auto isActive = [&](int t) {
-    if (accepted_[t]) return false;
+    if (tri_[t].acc) return false;
     for (int i = 0; i < 3; ++i) {
       const int nb = tri_[t].n[i];
-      if (nb < 0 || cons(t, i) || accepted_[nb]) return true;
+      if (nb < 0 || cons(t, i) || tri_[nb].acc) return true;
     }
     return false;
   };
@@ -755,7 +768,7 @@ void Mesher::insertInnerNodes() {
   const int nt0 = static_cast<int>(tri_.size());
   for (int t = 0; t < nt0; ++t) {
     computeCache(t);
-    accepted_[t] = cache_[t].r2 <= acc2;
+    tri_[t].acc = cache_[t].r2 <= acc2;
   }
   for (int t = 0; t < nt0; ++t) pushIfActive(t);
 
@@ -768,7 +781,7 @@ void Mesher::insertInnerNodes() {
     const Item it = buckets[top].back();
     buckets[top].pop_back();
     const int t = it.t;
-    if (stamp_[t] != it.stamp || tri_[t].v[0] < 0 || accepted_[t]) continue;
+    if (stamp_[t] != it.stamp || tri_[t].v[0] < 0 || tri_[t].acc) continue;
     queued_[t] = std::numeric_limits<std::uint32_t>::max();
     // Front edge: an edge on the boundary or next to an accepted triangle, the one
     // whose metric length is closest to 1.
@@ -777,7 +790,7 @@ void Mesher::insertInnerNodes() {
     double bestDev = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 3; ++i) {
       const int nb = tri_[t].n[i];
-      if (!(nb < 0 || cons(t, i) || accepted_[nb])) continue;
+      if (!(nb < 0 || cons(t, i) || tri_[nb].acc)) continue;
       const double len = tc.m.length(vx_[tri_[t].v[prev3(i)]].p - vx_[tri_[t].v[next3(i)]].p);
       const double dev = std::fabs(len - 1.0);
       if (dev < bestDev) {
@@ -818,7 +831,7 @@ void Mesher::insertInnerNodes() {
       }
     }
     if (!ok) {
-      accepted_[t] = 1;  // give up on this triangle; its neighbours join the front
+      tri_[t].acc = 1;  // give up on this triangle; its neighbours join the front
       for (int i = 0; i < 3; ++i)
         if (tri_[t].n[i] >= 0) pushIfActive(tri_[t].n[i]);
       continue;
@@ -830,10 +843,10 @@ void Mesher::insertInnerNodes() {
     commitCavity(v);
     for (const int nt : newTris_) {
       computeCache(nt);
-      accepted_[nt] = cache_[nt].r2 <= acc2;
+      tri_[nt].acc = cache_[nt].r2 <= acc2;
     }
     for (const int nt : newTris_) {
-      if (accepted_[nt]) {
+      if (tri_[nt].acc) {
         for (int i = 0; i < 3; ++i)
           if (tri_[nt].n[i] >= 0) pushIfActive(tri_[nt].n[i]);
       } else {
@@ -1021,15 +1034,15 @@ void Mesher::renumberSpatially() {
     const int k = tmap[t];
     if (k < 0) continue;
     tris[k] = tri_[t];
+    tris[k].acc = 0;
+    tris[k].mark = 0;
     for (int i = 0; i < 3; ++i) tris[k].n[i] = tri_[t].n[i] >= 0 ? tmap[tri_[t].n[i]] : -1;
   }
   tri_.swap(tris);
   freeTris_.clear();
-  mark_.assign(live, 0);
   forbid_.assign(live, 0);
   stamp_.assign(live, 0);
   queued_.assign(live, 0);
-  accepted_.assign(live, 0);
   cache_.clear();
   cache_.shrink_to_fit();
   vtri_.assign(nv, -1);
@@ -1051,8 +1064,8 @@ void Mesher::improve() {
     ++epoch_;
     size_t k = 0;
     for (const int t : list)
-      if (mark_[t] != epoch_) {
-        mark_[t] = epoch_;
+      if (tri_[t].mark != epoch_) {
+        tri_[t].mark = epoch_;
         list[k++] = t;
       }
     list.resize(k);
