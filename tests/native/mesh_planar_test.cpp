@@ -178,3 +178,17 @@ TEST(MeshPlanar, LargeOffsetAndTinyScale) {
   EXPECT_EQ(r.inverted, 0);
   EXPECT_GT(r.qualityMean, 0.9);
 }
+
+// Without improvement passes the mesh is still valid (frontal insertion alone).
+TEST(MeshPlanar, NoImprovementPasses) {
+  PlanarMesherOptions opt;
+  opt.improvementPasses = 0;
+  UniformControlSpace cs(kBox, Metric::isotropic(0.05));
+  const std::vector<BoundaryLoop> loops{polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 20),
+                                        circleLoop({0.5, 0.5}, 0.25, 32, true)};
+  const Mesh m = meshPlanarBoundary(loops, cs, opt);
+  checkPlanarMesh(m, loops);
+  EXPECT_GT(measureQuality(m, cs).qualityMean, 0.85);
+  opt.improvementPasses = -1;
+  EXPECT_THROW(meshPlanarBoundary(loops, cs, opt), Error);
+}
