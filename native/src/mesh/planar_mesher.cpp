@@ -39,6 +39,9 @@ constexpr double kAcceptRadius = 0.70710678118654752; // triangles with metric r
 constexpr int kBucketOffset = 4 * 1100;          // bucket index offset: covers every double exponent
 constexpr double kEstimateFactor = 1.0;  // measured: within ~10% on the layer test cases
 constexpr double kSwapSkipQuality = 0.97;    // pairs whose worse triangle is better are not swapped
+constexpr double kCollapseLength = 0.6;       // shorter edges are collapsed
+constexpr double kCollapseMaxLength = 1.3;    // ... unless a new edge would be longer
+constexpr double kCollapseMinQuality = 0.4;   // ... or a triangle worse than this (or than before)
 constexpr double kSmoothSkipQuality = 0.9;     // balls whose worst triangle is better are not smoothed
 
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
@@ -91,6 +94,8 @@ class Mesher {
   void improve();
   int swapSweep(const std::vector<int>& work, std::vector<int>& next);
   int smoothPass(std::vector<int>& touched);
+  int collapsePass(std::vector<int>& touched);
+  bool tryCollapse(int a, int b, std::vector<int>& touched);
 
   // ---- metric helpers ----
   void computeCache(int t);
@@ -107,7 +112,7 @@ class Mesher {
     SymMt m;
   };
   std::vector<Vtx> vx_;
-  std::vector<std::uint8_t> vbnd_;  // 1: boundary or super vertex (never moved)
+  std::vector<std::uint8_t> vbnd_;  // 1: boundary or super vertex (never moved), 2: removed
   std::vector<int> vtri_;
   // Triangle: vertices (counter-clockwise), neighbours (n[i] across the edge opposite
   // v[i]) and constrained-edge bits, together in one cache line.
@@ -140,6 +145,7 @@ class Mesher {
   std::vector<TriCache> cache_;
   std::vector<std::uint32_t> stamp_, queued_;
   std::vector<double> tq_;  // triangle metric quality (improvement stage)
+  std::vector<int> colBall_, colRing_;
   bool metricMode_ = false;
 
   double estimate_ = 0.0;
@@ -1050,6 +1056,136 @@ void Mesher::renumberSpatially() {
     for (int i = 0; i < 3; ++i) vtri_[tri_[t].v[i]] = t;
 }
 
+// Collapses inner vertex a onto its neighbour b (edge a-b too short): the two triangles
+// of the edge disappear, the rest of a's ball is re-attached to b. Refused when the link
+// condition fails (would create a duplicate edge), when a triangle would turn or become
+// poor, or when a new edge would be too long.
+bool Mesher::tryCollapse(int a, int b, std::vector<int>& touched) {
+  if (vbnd_[a]) return false;
+  std::vector<int>& ball = colBall_;
+  std::vector<int>& ring = colRing_;
+  ball.clear();
+  ring.clear();
+  const int t0 = vtri_[a];
+  int t = t0;
+  for (int guard = 0; guard < 1000; ++guard) {
+    const auto& tv = tri_[t].v;
+    const int i = tv[0] == a ? 0 : (tv[1] == a ? 1 : 2);
+    ball.push_back(t);
+    ring.push_back(tv[next3(i)]);
+    t = tri_[t].n[next3(i)];
+    if (t < 0 || t == t0) break;
+  }
+  if (t != t0) return false;
+  const int deg = static_cast<int>(ring.size());
+  if (deg < 4) return false;
+  int kb = -1;
+  for (int k = 0; k < deg; ++k)
+    if (ring[k] == b) kb = k;
+  if (kb < 0) return false;
+  const int k1 = kb, k2 = (kb + deg - 1) % deg;  // T1 = (a, b, x), T2 = (a, y, b)
+  const int x = ring[(kb + 1) % deg], y = ring[k2];
+  // Link condition: the only common neighbours of a and b are x and y.
+  ++epoch_;
+  if (vmark_.size() < vx_.size()) vmark_.resize(vx_.size() + 1024, 0);
+  for (const int r : ring) vmark_[r] = epoch_;
+  {
+    int tb = vtri_[b];
+    for (int dir = 0; dir < 2; ++dir) {  // counter-clockwise, then clockwise if open
+      int u = tb;
+      for (int guard = 0; guard < 1000 && u >= 0; ++guard) {
+        const auto& tv = tri_[u].v;
+        const int i = tv[0] == b ? 0 : (tv[1] == b ? 1 : 2);
+        for (const int w : {tv[next3(i)], tv[prev3(i)]})
+          if (w != a && w != x && w != y && vmark_[w] == epoch_) return false;
+        u = tri_[u].n[dir == 0 ? next3(i) : prev3(i)];
+        if (u == tb) break;
+      }
+      if (u == tb) break;
+    }
+  }
+  // Geometry: the re-attached triangles stay counter-clockwise, fair, with no long edge.
+  double before = std::numeric_limits<double>::infinity();
+  for (const int bt : ball) before = std::min(before, tq_[bt]);
+  const Vec2& pb = vx_[b].p;
+  for (int k = 0; k < deg; ++k) {
+    const int r = ring[k];
+    if (r != b && SymMt::average2(vx_[b].m, vx_[r].m).length(vx_[r].p - pb) > kCollapseMaxLength) return false;
+    if (k == k1 || k == k2) continue;
+    const int c = ring[(k + 1) % deg];
+    if (orient2d(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
+    if (triQuality(b, r, c) < std::min(before, kCollapseMinQuality)) return false;
+  }
+  // Apply.
+  const int T1 = ball[k1], T2 = ball[k2];
+  auto relink = [&](int dead, int keep, int other, bool constrained) {
+    // In keep, the entry pointing at dead now points at other (with dead's constraint bit).
+    if (keep < 0) return;
+    for (int j = 0; j < 3; ++j)
+      if (tri_[keep].n[j] == dead) {
+        tri_[keep].n[j] = other;
+        if (constrained)
+          tri_[keep].c |= static_cast<std::uint8_t>(1 << j);
+        else
+          tri_[keep].c &= static_cast<std::uint8_t>(~(1 << j));
+        return;
+      }
+  };
+  auto oppositeOf = [&](int tri, int v) {  // index of vertex v in tri
+    const auto& tv = tri_[tri].v;
+    return tv[0] == v ? 0 : (tv[1] == v ? 1 : 2);
+  };
+  const int i1a = oppositeOf(T1, a), i1b = oppositeOf(T1, b);
+  const int n1b = tri_[T1].n[i1a], n1a = tri_[T1].n[i1b];  // across (b, x) and (x, a)
+  const bool c1 = cons(T1, i1a);
+  const int i2a = oppositeOf(T2, a), i2b = oppositeOf(T2, b);
+  const int n2b = tri_[T2].n[i2a], n2a = tri_[T2].n[i2b];  // across (y, b) and (a, y)
+  const bool c2 = cons(T2, i2a);
+  relink(T1, n1a, n1b, c1);
+  relink(T1, n1b, n1a, c1);
+  relink(T2, n2a, n2b, c2);
+  relink(T2, n2b, n2a, c2);
+  for (int k = 0; k < deg; ++k) {
+    if (k == k1 || k == k2) continue;
+    const int bt = ball[k];
+    tri_[bt].v[oppositeOf(bt, a)] = b;
+    tq_[bt] = triQuality(tri_[bt].v[0], tri_[bt].v[1], tri_[bt].v[2]);
+    touched.push_back(bt);
+  }
+  for (const int dead : {T1, T2}) {
+    tri_[dead].v = {-1, -1, -1};
+    ++stamp_[dead];
+    freeTris_.push_back(dead);
+  }
+  vtri_[b] = n1a;
+  vtri_[x] = n1a;
+  vtri_[y] = n2a;
+  vtri_[a] = -1;
+  vbnd_[a] = 2;
+  return true;
+}
+
+// Collapses edges shorter than kCollapseLength where fronts met (frontal insertion leaves
+// a few there), removing the inner end point.
+int Mesher::collapsePass(std::vector<int>& touched) {
+  int collapsed = 0;
+  const int nt = static_cast<int>(tri_.size());
+  for (int t = 0; t < nt; ++t) {
+    if (tri_[t].v[0] < 0) continue;
+    for (int i = 0; i < 3; ++i) {
+      const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
+      if (u > w || cons(t, i)) continue;  // each edge once (from the side where u < w)
+      const double len = SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p);
+      if (len >= kCollapseLength) continue;
+      if (tryCollapse(u, w, touched) || tryCollapse(w, u, touched)) {
+        ++collapsed;
+        break;  // t may be gone
+      }
+    }
+  }
+  return collapsed;
+}
+
 void Mesher::improve() {
   const int nt = static_cast<int>(tri_.size());
   tq_.assign(nt, 0.0);
@@ -1081,6 +1217,12 @@ void Mesher::improve() {
   for (int pass = 0; pass < opt_.improvementPasses; ++pass) {
     swaps(6);
     work.clear();
+    if (pass == 0) {
+      collapsePass(work);
+      dedupe(work);
+      swaps(6);
+      work.clear();
+    }
     smoothPass(work);
     // The ball triangles of moved vertices are reconsidered for swaps (the vertex metric
     // changed too, so their cached quality is refreshed).
@@ -1095,23 +1237,28 @@ void Mesher::improve() {
 Mesh Mesher::output() const {
   Mesh m;
   m.dimension = 2;
-  const int nv = static_cast<int>(vx_.size()) - kSuper;
+  // Removed (collapsed) vertices are skipped; boundary vertices keep their places first.
+  std::vector<int> vmap(vx_.size(), -1);
+  int nv = 0;
+  for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v)
+    if (vbnd_[v] != 2) vmap[v] = nv++;
   m.points.reserve(nv);
   m.params.reserve(nv);
   for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v) {
+    if (vmap[v] < 0) continue;
     m.points.emplace_back(vx_[v].p.x(), vx_[v].p.y(), 0.0);
     m.params.push_back(vx_[v].p);
   }
   m.pointRefs.assign(nv, 0);
   for (size_t e = 0; e < bedges_.size(); ++e) {
-    m.edges.push_back({bedges_[e][0] - kSuper, bedges_[e][1] - kSuper});
+    m.edges.push_back({vmap[bedges_[e][0]], vmap[bedges_[e][1]]});
     m.edgeRefs.push_back(bedgeRefs_[e]);
   }
   m.triangles.reserve(tri_.size());
   for (const auto& tr : tri_) {
     const auto& t = tr.v;
     if (t[0] < 0) continue;
-    m.triangles.push_back({t[0] - kSuper, t[1] - kSuper, t[2] - kSuper});
+    m.triangles.push_back({vmap[t[0]], vmap[t[1]], vmap[t[2]]});
   }
   m.triangleRefs.assign(m.triangles.size(), 0);
   return m;
@@ -1155,7 +1302,8 @@ Mesh Mesher::run() {
       t0 = Clock::now();
       std::vector<SymMt> vm;
       vm.reserve(vx_.size() - kSuper);
-      for (size_t v = kSuper; v < vx_.size(); ++v) vm.push_back(vx_[v].m);
+      for (size_t v = kSuper; v < vx_.size(); ++v)
+        if (vbnd_[v] != 2) vm.push_back(vx_[v].m);
       convertToQuads(mesh, vm, opt_.allQuads, cs_);
       timings_.quads = secondsSince(t0);
     }
