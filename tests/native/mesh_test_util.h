@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "anisomesh/controlspace/control_space.h"
+#include "anisomesh/core/error.h"
 #include "anisomesh/mesh/planar_mesher.h"
 #include "anisomesh/mesh/predicates.h"
 #include "anisomesh/mesh/quality.h"
