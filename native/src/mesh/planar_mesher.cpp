@@ -2,9 +2,11 @@
 // exact Delaunay triangulation of the boundary points in a super-box, boundary recovery
 // by edge flips, removal of outside triangles by parity flood fill, frontal-Delaunay
 // insertion of inner nodes in the metric (Rebay-style point placement, Bowyer-Watson
-// cavities judged by each triangle's metric circumcircle), then metric edge swaps and
-// node smoothing. Data layout is flat arrays with triangle neighbours; no per-insertion
-// heap allocation on the hot path.
+// cavities judged by each triangle's metric circumcircle), then metric edge swaps,
+// collapse of the short edges left where fronts meet, and node smoothing. Data layout is
+// flat arrays of triangle records with neighbour indices; no per-insertion heap
+// allocation on the hot path; the vertices are renumbered along a Hilbert curve before
+// the improvement passes for cache locality.
 #include "anisomesh/mesh/planar_mesher.h"
 
 #include <algorithm>
@@ -14,7 +16,6 @@
 #include <cstdint>
 #include <deque>
 #include <limits>
-#include <queue>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -32,17 +33,16 @@ double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-constexpr int kSuper = 4;                         // super-box corners are vertices 0..3
-constexpr double kIdealRadius = 0.57735026918962576;  // circumradius of the unit equilateral triangle
-constexpr double kAcceptRadius = 0.70710678118654752; // triangles with metric radius below are done
-
-constexpr int kBucketOffset = 4 * 1100;          // bucket index offset: covers every double exponent
-constexpr double kEstimateFactor = 1.0;  // measured: within ~10% on the layer test cases
-constexpr double kSwapSkipQuality = 0.97;    // pairs whose worse triangle is better are not swapped
-constexpr double kCollapseLength = 0.6;       // shorter edges are collapsed
-constexpr double kCollapseMaxLength = 1.3;    // ... unless a new edge would be longer
-constexpr double kCollapseMinQuality = 0.4;   // ... or a triangle worse than this (or than before)
-constexpr double kSmoothSkipQuality = 0.9;     // balls whose worst triangle is better are not smoothed
+constexpr int kSuper = 4;                              // super-box corners are vertices 0..3
+constexpr double kIdealRadius = 0.57735026918962576;   // circumradius of the unit equilateral triangle
+constexpr double kAcceptRadius = 0.70710678118654752;  // triangles with metric radius below are done
+constexpr int kBucketOffset = 4 * 1100;                // bucket index offset: covers every double exponent
+constexpr double kEstimateFactor = 1.0;                // measured: within ~10% on the layer test cases
+constexpr double kSwapSkipQuality = 0.97;              // pairs whose worse triangle is better are not swapped
+constexpr double kCollapseLength = 0.6;                // shorter edges are collapsed
+constexpr double kCollapseMaxLength = 1.3;             // ... unless a new edge would be longer
+constexpr double kCollapseMinQuality = 0.4;            // ... or a triangle worse than this (or than before)
+constexpr double kSmoothSkipQuality = 0.9;             // balls whose worst triangle is better are not smoothed
 
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
 inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
