@@ -146,6 +146,7 @@ class Mesher {
   std::vector<std::uint32_t> stamp_, queued_;
   std::vector<double> tq_;  // triangle metric quality (improvement stage)
   std::vector<int> colBall_, colRing_;
+  std::vector<std::uint8_t> vdirty_;  // improvement: vertex whose surroundings changed
   bool metricMode_ = false;
 
   double estimate_ = 0.0;
@@ -398,6 +399,7 @@ void Mesher::flip(int t, int i) {
   ++stamp_[t];
   ++stamp_[nb];
   vtri_[p] = t;
+  if (!vdirty_.empty()) vdirty_[p] = vdirty_[u] = vdirty_[q] = vdirty_[w] = 1;
   vtri_[u] = t;
   vtri_[q] = nb;
   vtri_[w] = nb;
@@ -913,7 +915,7 @@ int Mesher::smoothPass(std::vector<int>& touched) {
   std::vector<int> ring, ballTri;
   const int nv = static_cast<int>(vx_.size());
   for (int v = kSuper; v < nv; ++v) {
-    if (vbnd_[v]) continue;
+    if (vbnd_[v] || !vdirty_[v]) continue;  // clean: nothing around it changed since its last visit
     ring.clear();
     ballTri.clear();
     const int t0 = vtri_[v];
@@ -937,6 +939,7 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     target /= static_cast<double>(ring.size());
     double before = std::numeric_limits<double>::infinity();
     for (const int bt : ballTri) before = std::min(before, tq_[bt]);
+    vdirty_[v] = 0;
     if (before >= kSmoothSkipQuality) continue;  // already good: not worth the metric queries
     // Candidates in order of preference: unit-length target (edge lengths), halfway to it,
     // then the ring centroid (Laplacian; the same in any constant metric) and halfway to
@@ -964,6 +967,8 @@ int Mesher::smoothPass(std::vector<int>& touched) {
       break;
     }
     if (best < 0) continue;
+    for (const int r : ring) vdirty_[r] = 1;
+    vdirty_[v] = 1;
     vx_[v].p = cands[best];
     vx_[v].m = queryMetric(cands[best]);
     for (size_t k = 0; k < ballTri.size(); ++k) touched.push_back(ballTri[k]);
@@ -1157,6 +1162,7 @@ bool Mesher::tryCollapse(int a, int b, std::vector<int>& touched) {
     ++stamp_[dead];
     freeTris_.push_back(dead);
   }
+  for (const int r : ring) vdirty_[r] = 1;
   vtri_[b] = n1a;
   vtri_[x] = n1a;
   vtri_[y] = n2a;
@@ -1187,6 +1193,7 @@ int Mesher::collapsePass(std::vector<int>& touched) {
 }
 
 void Mesher::improve() {
+  vdirty_.assign(vx_.size(), 1);
   const int nt = static_cast<int>(tri_.size());
   tq_.assign(nt, 0.0);
   std::vector<int> work, next;
