@@ -143,7 +143,8 @@ std::unique_ptr<AdaptiveControlSpace> emptySpace(bool quadtree) {
   return std::make_unique<BackgroundMeshControlSpace>(unitBox(), b);
 }
 
-// Args: number of sources, quadtree (1) or background mesh (0), smoothing dr=2 (1/0).
+// Args: number of sources, quadtree (1) or background mesh (0), smoothing dr=2 (0 off,
+// 1 on, 2 on but only between free nodes: GradationOptions::throughHangingNodes = false).
 void BM_ControlSpaceBuildFromRadialSources(benchmark::State& state) {
   const std::vector<MetricSource> sources = radialSources(static_cast<int>(state.range(0)));
   int nodes = 0;
@@ -153,6 +154,7 @@ void BM_ControlSpaceBuildFromRadialSources(benchmark::State& state) {
     if (state.range(2)) {
       GradationOptions g;
       g.ratio = 2.0;
+      g.throughHangingNodes = state.range(2) == 1;
       smoothGradation(*cs, g);
     }
     nodes = cs->nodeCount();
@@ -163,7 +165,7 @@ void BM_ControlSpaceBuildFromRadialSources(benchmark::State& state) {
 }
 BENCHMARK(BM_ControlSpaceBuildFromRadialSources)
     ->ArgNames({"sources", "quadtree", "smooth"})
-    ->ArgsProduct({{1000, 10000, 100000}, {1, 0}, {0, 1}})
+    ->ArgsProduct({{1000, 10000, 100000}, {1, 0}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond);
 
 // Smoothing alone against node count (sharp field: a boundary layer with slope 1 and a spot).

@@ -178,3 +178,47 @@ TEST(GeometryDiscretize, CurvedSegmentsUnderAnisotropicVaryingMetric) {
     }
   }
 }
+
+namespace {
+
+// A half disc whose arc passes just above a small hole: with a coarse metric the arc's
+// chords cut through the hole although the curves do not touch.
+Domain halfDiscWithHoleNearArc() {
+  Domain d;
+  d.outer.add(std::make_shared<ArcCurve>(Vec2(0, 0), 1.0, 0.0, M_PI, 1));
+  d.outer.add(std::make_shared<LineCurve>(Vec2(-1, 0), Vec2(1, 0), 2));
+  Contour hole;
+  hole.add(std::make_shared<ArcCurve>(ArcCurve::circle({0, 0.9}, 0.05, 3)));
+  d.holes.push_back(hole);
+  return d;
+}
+
+std::vector<std::vector<Vec2>> polygonsOf(const std::vector<BoundaryLoop>& loops) {
+  std::vector<std::vector<Vec2>> p;
+  for (const auto& l : loops) p.push_back(l.points);
+  return p;
+}
+
+}  // namespace
+
+TEST(GeometryDiscretize, CrossingChordsAreRefined) {
+  const Domain d = halfDiscWithHoleNearArc();
+  ASSERT_NO_THROW(validateDomain(d));
+  const UniformControlSpace coarse(bigBox(), Metric::isotropic(1.0));
+  PolygonCrossing x;
+  DiscretizeOptions off;
+  off.refineCrossings = false;
+  EXPECT_TRUE(findPolygonCrossing(polygonsOf(discretizeDomain(d, coarse, off)), &x));
+  const auto loops = discretizeDomain(d, coarse);
+  EXPECT_FALSE(findPolygonCrossing(polygonsOf(loops), &x));
+  EXPECT_GT(loops[0].points.size(), 5u);
+  DiscretizeOptions none;
+  none.maxRefinementRounds = 0;
+  try {
+    discretizeDomain(d, coarse, none);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::SelfIntersectingContour);
+    EXPECT_NE(std::string(e.what()).find("the boundary discretization crosses itself near"), std::string::npos);
+  }
+}

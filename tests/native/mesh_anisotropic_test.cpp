@@ -112,3 +112,28 @@ TEST(MeshAnisotropic, CoarseBoundaryFineMetricTerminates) {
   checkPlanarMesh(m, loops);
   EXPECT_GT(m.triangles.size(), 1000u);
 }
+
+// A budget between the early estimate and the real count is still enforced (during or
+// after insertion, not only by the estimate).
+TEST(MeshAnisotropic, BudgetEnforcedBeyondTheEstimate) {
+  AnalyticControlSpace cs(kUnit, boundaryLayer);
+  const std::vector<BoundaryLoop> loops{metricPolygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, cs)};
+  MesherTimings timings;
+  PlanarMesherOptions opt;
+  opt.timings = &timings;
+  const Mesh m = meshPlanarBoundary(loops, cs, opt);
+  const std::int64_t actual = m.elementCount();
+  const std::int64_t low = std::min<std::int64_t>(timings.estimatedElements, actual);
+  ASSERT_GT(actual, 100);
+  opt.maxElements = std::max<std::int64_t>(low, actual - 1);
+  if (opt.maxElements < timings.estimatedElements) opt.maxElements = actual - 1;  // estimate above: it throws early
+  try {
+    meshPlanarBoundary(loops, cs, opt);
+    FAIL() << "expected ElementBudgetExceeded";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::ElementBudgetExceeded);
+    EXPECT_NE(std::string(e.what()).find(std::to_string(opt.maxElements)), std::string::npos) << e.what();
+  }
+  opt.maxElements = actual;
+  EXPECT_EQ(meshPlanarBoundary(loops, cs, opt).elementCount(), actual);
+}

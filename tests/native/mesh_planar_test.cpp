@@ -115,6 +115,12 @@ TEST(MeshPlanar, InvalidInput) {
   EXPECT_EQ(code({makeLoop({{0, 0}, {1, 0}, {0, NAN}})}), ErrorCode::InvalidArgument);
   EXPECT_EQ(code({makeLoop({{0, 0}, {1, 0}, {1, 0}, {0, 1}})}), ErrorCode::InvalidArgument);  // duplicate
   EXPECT_EQ(code({makeLoop({{0, 0}, {1, 0}, {0, 1}, {1, 1}})}), ErrorCode::SelfIntersectingContour);  // bow tie
+  const BoundaryLoop square = polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 10);
+  EXPECT_EQ(code({square, circleLoop({2.0, 0.5}, 0.2, 12)}), ErrorCode::HoleOutsideDomain);
+  EXPECT_EQ(code({square, circleLoop({0.5, 0.5}, 0.3, 16), circleLoop({0.5, 0.5}, 0.1, 8)}),
+            ErrorCode::HoleOutsideDomain);  // hole inside a hole
+  EXPECT_EQ(code({circleLoop({0.5, 0.5}, 0.3, 16), square}), ErrorCode::HoleOutsideDomain);  // outer inside hole
+  EXPECT_EQ(code({square, circleLoop({1.0, 0.53}, 0.2, 12)}), ErrorCode::SelfIntersectingContour);  // crossing
 }
 
 TEST(MeshPlanar, ElementBudgetExceeded) {
@@ -157,4 +163,32 @@ TEST(MeshPlanar, CancellationThroughProgress) {
   const Mesh m = meshPlanarBoundary({polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 100)}, cs, opt);
   EXPECT_EQ(last, 1.0);
   EXPECT_GT(m.triangles.size(), 10000u);
+}
+
+// Far from the origin and tiny: the exact predicates keep the topology right.
+TEST(MeshPlanar, LargeOffsetAndTinyScale) {
+  const Vec2 o(1.0e6, -3.0e6);
+  const double s = 1e-3;
+  std::vector<Vec2> corners{o, o + Vec2(s, 0), o + Vec2(s, s), o + Vec2(0, s)};
+  const std::vector<BoundaryLoop> loops{polygonLoop(corners, 20), circleLoop(o + Vec2(0.5 * s, 0.5 * s), 0.25 * s, 24)};
+  UniformControlSpace cs(Box2{o - Vec2(1, 1), o + Vec2(1, 1)}, Metric::isotropic(0.05 * s));
+  const Mesh m = meshPlanarBoundary(loops, cs);
+  checkPlanarMesh(m, loops);
+  const QualityReport r = measureQuality(m, cs);
+  EXPECT_EQ(r.inverted, 0);
+  EXPECT_GT(r.qualityMean, 0.9);
+}
+
+// Without improvement passes the mesh is still valid (frontal insertion alone).
+TEST(MeshPlanar, NoImprovementPasses) {
+  PlanarMesherOptions opt;
+  opt.improvementPasses = 0;
+  UniformControlSpace cs(kBox, Metric::isotropic(0.05));
+  const std::vector<BoundaryLoop> loops{polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 20),
+                                        circleLoop({0.5, 0.5}, 0.25, 32, true)};
+  const Mesh m = meshPlanarBoundary(loops, cs, opt);
+  checkPlanarMesh(m, loops);
+  EXPECT_GT(measureQuality(m, cs).qualityMean, 0.85);
+  opt.improvementPasses = -1;
+  EXPECT_THROW(meshPlanarBoundary(loops, cs, opt), Error);
 }

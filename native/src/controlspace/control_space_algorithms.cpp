@@ -329,63 +329,229 @@ bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj
   if (d <= 0.0) return false;
   const double hi = mi.sizeAlong(u);
   const double s = 1.0 + slope * d / hi;  // eq. 7 at a = a_max
+  // Cheap test first: mj already inside s mi when the largest eigenvalue of
+  // Mt_j^-1 (M_i / s^2) Mt_j^-1 is <= 1 (no trigonometry, unlike intersect()).
+  const Mat2 ij = mj.transform().inverse();
+  const Mat2 q = ij * mi.tensor() * ij / (s * s);
+  const double half = 0.5 * (q(0, 0) - q(1, 1)), off = 0.5 * (q(0, 1) + q(1, 0));
+  const double lmax = 0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off);
+  // sqrt(lmax) - 1: the largest relative shrink of mj's sizes the limit asks for.
+  if (std::sqrt(std::max(lmax, 0.0)) - 1.0 <= tolerance) return false;
   const Metric cand = intersect(mj, mi.scaled(s));
   if (cand.transform() == mj.transform()) return false;
-  if (difference(mj, cand) <= tolerance) return false;
   mj = cand;
   return true;
 }
 
-int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
-  const double slope = gradationSlope(options.ratio);
-  require(options.tolerance >= 0.0, ErrorCode::InvalidArgument, "gradation tolerance must be >= 0");
-  std::vector<int> start, nbr;
-  adjacency(cs, start, nbr);
+namespace {
+
+// CSR adjacency of an edge list over n nodes.
+void edgeAdjacency(const std::vector<std::array<int, 2>>& edges, int n, std::vector<int>& start, std::vector<int>& nbr) {
+  start.assign(n + 1, 0);
+  for (const auto& e : edges) {
+    ++start[e[0] + 1];
+    ++start[e[1] + 1];
+  }
+  for (size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  nbr.resize(start.back());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const auto& e : edges) {
+    nbr[fill[e[0]]++] = e[1];
+    nbr[fill[e[1]]++] = e[0];
+  }
+}
+
+// One work-set pass over the graph (start, nbr) from `seeds` (see smoothGradation);
+// nodes it changes get changed[i] = 1.
+int gradationWorkSet(AdaptiveControlSpace& cs, const std::vector<int>& start, const std::vector<int>& nbr,
+                     const std::vector<int>& seeds, double slope, double tolerance, std::vector<char>& changed) {
   const int n = cs.nodeCount();
-  // Work-set ordered by the node's smallest requested size (smallest first, as in
-  // Dijkstra): a node is mostly final when it is popped, so few nodes are re-queued.
-  // Stale heap entries are skipped by comparing with the node's current key.
+  // Ordered by the node's smallest requested size (smallest first, as in Dijkstra): a
+  // node is mostly final when it is taken, so few nodes are re-queued. Stale heap entries
+  // are skipped by comparing with the node's current key.
   auto key = [&](int i) {
     const SymMt& m = cs.nodeMt(i);
-    // Largest eigenvalue of Mt = 1 / smallest size.
-    const double mean = 0.5 * (m.a + m.c), r = std::hypot(0.5 * (m.a - m.c), m.b);
-    return -(mean + r);
+    const double half = 0.5 * (m.a - m.c);
+    return 0.5 * (m.a + m.c) + std::sqrt(half * half + m.b * m.b);  // largest eigenvalue of Mt
   };
-  using Entry = std::pair<double, int>;  // (key, node): max-heap on -1/h_min
+  using Entry = std::pair<double, int>;
+  auto cmp = [](const Entry& x, const Entry& y) { return x.first < y.first || (x.first == y.first && x.second > y.second); };
   std::vector<Entry> heap;
   std::vector<double> current(n, 0.0);
-  heap.reserve(n);
-  for (int i = 0; i < n; ++i)
-    if (cs.nodeIsFree(i)) {
-      current[i] = key(i);
-      heap.push_back({-current[i], i});
-    }
-  auto cmp = [](const Entry& x, const Entry& y) { return x.first < y.first || (x.first == y.first && x.second > y.second); };
-  std::make_heap(heap.begin(), heap.end(), cmp);
   std::vector<char> queued(n, 0);
-  for (const auto& e : heap) queued[e.second] = 1;
+  heap.reserve(seeds.size());
+  for (int i : seeds)
+    if (!queued[i]) {
+      queued[i] = 1;
+      current[i] = key(i);
+      heap.push_back({current[i], i});
+    }
+  std::make_heap(heap.begin(), heap.end(), cmp);
   int updates = 0;
   while (!heap.empty()) {
     std::pop_heap(heap.begin(), heap.end(), cmp);
     const Entry top = heap.back();
     heap.pop_back();
     const int i = top.second;
-    if (!queued[i] || -top.first != current[i]) continue;  // stale entry
+    if (!queued[i] || top.first != current[i]) continue;  // stale entry
     queued[i] = 0;
     const Metric mi = cs.nodeMetric(i);
     const Vec2 pi = cs.nodePosition(i);
     for (int k = start[i]; k < start[i + 1]; ++k) {
       const int j = nbr[k];
       Metric mj = cs.nodeMetric(j);
-      if (limitGradation(mi, pi, mj, cs.nodePosition(j), slope, options.tolerance)) {
+      if (limitGradation(mi, pi, mj, cs.nodePosition(j), slope, tolerance)) {
         cs.setNodeMetric(j, mj);
         ++updates;
+        changed[j] = 1;
         current[j] = key(j);
         queued[j] = 1;
-        heap.push_back({-current[j], j});
+        heap.push_back({current[j], j});
         std::push_heap(heap.begin(), heap.end(), cmp);
       }
     }
+  }
+  return updates;
+}
+
+SymMt interpolateHanging(const AdaptiveControlSpace& cs, const AdaptiveControlSpace::HangingNode& h) {
+  SymMt r{0.0, 0.0, 0.0};
+  for (int j = 0; j < 3; ++j) {
+    const SymMt& m = cs.nodeMt(h.masters[j]);
+    r.a += h.weights[j] * m.a;
+    r.b += h.weights[j] * m.b;
+    r.c += h.weights[j] * m.c;
+  }
+  return r;
+}
+
+}  // namespace
+
+int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
+  const double slope = gradationSlope(options.ratio);
+  require(options.tolerance >= 0.0, ErrorCode::InvalidArgument, "gradation tolerance must be >= 0");
+  const int n = cs.nodeCount();
+  const double tol = options.tolerance;
+  const auto hanging =
+      options.throughHangingNodes ? cs.hangingNodes() : std::vector<AdaptiveControlSpace::HangingNode>{};
+  std::vector<int> start, nbr;
+  edgeAdjacency(hanging.empty() ? cs.controlEdges() : cs.structureEdges(), n, start, nbr);
+  std::vector<int> seeds;
+  for (int i = 0; i < n; ++i)
+    if (!hanging.empty() || cs.nodeIsFree(i)) seeds.push_back(i);
+  std::vector<char> changed(n, 0);
+  int updates = gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed);
+  if (hanging.empty()) {
+    cs.applyConstraints();
+    return updates;
+  }
+  // Hanging nodes were smoothed like free nodes. Where smoothing moved one, its
+  // positive-weight masters shrink to the smoothed value (then the interpolation is at
+  // least as fine, in Mt), finest hanging nodes first so that a hanging master passes the
+  // shrink on to its own masters; constraints are re-applied and the work-set restarts
+  // from the hanging nodes whose value moved, the changed masters and their neighbours.
+  // A round in which no hanging node moves ends with the bound holding on every side
+  // edge; bilinear trees get there in a few rounds. Serendipity
+  // constraints have a negative weight (and Mt interpolation is not monotone in every
+  // direction), so a round cap bounds the work; at the cap, free nodes are settled on
+  // their own graph (edges between free nodes then satisfy the bound; small excesses may
+  // remain on a few edges at hanging nodes).
+  std::vector<int> hangingOf(n, -1);
+  for (size_t k = 0; k < hanging.size(); ++k) hangingOf[hanging[k].node] = static_cast<int>(k);
+  std::vector<char> seeded(n, 0);
+  auto seedWithNeighbours = [&](int i) {
+    if (!seeded[i]) {
+      seeded[i] = 1;
+      seeds.push_back(i);
+    }
+    for (int k = start[i]; k < start[i + 1]; ++k)
+      if (!seeded[nbr[k]]) {
+        seeded[nbr[k]] = 1;
+        seeds.push_back(nbr[k]);
+      }
+  };
+  bool settled = false;
+  std::vector<SymMt> before(hanging.size());
+  for (int round = 0; round < 48; ++round) {
+    // Hanging nodes moved by the work-set, finest first (max-heap on the index, which
+    // follows the level); a hanging master that shrinks joins the heap, so the shrink
+    // reaches free masters within the round.
+    std::vector<int> dirty;
+    std::vector<char> inDirty(hanging.size(), 0);
+    for (int i = 0; i < n; ++i)
+      if (changed[i] && hangingOf[i] >= 0) {
+        dirty.push_back(hangingOf[i]);
+        inDirty[hangingOf[i]] = 1;
+      }
+    std::fill(changed.begin(), changed.end(), 0);
+    std::make_heap(dirty.begin(), dirty.end());
+    std::vector<int> movedMasters;
+    while (!dirty.empty()) {
+      std::pop_heap(dirty.begin(), dirty.end());
+      const int k = dirty.back();
+      dirty.pop_back();
+      const auto& h = hanging[k];
+      const Metric smoothed = cs.nodeMetric(h.node);
+      if (difference(toMetric(interpolateHanging(cs, h)), smoothed) <= tol) continue;
+      for (int j = 0; j < 3; ++j) {
+        if (h.weights[j] <= 0.0) continue;
+        const int mk = h.masters[j];
+        const Metric m = cs.nodeMetric(mk);
+        const Metric cand = intersect(m, smoothed);
+        if (difference(m, cand) <= tol) continue;
+        cs.setNodeMetric(mk, cand);
+        ++updates;
+        movedMasters.push_back(mk);
+        const int km = hangingOf[mk];
+        if (km >= 0 && !inDirty[km]) {
+          inDirty[km] = 1;
+          dirty.push_back(km);
+          std::push_heap(dirty.begin(), dirty.end());
+        }
+      }
+    }
+    // Hanging nodes take their interpolation again: those that moved (smoothed, or their
+    // masters changed) must limit their neighbours and be limited by them once more.
+    for (size_t k = 0; k < hanging.size(); ++k) before[k] = cs.nodeMt(hanging[k].node);
+    cs.applyConstraints();
+    seeds.clear();
+    std::fill(seeded.begin(), seeded.end(), 0);
+    for (size_t k = 0; k < hanging.size(); ++k) {
+      const SymMt& now = cs.nodeMt(hanging[k].node);
+      const SymMt& was = before[k];
+      const double scale = std::max({std::abs(was.a), std::abs(was.b), std::abs(was.c)});
+      if (std::max({std::abs(now.a - was.a), std::abs(now.b - was.b), std::abs(now.c - was.c)}) <= tol * scale) continue;
+      const int d = hanging[k].node;
+      // Finer than before: limiting its neighbours (taking it) is enough. Otherwise its
+      // neighbours must limit it again too.
+      const Mat2 iw = toMetric(now).transform().inverse();
+      const Mat2 q = iw * toMetric(was).tensor() * iw;
+      const double half = 0.5 * (q(0, 0) - q(1, 1)), off = q(0, 1);
+      const bool finer = 0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off) <= 1.0 + tol;
+      if (finer) {
+        if (!seeded[d]) {
+          seeded[d] = 1;
+          seeds.push_back(d);
+        }
+      } else {
+        seedWithNeighbours(d);
+      }
+    }
+    for (int m : movedMasters) seedWithNeighbours(m);
+    if (seeds.empty()) {
+      settled = true;
+      break;
+    }
+    std::sort(seeds.begin(), seeds.end());
+    updates += gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed);
+  }
+  if (!settled) {
+    std::vector<int> fstart, fnbr;
+    edgeAdjacency(cs.controlEdges(), n, fstart, fnbr);
+    seeds.clear();
+    for (int i = 0; i < n; ++i)
+      if (cs.nodeIsFree(i)) seeds.push_back(i);
+    updates += gradationWorkSet(cs, fstart, fnbr, seeds, slope, tol, changed);
   }
   cs.applyConstraints();
   return updates;

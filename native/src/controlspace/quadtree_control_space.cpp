@@ -344,7 +344,20 @@ void QuadtreeControlSpace::applyConstraints() {
   }
 }
 
-std::vector<std::array<int, 2>> QuadtreeControlSpace::controlEdges() const {
+std::vector<std::array<int, 2>> QuadtreeControlSpace::controlEdges() const { return sideEdges(true); }
+
+std::vector<std::array<int, 2>> QuadtreeControlSpace::structureEdges() const { return sideEdges(false); }
+
+std::vector<AdaptiveControlSpace::HangingNode> QuadtreeControlSpace::hangingNodes() const {
+  rebuildConstraints();
+  std::vector<HangingNode> out;
+  out.reserve(constraints_.size());
+  for (const auto& k : constraints_)
+    out.push_back({k.node, {k.master[0], k.master[1], k.master[2]}, {k.weight[0], k.weight[1], k.weight[2]}});
+  return out;
+}
+
+std::vector<std::array<int, 2>> QuadtreeControlSpace::sideEdges(bool freeOnly) const {
   rebuildConstraints();
   std::vector<std::array<int, 2>> edges;
   const int sides[4][3] = {{0, 1, 4}, {1, 2, 5}, {3, 2, 6}, {0, 3, 7}};
@@ -370,7 +383,7 @@ std::vector<std::array<int, 2>> QuadtreeControlSpace::controlEdges() const {
       int prev = -1;
       for (int i = 0; i < n; ++i) {
         const int v = chain[i];
-        if (v < 0 || !nodeIsFree(v)) continue;
+        if (v < 0 || (freeOnly && !nodeIsFree(v))) continue;
         if (prev >= 0) edges.push_back({std::min(prev, v), std::max(prev, v)});
         prev = v;
       }

@@ -128,17 +128,61 @@ std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const
     }
 
   std::map<const Curve*, std::vector<Vec2>> points;  // discretized once, shared by every use
-  std::int64_t total = 0;
-  for (const auto& entry : minimum) {
-    const Curve& c = *entry.first;
+  auto discretizeOne = [&](const Curve* c) {
     std::vector<Vec2> pts;
-    for (double t : discretizeCurve(c, cs, entry.second, options)) pts.push_back(c.point(t));
-    total += std::int64_t(pts.size()) - 1;
+    for (double t : discretizeCurve(*c, cs, minimum[c], options)) pts.push_back(c->point(t));
+    points[c] = std::move(pts);
+  };
+  auto checkBudget = [&] {
+    std::int64_t total = 0;
+    for (const auto& e : points) total += std::int64_t(e.second.size()) - 1;
     require(total <= options.maxSegments, ErrorCode::ElementBudgetExceeded,
             "the contour discretization exceeds the budget of " + std::to_string(options.maxSegments) +
                 " boundary segments");
-    points[&c] = std::move(pts);
-  }
+  };
+  for (const auto& entry : minimum) discretizeOne(entry.first);
+  checkBudget();
+
+  // Chained points of one contour, and the curve of each of its segments.
+  auto assemble = [&](const Contour& contour, BoundaryLoop* loop, std::vector<const Curve*>* owner) {
+    for (const CurveUse& u : contour.curves) {
+      std::vector<Vec2> pts = points.at(u.curve.get());
+      if (u.reversed) std::reverse(pts.begin(), pts.end());
+      // The last point is the next curve's first point.
+      loop->points.insert(loop->points.end(), pts.begin(), pts.end() - 1);
+      loop->edgeRefs.insert(loop->edgeRefs.end(), pts.size() - 1, u.curve->ref());
+      if (owner) owner->insert(owner->end(), pts.size() - 1, u.curve.get());
+    }
+  };
+
+  // Chords of nearby curves may cross although the curves do not: refine both curves
+  // (double their segments) until the polygons are clean (section 3.2 "invalid contour").
+  if (options.refineCrossings)
+    for (int round = 0;; ++round) {
+      bool refined = false;
+      for (const Domain* face : faces) {
+        std::vector<std::vector<Vec2>> polygons;
+        std::vector<std::vector<const Curve*>> owners;
+        for (const Contour* contour : contoursOf(*face)) {
+          BoundaryLoop loop;
+          owners.emplace_back();
+          assemble(*contour, &loop, &owners.back());
+          polygons.push_back(std::move(loop.points));
+        }
+        PolygonCrossing x;
+        if (!findPolygonCrossing(polygons, &x)) continue;
+        require(round < options.maxRefinementRounds, ErrorCode::SelfIntersectingContour,
+                "the boundary discretization crosses itself near " + formatPoint(x.where) + " even after " +
+                    std::to_string(round) + " refinements: curves too close for the requested metric, or crossing curves");
+        for (const Curve* c : {owners[size_t(x.polygonA)][size_t(x.segmentA)], owners[size_t(x.polygonB)][size_t(x.segmentB)]}) {
+          minimum[c] = std::max(minimum[c], 2 * int(points[c].size() - 1));
+          discretizeOne(c);
+        }
+        checkBudget();
+        refined = true;
+      }
+      if (!refined) break;
+    }
 
   std::vector<std::vector<BoundaryLoop>> result;
   for (const Domain* face : faces) {
@@ -146,21 +190,15 @@ std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const
     const auto contours = contoursOf(*face);
     for (size_t k = 0; k < contours.size(); ++k) {
       BoundaryLoop loop;
-      for (const CurveUse& u : contours[k]->curves) {
-        std::vector<Vec2> pts = points.at(u.curve.get());
-        if (u.reversed) std::reverse(pts.begin(), pts.end());
-        // The last point is the next curve's first point.
-        loop.points.insert(loop.points.end(), pts.begin(), pts.end() - 1);
-        loop.edgeRefs.insert(loop.edgeRefs.end(), pts.size() - 1, u.curve->ref());
-      }
+      assemble(*contours[k], &loop, nullptr);
       // Outer counter-clockwise, holes clockwise.
       const bool ccw = signedArea(loop.points) > 0;
       if (ccw != (k == 0)) {
         const int n = int(loop.points.size());
         BoundaryLoop rev;
         for (int i = 0; i < n; ++i) {
-          rev.points.push_back(loop.points[n - 1 - i]);
-          rev.edgeRefs.push_back(loop.edgeRefs[((n - 2 - i) % n + n) % n]);
+          rev.points.push_back(loop.points[size_t(n - 1 - i)]);
+          rev.edgeRefs.push_back(loop.edgeRefs[size_t(((n - 2 - i) % n + n) % n)]);
         }
         loop = std::move(rev);
       }

@@ -49,10 +49,9 @@ void sampleUse(const CurveUse& use, int samples, std::vector<Vec2>* out) {
 
 struct Segment {
   Vec2 a, b;
-  int contour;  // 0 = outer, k = holes[k - 1]
-  int curve;    // index of the curve in its contour
-  int index;    // index of the segment in its contour
-  int count;    // number of segments of its contour
+  int polygon;  // index of its polygon
+  int index;    // index of the segment in its polygon
+  int count;    // number of segments of its polygon
 };
 
 std::string curveName(const Domain& d, int contour, int curve) {
@@ -141,6 +140,57 @@ bool pointInPolygon(const std::vector<Vec2>& polygon, const Vec2& p) {
   return inside;
 }
 
+bool findPolygonCrossing(const std::vector<std::vector<Vec2>>& polygons, PolygonCrossing* out) {
+  std::vector<Segment> segs;
+  Box2 box{Vec2::Constant(INFINITY), Vec2::Constant(-INFINITY)};
+  for (size_t k = 0; k < polygons.size(); ++k) {
+    const auto& pts = polygons[k];
+    const int n = int(pts.size());
+    for (int i = 0; i < n; ++i) {
+      segs.push_back({pts[size_t(i)], pts[size_t((i + 1) % n)], int(k), i, n});
+      box.lo = box.lo.cwiseMin(pts[size_t(i)]);
+      box.hi = box.hi.cwiseMax(pts[size_t(i)]);
+    }
+  }
+  if (segs.empty()) return false;
+  const double diag = box.size().norm() > 0 ? box.size().norm() : 1.0;
+  // Uniform grid over the bounding box; every segment is binned in the cells its box covers.
+  const double eps = 1e-12 * diag * diag;
+  const int side = std::max(1, std::min(1024, int(std::sqrt(double(segs.size())))));
+  const Vec2 lo = box.lo, extent = box.size().cwiseMax(Vec2::Constant(1e-300));
+  auto cellOf = [&](double v, int axis) {
+    const int c = int((v - lo[axis]) / extent[axis] * side);
+    return std::min(std::max(c, 0), side - 1);
+  };
+  std::vector<std::vector<int>> cells(size_t(side) * side);
+  for (int s = 0; s < int(segs.size()); ++s) {
+    const Vec2 a = segs[size_t(s)].a.cwiseMin(segs[size_t(s)].b), b = segs[size_t(s)].a.cwiseMax(segs[size_t(s)].b);
+    for (int x = cellOf(a.x(), 0); x <= cellOf(b.x(), 0); ++x)
+      for (int y = cellOf(a.y(), 1); y <= cellOf(b.y(), 1); ++y) cells[size_t(y) * side + x].push_back(s);
+  }
+  for (const auto& cell : cells)
+    for (size_t i = 0; i < cell.size(); ++i)
+      for (size_t j = i + 1; j < cell.size(); ++j) {
+        const Segment& s = segs[size_t(cell[i])];
+        const Segment& t = segs[size_t(cell[j])];
+        Vec2 where;
+        bool meet;
+        if (s.polygon == t.polygon && s.count > 1 &&
+            (t.index == (s.index + 1) % s.count || s.index == (t.index + 1) % s.count)) {
+          if (s.count == 2) continue;
+          meet = adjacentFold(s, t, eps);
+          where = (t.index == (s.index + 1) % s.count) ? s.b : s.a;
+        } else {
+          meet = segmentsMeet(s, t, eps, &where);
+        }
+        if (meet) {
+          *out = {s.polygon, s.index, t.polygon, t.index, where};
+          return true;
+        }
+      }
+  return false;
+}
+
 void validateDomain(const Domain& domain, const DomainValidationOptions& options) {
   std::vector<const Contour*> contours{&domain.outer};
   for (const Contour& h : domain.holes) contours.push_back(&h);
@@ -177,8 +227,8 @@ void validateDomain(const Domain& domain, const DomainValidationOptions& options
   }
 
   // Polyline approximation with the curve index of each segment.
-  std::vector<Segment> segs;
   std::vector<std::vector<Vec2>> polygons;
+  std::vector<std::vector<int>> owners;
   for (size_t k = 0; k < contours.size(); ++k) {
     std::vector<Vec2> pts;
     std::vector<int> owner;
@@ -187,48 +237,18 @@ void validateDomain(const Domain& domain, const DomainValidationOptions& options
       sampleUse(contours[k]->curves[i], options.samplesPerCurve, &pts);
       owner.insert(owner.end(), pts.size() - before, int(i));
     }
-    const int n = int(pts.size());
-    for (int i = 0; i < n; ++i) segs.push_back({pts[i], pts[(i + 1) % n], int(k), owner[i], i, n});
     polygons.push_back(std::move(pts));
+    owners.push_back(std::move(owner));
   }
-
-  // Uniform grid over the bounding box; every segment is binned in the cells its box covers.
-  const double eps = 1e-12 * diag * diag;
-  const int side = std::max(1, std::min(1024, int(std::sqrt(double(segs.size())))));
-  const Vec2 lo = box.lo, extent = box.size().cwiseMax(Vec2::Constant(1e-300));
-  auto cellOf = [&](double v, int axis) {
-    const int c = int((v - lo[axis]) / extent[axis] * side);
-    return std::min(std::max(c, 0), side - 1);
-  };
-  std::vector<std::vector<int>> cells(size_t(side) * side);
-  for (int s = 0; s < int(segs.size()); ++s) {
-    const Vec2 a = segs[s].a.cwiseMin(segs[s].b), b = segs[s].a.cwiseMax(segs[s].b);
-    for (int x = cellOf(a.x(), 0); x <= cellOf(b.x(), 0); ++x)
-      for (int y = cellOf(a.y(), 1); y <= cellOf(b.y(), 1); ++y) cells[size_t(y) * side + x].push_back(s);
+  PolygonCrossing x;
+  if (findPolygonCrossing(polygons, &x)) {
+    const std::string what =
+        x.polygonA == x.polygonB ? "the contour intersects itself" : "the contours cross or touch";
+    throw Error(ErrorCode::SelfIntersectingContour,
+                curveName(domain, x.polygonA, owners[size_t(x.polygonA)][size_t(x.segmentA)]) + " meets " +
+                    curveName(domain, x.polygonB, owners[size_t(x.polygonB)][size_t(x.segmentB)]) + " near " +
+                    formatPoint(x.where) + ": " + what);
   }
-  for (const auto& cell : cells)
-    for (size_t i = 0; i < cell.size(); ++i)
-      for (size_t j = i + 1; j < cell.size(); ++j) {
-        const Segment& s = segs[cell[i]];
-        const Segment& t = segs[cell[j]];
-        Vec2 where;
-        bool meet;
-        const bool sameContour = s.contour == t.contour;
-        if (sameContour && s.count > 1 &&
-            (t.index == (s.index + 1) % s.count || s.index == (t.index + 1) % s.count)) {
-          if (s.count == 2) continue;
-          meet = adjacentFold(s, t, eps);
-          where = (t.index == (s.index + 1) % s.count) ? s.b : s.a;
-        } else {
-          meet = segmentsMeet(s, t, eps, &where);
-        }
-        if (meet) {
-          const std::string what = sameContour ? "the contour intersects itself" : "the contours cross or touch";
-          throw Error(ErrorCode::SelfIntersectingContour, curveName(domain, s.contour, s.curve) + " meets " +
-                                                              curveName(domain, t.contour, t.curve) + " near " +
-                                                              formatPoint(where) + ": " + what);
-        }
-      }
 
   // With no crossings, one point decides containment (bounding boxes skip far holes).
   std::vector<Box2> boxes;

@@ -2,9 +2,11 @@
 // exact Delaunay triangulation of the boundary points in a super-box, boundary recovery
 // by edge flips, removal of outside triangles by parity flood fill, frontal-Delaunay
 // insertion of inner nodes in the metric (Rebay-style point placement, Bowyer-Watson
-// cavities judged by each triangle's metric circumcircle), then metric edge swaps and
-// node smoothing. Data layout is flat arrays with triangle neighbours; no per-insertion
-// heap allocation on the hot path.
+// cavities judged by each triangle's metric circumcircle), then metric edge swaps,
+// collapse of the short edges left where fronts meet, and node smoothing. Data layout is
+// flat arrays of triangle records with neighbour indices; no per-insertion heap
+// allocation on the hot path; the vertices are renumbered along a Hilbert curve before
+// the improvement passes for cache locality.
 #include "anisomesh/mesh/planar_mesher.h"
 
 #include <algorithm>
@@ -14,7 +16,6 @@
 #include <cstdint>
 #include <deque>
 #include <limits>
-#include <queue>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -32,14 +33,16 @@ double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-constexpr int kSuper = 4;                         // super-box corners are vertices 0..3
-constexpr double kIdealRadius = 0.57735026918962576;  // circumradius of the unit equilateral triangle
-constexpr double kAcceptRadius = 0.70710678118654752; // triangles with metric radius below are done
-
-constexpr int kBucketOffset = 4 * 1100;          // bucket index offset: covers every double exponent
-constexpr double kEstimateFactor = 1.0;  // measured: within ~10% on the layer test cases
-constexpr double kSwapSkipQuality = 0.97;    // pairs whose worse triangle is better are not swapped
-constexpr double kSmoothSkipQuality = 0.9;     // balls whose worst triangle is better are not smoothed
+constexpr int kSuper = 4;                              // super-box corners are vertices 0..3
+constexpr double kIdealRadius = 0.57735026918962576;   // circumradius of the unit equilateral triangle
+constexpr double kAcceptRadius = 0.70710678118654752;  // triangles with metric radius below are done
+constexpr int kBucketOffset = 4 * 1100;                // bucket index offset: covers every double exponent
+constexpr double kEstimateFactor = 1.0;                // measured: within ~10% on the layer test cases
+constexpr double kSwapSkipQuality = 0.97;              // pairs whose worse triangle is better are not swapped
+constexpr double kCollapseLength = 0.6;                // shorter edges are collapsed
+constexpr double kCollapseMaxLength = 1.3;             // ... unless a new edge would be longer
+constexpr double kCollapseMinQuality = 0.4;            // ... or a triangle worse than this (or than before)
+constexpr double kSmoothSkipQuality = 0.9;             // balls whose worst triangle is better are not smoothed
 
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
 inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
@@ -91,6 +94,8 @@ class Mesher {
   void improve();
   int swapSweep(const std::vector<int>& work, std::vector<int>& next);
   int smoothPass(std::vector<int>& touched);
+  int collapsePass(std::vector<int>& touched);
+  bool tryCollapse(int a, int b, std::vector<int>& touched);
 
   // ---- metric helpers ----
   void computeCache(int t);
@@ -107,14 +112,16 @@ class Mesher {
     SymMt m;
   };
   std::vector<Vtx> vx_;
-  std::vector<std::uint8_t> vbnd_;  // 1: boundary or super vertex (never moved)
+  std::vector<std::uint8_t> vbnd_;  // 1: boundary or super vertex (never moved), 2: removed
   std::vector<int> vtri_;
   // Triangle: vertices (counter-clockwise), neighbours (n[i] across the edge opposite
   // v[i]) and constrained-edge bits, together in one cache line.
   struct Tri {
     std::array<int, 3> v;
     std::array<int, 3> n;
-    std::uint8_t c;
+    std::uint8_t c;         // constrained-edge bits
+    std::uint8_t acc;       // frontal insertion: accepted (done)
+    std::uint32_t mark;     // cavity / work-list epoch
   };
   std::vector<Tri> tri_;
   std::vector<int> freeTris_;
@@ -123,7 +130,7 @@ class Mesher {
   int nBoundary_ = 0;
 
   // cavity scratch (reused)
-  std::vector<std::uint32_t> mark_, forbid_, vmark_;
+  std::vector<std::uint32_t> forbid_, vmark_;
   std::uint32_t epoch_ = 0, fepoch_ = 0;
   std::vector<int> cav_;
   struct BndEdge {
@@ -136,9 +143,10 @@ class Mesher {
 
   // frontal state
   std::vector<TriCache> cache_;
-  std::vector<std::uint8_t> accepted_;
   std::vector<std::uint32_t> stamp_, queued_;
   std::vector<double> tq_;  // triangle metric quality (improvement stage)
+  std::vector<int> colBall_, colRing_;
+  std::vector<std::uint8_t> vdirty_;  // improvement: vertex whose surroundings changed
   bool metricMode_ = false;
 
   double estimate_ = 0.0;
@@ -181,12 +189,10 @@ int Mesher::allocTri() {
     ++stamp_[t];
     return t;
   }
-  tri_.push_back(Tri{{-1, -1, -1}, {-1, -1, -1}, 0});
-  mark_.push_back(0);
+  tri_.push_back(Tri{{-1, -1, -1}, {-1, -1, -1}, 0, 0, 0});
   forbid_.push_back(0);
   stamp_.push_back(0);
   queued_.push_back(std::numeric_limits<std::uint32_t>::max());
-  accepted_.push_back(0);
   cache_.emplace_back();
   return static_cast<int>(tri_.size()) - 1;
 }
@@ -269,15 +275,15 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
     ++epoch_;
     cav_.clear();
     cav_.push_back(t0);
-    mark_[t0] = epoch_;
+    tri_[t0].mark = epoch_;
     for (size_t k = 0; k < cav_.size(); ++k) {
       const int t = cav_[k];
       for (int i = 0; i < 3; ++i) {
         if (cons(t, i)) continue;
         const int nb = tri_[t].n[i];
-        if (nb < 0 || mark_[nb] == epoch_ || forbid_[nb] == fepoch_) continue;
+        if (nb < 0 || tri_[nb].mark == epoch_ || (attempt > 0 && forbid_[nb] == fepoch_)) continue;
         if (inCircle(nb)) {
-          mark_[nb] = epoch_;
+          tri_[nb].mark = epoch_;
           cav_.push_back(nb);
         }
       }
@@ -287,7 +293,7 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
     for (const int t : cav_) {
       for (int i = 0; i < 3; ++i) {
         const int nb = tri_[t].n[i];
-        if (nb >= 0 && mark_[nb] == epoch_ && !cons(t, i)) continue;
+        if (nb >= 0 && tri_[nb].mark == epoch_ && !cons(t, i)) continue;
         const int a = tri_[t].v[next3(i)], b = tri_[t].v[prev3(i)];
         if (orient2d(vx_[a].p, vx_[b].p, x) <= 0.0) {
           if (t == t0) return false;
@@ -315,7 +321,10 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
 }
 
 int Mesher::commitCavity(int v) {
-  if (static_cast<int>(startAt_.size()) < static_cast<int>(vx_.size())) {
+  // Small cavities link their new triangles by a scan of the boundary list (no random
+  // access into per-vertex arrays); large ones through startAt_/endAt_.
+  const bool small = bnd_.size() <= 24;
+  if (!small && static_cast<int>(startAt_.size()) < static_cast<int>(vx_.size())) {
     startAt_.resize(vx_.size() + 1024, -1);
     endAt_.resize(vx_.size() + 1024, -1);
   }
@@ -341,15 +350,26 @@ int Mesher::commitCavity(int v) {
     tri_[t].v = {e.a, e.b, v};
     tri_[t].n[2] = e.outer;
     tri_[t].c = e.c ? 4 : 0;
-    accepted_[t] = 0;
+    tri_[t].acc = 0;
     if (e.outer >= 0) setNbrAcross(e.outer, e.a, e.b, t);
-    startAt_[e.a] = t;
-    endAt_[e.b] = t;
+    if (!small) {
+      startAt_[e.a] = t;
+      endAt_[e.b] = t;
+    }
   }
-  for (size_t k = 0; k < bnd_.size(); ++k) {
+  const size_t nb = bnd_.size();
+  for (size_t k = 0; k < nb; ++k) {
     const int t = newTris_[k];
-    tri_[t].n[0] = startAt_[bnd_[k].b];
-    tri_[t].n[1] = endAt_[bnd_[k].a];
+    if (small) {
+      // Edge (b, v) borders the new triangle starting at b; edge (v, a) the one ending at a.
+      for (size_t j = 0; j < nb; ++j) {
+        if (bnd_[j].a == bnd_[k].b) tri_[t].n[0] = newTris_[j];
+        if (bnd_[j].b == bnd_[k].a) tri_[t].n[1] = newTris_[j];
+      }
+    } else {
+      tri_[t].n[0] = startAt_[bnd_[k].b];
+      tri_[t].n[1] = endAt_[bnd_[k].a];
+    }
     vtri_[bnd_[k].a] = t;
   }
   vtri_[v] = newTris_[0];
@@ -379,6 +399,7 @@ void Mesher::flip(int t, int i) {
   ++stamp_[t];
   ++stamp_[nb];
   vtri_[p] = t;
+  if (!vdirty_.empty()) vdirty_[p] = vdirty_[u] = vdirty_[q] = vdirty_[w] = 1;
   vtri_[u] = t;
   vtri_[q] = nb;
   vtri_[w] = nb;
@@ -574,6 +595,27 @@ void Mesher::removeOutside() {
       }
     }
   }
+  // The region inside the outer loop has depth 1 and each hole's inside depth 2; anything
+  // else is a hole outside the outer loop, or a hole inside another hole.
+  int firstEdge = 0;
+  for (size_t l = 0; l < loops_.size(); ++l) {
+    const int m = static_cast<int>(loops_[l].points.size());
+    const int a = bedges_[firstEdge][0], b = bedges_[firstEdge][1];
+    int idx;
+    const int t = findEdge(a, b, &idx);
+    require(t >= 0, ErrorCode::Internal, "meshPlanarBoundary: boundary edge lost");
+    const int nb = tri_[t].n[idx];
+    const int deeper = std::max(depth[t], nb >= 0 ? depth[nb] : 0);
+    if (l == 0) {
+      require(deeper == 1, ErrorCode::HoleOutsideDomain,
+              "meshPlanarBoundary: the outer loop (loop 0) lies inside another loop");
+    } else {
+      require(deeper == 2, ErrorCode::HoleOutsideDomain,
+              "meshPlanarBoundary: hole loop " + std::to_string(l) +
+                  (deeper < 2 ? " lies outside the outer loop" : " lies inside another hole"));
+    }
+    firstEdge += m;
+  }
   std::vector<int> remap(nt, -1);
   int kept = 0;
   for (int t = 0; t < nt; ++t)
@@ -584,15 +626,15 @@ void Mesher::removeOutside() {
     const int k = remap[t];
     if (k < 0) continue;
     tris[k] = tri_[t];
+    tris[k].acc = 0;
+    tris[k].mark = 0;
     for (int i = 0; i < 3; ++i) tris[k].n[i] = tri_[t].n[i] >= 0 ? remap[tri_[t].n[i]] : -1;
   }
   tri_.swap(tris);
   freeTris_.clear();
-  mark_.assign(kept, 0);
   forbid_.assign(kept, 0);
   stamp_.assign(kept, 0);
   queued_.assign(kept, std::numeric_limits<std::uint32_t>::max());
-  accepted_.assign(kept, 0);
   cache_.assign(kept, TriCache());
   std::fill(vtri_.begin(), vtri_.end(), -1);
   for (int t = 0; t < kept; ++t)
@@ -624,7 +666,7 @@ double Mesher::metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double
 
 // Metric area of the domain, the larger of two estimates: adaptive quadrature over the
 // boundary triangles (resolves metric features that touch the boundary) and a scanline
-// sampling on a 256-row grid with even-odd coverage (sees features inside the domain that
+// sampling on a grid of up to 256 rows with even-odd coverage (sees features inside the domain that
 // no boundary triangle vertex samples).
 double Mesher::estimateMetricArea() {
   std::int64_t budget = 200000;
@@ -639,7 +681,8 @@ double Mesher::estimateMetricArea() {
     lo = lo.cwiseMin(vx_[v].p);
     hi = hi.cwiseMax(vx_[v].p);
   }
-  constexpr int kRows = 256;
+  // As many rows as boundary points (64..256): the sampling stays cheap next to the mesh.
+  const int kRows = std::min(256, std::max(64, nBoundary_));
   const double dy = (hi.y() - lo.y()) / kRows, dx = (hi.x() - lo.x()) / kRows;
   if (!(dx > 0.0) || !(dy > 0.0)) return adaptive;
   double grid = 0.0;
@@ -715,10 +758,10 @@ void Mesher::insertInnerNodes() {
   const double acc2 = kAcceptRadius * kAcceptRadius;
 
   auto isActive = [&](int t) {
-    if (accepted_[t]) return false;
+    if (tri_[t].acc) return false;
     for (int i = 0; i < 3; ++i) {
       const int nb = tri_[t].n[i];
-      if (nb < 0 || cons(t, i) || accepted_[nb]) return true;
+      if (nb < 0 || cons(t, i) || tri_[nb].acc) return true;
     }
     return false;
   };
@@ -733,7 +776,7 @@ void Mesher::insertInnerNodes() {
   const int nt0 = static_cast<int>(tri_.size());
   for (int t = 0; t < nt0; ++t) {
     computeCache(t);
-    accepted_[t] = cache_[t].r2 <= acc2;
+    tri_[t].acc = cache_[t].r2 <= acc2;
   }
   for (int t = 0; t < nt0; ++t) pushIfActive(t);
 
@@ -746,7 +789,7 @@ void Mesher::insertInnerNodes() {
     const Item it = buckets[top].back();
     buckets[top].pop_back();
     const int t = it.t;
-    if (stamp_[t] != it.stamp || tri_[t].v[0] < 0 || accepted_[t]) continue;
+    if (stamp_[t] != it.stamp || tri_[t].v[0] < 0 || tri_[t].acc) continue;
     queued_[t] = std::numeric_limits<std::uint32_t>::max();
     // Front edge: an edge on the boundary or next to an accepted triangle, the one
     // whose metric length is closest to 1.
@@ -755,7 +798,7 @@ void Mesher::insertInnerNodes() {
     double bestDev = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 3; ++i) {
       const int nb = tri_[t].n[i];
-      if (!(nb < 0 || cons(t, i) || accepted_[nb])) continue;
+      if (!(nb < 0 || cons(t, i) || tri_[nb].acc)) continue;
       const double len = tc.m.length(vx_[tri_[t].v[prev3(i)]].p - vx_[tri_[t].v[next3(i)]].p);
       const double dev = std::fabs(len - 1.0);
       if (dev < bestDev) {
@@ -796,7 +839,7 @@ void Mesher::insertInnerNodes() {
       }
     }
     if (!ok) {
-      accepted_[t] = 1;  // give up on this triangle; its neighbours join the front
+      tri_[t].acc = 1;  // give up on this triangle; its neighbours join the front
       for (int i = 0; i < 3; ++i)
         if (tri_[t].n[i] >= 0) pushIfActive(tri_[t].n[i]);
       continue;
@@ -808,10 +851,10 @@ void Mesher::insertInnerNodes() {
     commitCavity(v);
     for (const int nt : newTris_) {
       computeCache(nt);
-      accepted_[nt] = cache_[nt].r2 <= acc2;
+      tri_[nt].acc = cache_[nt].r2 <= acc2;
     }
     for (const int nt : newTris_) {
-      if (accepted_[nt]) {
+      if (tri_[nt].acc) {
         for (int i = 0; i < 3; ++i)
           if (tri_[nt].n[i] >= 0) pushIfActive(tri_[nt].n[i]);
       } else {
@@ -872,7 +915,7 @@ int Mesher::smoothPass(std::vector<int>& touched) {
   std::vector<int> ring, ballTri;
   const int nv = static_cast<int>(vx_.size());
   for (int v = kSuper; v < nv; ++v) {
-    if (vbnd_[v]) continue;
+    if (vbnd_[v] || !vdirty_[v]) continue;  // clean: nothing around it changed since its last visit
     ring.clear();
     ballTri.clear();
     const int t0 = vtri_[v];
@@ -896,6 +939,7 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     target /= static_cast<double>(ring.size());
     double before = std::numeric_limits<double>::infinity();
     for (const int bt : ballTri) before = std::min(before, tq_[bt]);
+    vdirty_[v] = 0;
     if (before >= kSmoothSkipQuality) continue;  // already good: not worth the metric queries
     // Candidates in order of preference: unit-length target (edge lengths), halfway to it,
     // then the ring centroid (Laplacian; the same in any constant metric) and halfway to
@@ -923,6 +967,8 @@ int Mesher::smoothPass(std::vector<int>& touched) {
       break;
     }
     if (best < 0) continue;
+    for (const int r : ring) vdirty_[r] = 1;
+    vdirty_[v] = 1;
     vx_[v].p = cands[best];
     vx_[v].m = queryMetric(cands[best]);
     for (size_t k = 0; k < ballTri.size(); ++k) touched.push_back(ballTri[k]);
@@ -999,15 +1045,15 @@ void Mesher::renumberSpatially() {
     const int k = tmap[t];
     if (k < 0) continue;
     tris[k] = tri_[t];
+    tris[k].acc = 0;
+    tris[k].mark = 0;
     for (int i = 0; i < 3; ++i) tris[k].n[i] = tri_[t].n[i] >= 0 ? tmap[tri_[t].n[i]] : -1;
   }
   tri_.swap(tris);
   freeTris_.clear();
-  mark_.assign(live, 0);
   forbid_.assign(live, 0);
   stamp_.assign(live, 0);
   queued_.assign(live, 0);
-  accepted_.assign(live, 0);
   cache_.clear();
   cache_.shrink_to_fit();
   vtri_.assign(nv, -1);
@@ -1015,7 +1061,139 @@ void Mesher::renumberSpatially() {
     for (int i = 0; i < 3; ++i) vtri_[tri_[t].v[i]] = t;
 }
 
+// Collapses inner vertex a onto its neighbour b (edge a-b too short): the two triangles
+// of the edge disappear, the rest of a's ball is re-attached to b. Refused when the link
+// condition fails (would create a duplicate edge), when a triangle would turn or become
+// poor, or when a new edge would be too long.
+bool Mesher::tryCollapse(int a, int b, std::vector<int>& touched) {
+  if (vbnd_[a]) return false;
+  std::vector<int>& ball = colBall_;
+  std::vector<int>& ring = colRing_;
+  ball.clear();
+  ring.clear();
+  const int t0 = vtri_[a];
+  int t = t0;
+  for (int guard = 0; guard < 1000; ++guard) {
+    const auto& tv = tri_[t].v;
+    const int i = tv[0] == a ? 0 : (tv[1] == a ? 1 : 2);
+    ball.push_back(t);
+    ring.push_back(tv[next3(i)]);
+    t = tri_[t].n[next3(i)];
+    if (t < 0 || t == t0) break;
+  }
+  if (t != t0) return false;
+  const int deg = static_cast<int>(ring.size());
+  if (deg < 4) return false;
+  int kb = -1;
+  for (int k = 0; k < deg; ++k)
+    if (ring[k] == b) kb = k;
+  if (kb < 0) return false;
+  const int k1 = kb, k2 = (kb + deg - 1) % deg;  // T1 = (a, b, x), T2 = (a, y, b)
+  const int x = ring[(kb + 1) % deg], y = ring[k2];
+  // Link condition: the only common neighbours of a and b are x and y.
+  ++epoch_;
+  if (vmark_.size() < vx_.size()) vmark_.resize(vx_.size() + 1024, 0);
+  for (const int r : ring) vmark_[r] = epoch_;
+  {
+    int tb = vtri_[b];
+    for (int dir = 0; dir < 2; ++dir) {  // counter-clockwise, then clockwise if open
+      int u = tb;
+      for (int guard = 0; guard < 1000 && u >= 0; ++guard) {
+        const auto& tv = tri_[u].v;
+        const int i = tv[0] == b ? 0 : (tv[1] == b ? 1 : 2);
+        for (const int w : {tv[next3(i)], tv[prev3(i)]})
+          if (w != a && w != x && w != y && vmark_[w] == epoch_) return false;
+        u = tri_[u].n[dir == 0 ? next3(i) : prev3(i)];
+        if (u == tb) break;
+      }
+      if (u == tb) break;
+    }
+  }
+  // Geometry: the re-attached triangles stay counter-clockwise, fair, with no long edge.
+  double before = std::numeric_limits<double>::infinity();
+  for (const int bt : ball) before = std::min(before, tq_[bt]);
+  const Vec2& pb = vx_[b].p;
+  for (int k = 0; k < deg; ++k) {
+    const int r = ring[k];
+    if (r != b && SymMt::average2(vx_[b].m, vx_[r].m).length(vx_[r].p - pb) > kCollapseMaxLength) return false;
+    if (k == k1 || k == k2) continue;
+    const int c = ring[(k + 1) % deg];
+    if (orient2d(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
+    if (triQuality(b, r, c) < std::min(before, kCollapseMinQuality)) return false;
+  }
+  // Apply.
+  const int T1 = ball[k1], T2 = ball[k2];
+  auto relink = [&](int dead, int keep, int other, bool constrained) {
+    // In keep, the entry pointing at dead now points at other (with dead's constraint bit).
+    if (keep < 0) return;
+    for (int j = 0; j < 3; ++j)
+      if (tri_[keep].n[j] == dead) {
+        tri_[keep].n[j] = other;
+        if (constrained)
+          tri_[keep].c |= static_cast<std::uint8_t>(1 << j);
+        else
+          tri_[keep].c &= static_cast<std::uint8_t>(~(1 << j));
+        return;
+      }
+  };
+  auto oppositeOf = [&](int tri, int v) {  // index of vertex v in tri
+    const auto& tv = tri_[tri].v;
+    return tv[0] == v ? 0 : (tv[1] == v ? 1 : 2);
+  };
+  const int i1a = oppositeOf(T1, a), i1b = oppositeOf(T1, b);
+  const int n1b = tri_[T1].n[i1a], n1a = tri_[T1].n[i1b];  // across (b, x) and (x, a)
+  const bool c1 = cons(T1, i1a);
+  const int i2a = oppositeOf(T2, a), i2b = oppositeOf(T2, b);
+  const int n2b = tri_[T2].n[i2a], n2a = tri_[T2].n[i2b];  // across (y, b) and (a, y)
+  const bool c2 = cons(T2, i2a);
+  relink(T1, n1a, n1b, c1);
+  relink(T1, n1b, n1a, c1);
+  relink(T2, n2a, n2b, c2);
+  relink(T2, n2b, n2a, c2);
+  for (int k = 0; k < deg; ++k) {
+    if (k == k1 || k == k2) continue;
+    const int bt = ball[k];
+    tri_[bt].v[oppositeOf(bt, a)] = b;
+    tq_[bt] = triQuality(tri_[bt].v[0], tri_[bt].v[1], tri_[bt].v[2]);
+    touched.push_back(bt);
+  }
+  for (const int dead : {T1, T2}) {
+    tri_[dead].v = {-1, -1, -1};
+    ++stamp_[dead];
+    freeTris_.push_back(dead);
+  }
+  for (const int r : ring) vdirty_[r] = 1;
+  vtri_[b] = n1a;
+  vtri_[x] = n1a;
+  vtri_[y] = n2a;
+  vtri_[a] = -1;
+  vbnd_[a] = 2;
+  return true;
+}
+
+// Collapses edges shorter than kCollapseLength where fronts met (frontal insertion leaves
+// a few there), removing the inner end point.
+int Mesher::collapsePass(std::vector<int>& touched) {
+  int collapsed = 0;
+  const int nt = static_cast<int>(tri_.size());
+  for (int t = 0; t < nt; ++t) {
+    if (tri_[t].v[0] < 0) continue;
+    for (int i = 0; i < 3; ++i) {
+      const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
+      if (u > w || cons(t, i)) continue;  // each edge once (from the side where u < w)
+      const double len = SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p);
+      if (len >= kCollapseLength) continue;
+      if (tryCollapse(u, w, touched) || tryCollapse(w, u, touched)) {
+        ++collapsed;
+        break;  // t may be gone
+      }
+    }
+  }
+  return collapsed;
+}
+
 void Mesher::improve() {
+  vdirty_.assign(vx_.size(), 1);
   const int nt = static_cast<int>(tri_.size());
   tq_.assign(nt, 0.0);
   std::vector<int> work, next;
@@ -1029,8 +1207,8 @@ void Mesher::improve() {
     ++epoch_;
     size_t k = 0;
     for (const int t : list)
-      if (mark_[t] != epoch_) {
-        mark_[t] = epoch_;
+      if (tri_[t].mark != epoch_) {
+        tri_[t].mark = epoch_;
         list[k++] = t;
       }
     list.resize(k);
@@ -1046,6 +1224,12 @@ void Mesher::improve() {
   for (int pass = 0; pass < opt_.improvementPasses; ++pass) {
     swaps(6);
     work.clear();
+    if (pass == 0) {
+      collapsePass(work);
+      dedupe(work);
+      swaps(6);
+      work.clear();
+    }
     smoothPass(work);
     // The ball triangles of moved vertices are reconsidered for swaps (the vertex metric
     // changed too, so their cached quality is refreshed).
@@ -1060,23 +1244,28 @@ void Mesher::improve() {
 Mesh Mesher::output() const {
   Mesh m;
   m.dimension = 2;
-  const int nv = static_cast<int>(vx_.size()) - kSuper;
+  // Removed (collapsed) vertices are skipped; boundary vertices keep their places first.
+  std::vector<int> vmap(vx_.size(), -1);
+  int nv = 0;
+  for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v)
+    if (vbnd_[v] != 2) vmap[v] = nv++;
   m.points.reserve(nv);
   m.params.reserve(nv);
   for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v) {
+    if (vmap[v] < 0) continue;
     m.points.emplace_back(vx_[v].p.x(), vx_[v].p.y(), 0.0);
     m.params.push_back(vx_[v].p);
   }
   m.pointRefs.assign(nv, 0);
   for (size_t e = 0; e < bedges_.size(); ++e) {
-    m.edges.push_back({bedges_[e][0] - kSuper, bedges_[e][1] - kSuper});
+    m.edges.push_back({vmap[bedges_[e][0]], vmap[bedges_[e][1]]});
     m.edgeRefs.push_back(bedgeRefs_[e]);
   }
   m.triangles.reserve(tri_.size());
   for (const auto& tr : tri_) {
     const auto& t = tr.v;
     if (t[0] < 0) continue;
-    m.triangles.push_back({t[0] - kSuper, t[1] - kSuper, t[2] - kSuper});
+    m.triangles.push_back({vmap[t[0]], vmap[t[1]], vmap[t[2]]});
   }
   m.triangleRefs.assign(m.triangles.size(), 0);
   return m;
@@ -1120,7 +1309,8 @@ Mesh Mesher::run() {
       t0 = Clock::now();
       std::vector<SymMt> vm;
       vm.reserve(vx_.size() - kSuper);
-      for (size_t v = kSuper; v < vx_.size(); ++v) vm.push_back(vx_[v].m);
+      for (size_t v = kSuper; v < vx_.size(); ++v)
+        if (vbnd_[v] != 2) vm.push_back(vx_[v].m);
       convertToQuads(mesh, vm, opt_.allQuads, cs_);
       timings_.quads = secondsSince(t0);
     }

@@ -88,6 +88,17 @@ class AdaptiveControlSpace : public ControlSpace {
   // Pairs (i < j) of free nodes adjacent along the structure's edges, sorted: the graph
   // of gradation smoothing and extrapolation.
   virtual std::vector<std::array<int, 2>> controlEdges() const = 0;
+  // Pairs (i < j) of nodes adjacent along element sides, hanging nodes included, sorted
+  // (the edges of the structure as drawn; equals controlEdges() without hanging nodes).
+  virtual std::vector<std::array<int, 2>> structureEdges() const { return controlEdges(); }
+  // A hanging node: Mt(node) = sum_k weights[k] Mt(masters[k]).
+  struct HangingNode {
+    int node;
+    std::array<int, 3> masters;
+    std::array<double, 3> weights;
+  };
+  // Hanging nodes in evaluation order (none for a conforming structure).
+  virtual std::vector<HangingNode> hangingNodes() const { return {}; }
   // Number of elements (quadtree leaves or triangles).
   virtual int elementCount() const = 0;
   // Elements for display: corner nodes of every leaf (4, counter-clockwise) or triangle (3).

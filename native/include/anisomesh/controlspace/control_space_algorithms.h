@@ -68,7 +68,10 @@ void intersectControlSpace(AdaptiveControlSpace& cs1, const AdaptiveControlSpace
 
 struct GradationOptions {
   double ratio = 2.0;        // dr >= 1: largest ratio of neighbouring element sizes
-  double tolerance = 1e-12;  // relative change below which a node is not re-queued
+  double tolerance = 1e-10;  // relative change below which a node is not re-queued
+  // Also enforce the bound on edges at hanging nodes (quadtree) by shrinking their
+  // masters; false = only edges between free nodes (controlEdges()), faster.
+  bool throughHangingNodes = true;
 };
 
 // a_max = 2 (dr - 1) / (dr + 1) (eq. 4): slope of the requested length when consecutive
@@ -82,12 +85,14 @@ double gradationSlope(double ratio);
 bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj, double slope,
                     double tolerance = 1e-12);
 
-// Global smoothing (section 2.5.2) with a work-set: all free nodes start in the set; the
-// node with the smallest requested size is taken first (Dijkstra-like order, so most
-// nodes are final when taken) and limits each neighbour along controlEdges(); a
-// neighbour that changed is re-queued. Metrics only grow (Loewner order) and are bounded by the finest
-// metric present, so with the tolerance it terminates; at the end every edge satisfies
-// h_j <= h_i + a_max d. Returns the number of node updates. Throws InvalidArgument for dr < 1.
+// Global smoothing (section 2.5.2) with a work-set: all nodes start in the set; the node
+// with the smallest requested size is taken first (Dijkstra-like order, so most nodes
+// are final when taken) and limits each neighbour along the structure's side edges; a
+// neighbour that changed is re-queued. Metrics only grow (Loewner order) and are bounded
+// by the finest metric present, so with the tolerance it terminates; at the end every
+// edge satisfies h_j <= h_i + a_max d. Quadtree hanging nodes cannot change on their
+// own: see throughHangingNodes and the comment in the implementation. Returns the
+// number of node updates. Throws InvalidArgument for dr < 1.
 int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options = {});
 
 // The metric with the same directions and sizes clamped to [hmin, hmax].

@@ -47,6 +47,8 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
 
   void applyConstraints() override;
   std::vector<std::array<int, 2>> controlEdges() const override;
+  std::vector<std::array<int, 2>> structureEdges() const override;
+  std::vector<HangingNode> hangingNodes() const override;
   int elementCount() const override { return leafCount_; }
   std::vector<std::vector<int>> elementNodes() const override;
   void refine(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) override;
@@ -102,6 +104,7 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   void growMap();
   void splitLeafImpl(int cell);
   void rebuildConstraints() const;
+  std::vector<std::array<int, 2>> sideEdges(bool freeOnly) const;
   ControlElement elementOf(int cell) const;
 
   QuadtreeOptions options_;

@@ -53,6 +53,16 @@ double signedArea(const std::vector<Vec2>& polygon);
 // True when p is strictly inside the closed polygon (even-odd rule).
 bool pointInPolygon(const std::vector<Vec2>& polygon, const Vec2& p);
 
+// Where two segments of closed polygons meet (segment i of a polygon joins points i and i + 1).
+struct PolygonCrossing {
+  int polygonA, segmentA, polygonB, segmentB;
+  Vec2 where;
+};
+
+// Finds a crossing or touching between non-adjacent segments (or adjacent ones folding
+// back) of the closed polygons, using a uniform grid; false when there is none.
+bool findPolygonCrossing(const std::vector<std::vector<Vec2>>& polygons, PolygonCrossing* out);
+
 // Throws Error with OpenContour, ZeroLengthCurve, SelfIntersectingContour or
 // HoleOutsideDomain (message names the contour, the curve index and the place).
 void validateDomain(const Domain& domain, const DomainValidationOptions& options = {});

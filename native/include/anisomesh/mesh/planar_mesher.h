@@ -2,6 +2,21 @@
 // Metric Delaunay meshing of a planar domain (or a patch's parameter domain) whose
 // contours are already discretized: boundary triangulation, boundary recovery,
 // insertion of inner nodes until edges have metric length near 1, improvement.
+//
+// Method (coordinate transformation): each triangle carries the average Mt of its
+// vertices; its circumcircle, acceptance (metric circumradius <= 1/sqrt2) and the
+// Bowyer-Watson cavity test are evaluated in that metric space. Inner nodes are placed
+// frontally (Rebay): from a front edge, at the distance that makes a unit equilateral
+// triangle in the metric. Then metric-quality edge swaps and smoothing. Topological
+// decisions use exact predicates (predicates.h). Output is deterministic bit for bit.
+//
+// Output: boundary points first (loop by loop, input order, unchanged), then inner
+// nodes; boundary edges in input order with their refs; triangles counter-clockwise,
+// refs 0. With quads: greedy merge of triangle pairs (quad metric quality >= 0.3).
+// With allQuads: every element split into quads; boundary edges are split at the
+// midpoint of the straight segment (not projected onto the underlying curve) and the
+// result has edges of about half the requested metric length (discretize the contours
+// at twice the size to get unit quads).
 #include <cstdint>
 #include <functional>
 #include <vector>

@@ -1,0 +1,50 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "mesh_test_util.h"
+
+using namespace anisomesh;
+using namespace meshtest;
+
+// Hand-made mesh: one equilateral triangle in the identity metric scaled to unit edges,
+// one flat and one inverted triangle, one unit square.
+TEST(MeshQuality, ReportOnAHandMadeMesh) {
+  Mesh m;
+  const double h = std::sqrt(3.0) / 2.0;
+  m.params = {{0, 0}, {1, 0}, {0.5, h}, {2, 0}, {3, 0}, {3, 1}, {2, 1}};
+  for (const auto& p : m.params) m.points.emplace_back(p.x(), p.y(), 0.0);
+  m.triangles = {{0, 1, 2}, {0, 1, 3}, {1, 0, 2}};
+  m.quads = {{3, 4, 5, 6}};
+  UniformControlSpace cs({{-1, -1}, {4, 2}}, Metric());
+  const QualityReport r = measureQuality(m, cs);
+  EXPECT_EQ(r.vertices, 7);
+  EXPECT_EQ(r.triangles, 3);
+  EXPECT_EQ(r.quads, 1);
+  EXPECT_EQ(r.inverted, 1);
+  EXPECT_EQ(r.degenerate, 1);
+  EXPECT_NEAR(r.quadQualityMin, 1.0, 1e-12);
+  EXPECT_NEAR(r.triangleQualityMin, -1.0, 1e-12);
+  EXPECT_NEAR(r.edgeLengthMin, 1.0, 1e-12);
+  EXPECT_NEAR(r.edgeLengthMax, 2.0, 1e-12);  // the flat triangle's edge 0-3
+  EXPECT_EQ(std::accumulate(r.qualityHistogram.begin(), r.qualityHistogram.end(), 0), 4);
+  EXPECT_EQ(r.qualityHistogram[9], 2);  // equilateral and square
+  const nlohmann::json j = qualityReportToJson(r);
+  EXPECT_EQ(j["triangles"], 3);
+  EXPECT_EQ(j["inverted"], 1);
+  EXPECT_TRUE(j["quality"].contains("histogram"));
+  EXPECT_TRUE(j["edgeLength"].contains("fractionWithinSqrt2"));
+  EXPECT_TRUE(j["timings"].contains("insertion"));
+}
+
+// Edge lengths are measured in the metric: a mesh built for h = 0.1 measured against
+// h = 0.05 has edges twice as long.
+TEST(MeshQuality, MetricScalesLengths) {
+  UniformControlSpace cs01({{0, 0}, {1, 1}}, Metric::isotropic(0.1));
+  UniformControlSpace cs005({{0, 0}, {1, 1}}, Metric::isotropic(0.05));
+  const Mesh m = meshPlanarBoundary({polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 10)}, cs01);
+  const QualityReport a = measureQuality(m, cs01), b = measureQuality(m, cs005);
+  EXPECT_NEAR(b.edgeLengthMean, 2.0 * a.edgeLengthMean, 1e-9);
+  EXPECT_NEAR(b.qualityMean, a.qualityMean, 1e-9);  // shape quality is scale free
+}
