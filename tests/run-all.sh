@@ -20,7 +20,7 @@ cmake --build build/native -j"$jobs"
 run_layer native bash -c 'cd build/native && ctest --output-on-failure -j"$0"' "$jobs"
 
 stage "native under ASan + UBSan: build and ctest"
-cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DANISOMESH_SANITIZE=ON \
+cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" -DANISOMESH_SANITIZE=ON \
   -DANISOMESH_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build/sanitize -j"$jobs"
 run_layer sanitize bash -c 'cd build/sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j"$0"' "$jobs"
