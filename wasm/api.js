@@ -39,6 +39,86 @@ function checkVector(v, name) {
   return v;
 }
 
+function caseText(c, name = 'case') {
+  if (typeof c === 'string') return c;
+  if (c === null || typeof c !== 'object') throw argError(`${name}: expected a case object or JSON text`);
+  return JSON.stringify(c);
+}
+
+const meshArrays = {
+  vertices: Float64Array, params: Float64Array, triangles: Uint32Array, quads: Uint32Array, edges: Uint32Array,
+  vertexRefs: Int32Array, triangleRefs: Int32Array, quadRefs: Int32Array, edgeRefs: Int32Array,
+};
+const arity = { triangles: 3, quads: 4, edges: 2 };
+
+// Checks a mesh object's fields (types and shapes) before it crosses into the core.
+function checkMesh(mesh, name = 'mesh') {
+  if (mesh === null || typeof mesh !== 'object') throw argError(`${name}: expected a mesh object`);
+  if (mesh.dimension !== 2 && mesh.dimension !== 3) throw argError(`${name}.dimension: expected 2 or 3`);
+  if (!(mesh.vertices instanceof Float64Array)) throw argError(`${name}.vertices: expected a Float64Array`);
+  if (mesh.vertices.length % mesh.dimension !== 0) {
+    throw argError(`${name}.vertices: length ${mesh.vertices.length} is not a multiple of dimension ${mesh.dimension}`);
+  }
+  for (const [key, type] of Object.entries(meshArrays)) {
+    if (key === 'vertices' || mesh[key] === undefined) continue;
+    if (!(mesh[key] instanceof type)) throw argError(`${name}.${key}: expected a ${type.name}`);
+    if (arity[key] && mesh[key].length % arity[key] !== 0) {
+      throw argError(`${name}.${key}: length ${mesh[key].length} is not a multiple of ${arity[key]}`);
+    }
+  }
+  return mesh;
+}
+
+function checkMetrics(metrics, vertexCount, name = 'metrics') {
+  if (!(metrics instanceof Float64Array)) throw argError(`${name}: expected a Float64Array of m11, m12, m22 per vertex`);
+  if (metrics.length !== 3 * vertexCount) {
+    throw argError(`${name}: ${metrics.length / 3} tensors (length ${metrics.length}) for ${vertexCount} vertices`);
+  }
+  return metrics;
+}
+
+// Frees control spaces the user forgot to dispose(), once they are garbage collected.
+const registry = typeof FinalizationRegistry === 'function' ? new FinalizationRegistry((handle) => handle.delete()) : null;
+
+/** A control space being inspected or edited; free it with dispose(). */
+class ControlSpace {
+  #handle;
+  constructor(handle) {
+    this.#handle = handle;
+    registry?.register(this, handle, this);
+  }
+  #live() {
+    if (!this.#handle) throw new AnisomeshError('INVALID_ARGUMENT', 'control space used after dispose()');
+    return this.#handle;
+  }
+  /** The metric at one point [x, y]. */
+  metricAt(p) {
+    checkVector(p, 'p');
+    const m = unwrap(this.#live().metricsAt(new Float64Array(p))).metrics;
+    return { m11: m[0], m12: m[1], m22: m[2] };
+  }
+  /** Metrics at many points (xy pairs): Float64Array of m11, m12, m22 per point. */
+  metricsAt(xy) {
+    if (!(xy instanceof Float64Array) || xy.length % 2 !== 0) throw argError('xy: expected a Float64Array of x, y pairs');
+    return unwrap(this.#live().metricsAt(xy)).metrics;
+  }
+  /** Nodes with metrics and cells (quadtree leaves or triangles), for display. */
+  inspect({ sampleGrid = 32 } = {}) {
+    return JSON.parse(unwrap(this.#live().inspect(sampleGrid)).json);
+  }
+  /** Legacy VTK text of the structure with per-node metrics (ParaView). */
+  toVtk() {
+    return unwrap(this.#live().toVtk()).text;
+  }
+  /** Frees the core's memory; later calls throw. Safe to call twice. */
+  dispose() {
+    if (!this.#handle) return;
+    registry?.unregister(this);
+    this.#handle.delete();
+    this.#handle = null;
+  }
+}
+
 function metricOut(r) {
   const { m11, m12, m22, t11, t12, t22, alpha, h1, h2 } = r;
   return { m11, m12, m22, t11, t12, t22, alpha, h1, h2 };
@@ -76,6 +156,58 @@ export function wrapCore(core) {
       checkVector(center, 'center');
       if (!Number.isInteger(segments)) throw argError('segments: expected an integer');
       return unwrap(core.metricEllipse(checkMetricSpec(m, 'metric'), center[0], center[1], segments)).points;
+    },
+    /**
+     * Meshes a JSON case (object or text, see examples/CASE_FORMAT.md).
+     * Returns { mesh, stats, controlSpace } with typed arrays in mesh.
+     */
+    meshCase(c, { inspectControlSpace = false } = {}) {
+      const r = unwrap(core.meshCase(caseText(c), Boolean(inspectControlSpace)));
+      return { mesh: r.mesh, stats: JSON.parse(r.stats), controlSpace: r.controlSpace ? JSON.parse(r.controlSpace) : null };
+    },
+    /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22). */
+    remesh(mesh, metrics, options = {}) {
+      checkMesh(mesh);
+      checkMetrics(metrics, mesh.vertices.length / mesh.dimension);
+      const r = unwrap(core.remesh(mesh, metrics, options));
+      return { mesh: r.mesh, stats: JSON.parse(r.stats) };
+    },
+    /** The mesh as text: 'mesh' (Medit), 'vtk', 'obj' or 'svg'. */
+    writeMesh(mesh, format = 'mesh') {
+      checkMesh(mesh);
+      return unwrap(core.writeMesh(mesh, String(format))).text;
+    },
+    /** Parses mesh text: 'mesh' (Medit), 'vtk' or 'obj'. */
+    readMesh(text, format = 'mesh') {
+      if (typeof text !== 'string') throw argError('text: expected a string');
+      return unwrap(core.readMesh(text, String(format))).mesh;
+    },
+    /** Parses a Medit .sol (scalar sizes or tensors) for vertexCount vertices: Float64Array m11, m12, m22 per vertex. */
+    readSol(text, vertexCount) {
+      if (typeof text !== 'string') throw argError('text: expected a string');
+      if (!Number.isInteger(vertexCount) || vertexCount < 0) throw argError('vertexCount: expected a non-negative integer');
+      return unwrap(core.readSol(text, vertexCount)).metrics;
+    },
+    /** Writes per-vertex tensors (m11, m12, m22) as a Medit .sol. */
+    writeSol(metrics) {
+      if (!(metrics instanceof Float64Array) || metrics.length % 3 !== 0) throw argError('metrics: expected a Float64Array of m11, m12, m22 per vertex');
+      return unwrap(core.writeSol(metrics)).text;
+    },
+    /** Parses an expression in u, v; returns its value at (u, v) or throws PARSE_ERROR with the column. */
+    evaluateExpression(text, u = 0, v = 0) {
+      if (typeof text !== 'string') throw argError('text: expected a string');
+      return unwrap(core.checkExpression(text, u, v)).value;
+    },
+    /** Builds the control space of a case (its controlSpace, sources and domain); call dispose() when done. */
+    createControlSpace(c) {
+      const handle = new core.ControlSpaceHandle();
+      try {
+        unwrap(handle.build(caseText(c)));
+      } catch (e) {
+        handle.delete();
+        throw e;
+      }
+      return new ControlSpace(handle);
     },
   });
 }

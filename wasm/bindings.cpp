@@ -8,10 +8,23 @@
 #include <emscripten/val.h>
 
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "anisomesh/anisomesh.h"
+#include "anisomesh/controlspace/adaptive_control_space.h"
+#include "anisomesh/geometry/expression.h"
+#include "anisomesh/io/case_json.h"
+#include "anisomesh/io/control_space_export.h"
+#include "anisomesh/io/medit.h"
+#include "anisomesh/io/mesh_formats.h"
+#include "anisomesh/io/svg.h"
+#include "anisomesh/mesh/quality.h"
+#include "anisomesh/pipeline/case_control_space.h"
+#include "anisomesh/pipeline/pipeline.h"
+#include "anisomesh/pipeline/run_case.h"
 
 using emscripten::val;
 using namespace anisomesh;
@@ -122,6 +135,261 @@ val metricEllipse(val m, double cx, double cy, int segments) {
   });
 }
 
+// Copies n values out of the wasm heap into a new JS typed array (a view would be
+// detached by the next memory growth).
+template <class T>
+val typedCopy(const T* data, size_t n) {
+  return val(emscripten::typed_memory_view(n, data)).call<val>("slice");
+}
+
+template <class T>
+std::vector<T> numbers(const val& obj, const char* key) {
+  const val v = obj[key];
+  if (v.isUndefined() || v.isNull()) return {};
+  return emscripten::convertJSArrayToNumberVector<T>(v);
+}
+
+// The mesh as typed arrays: vertices (dimension values each), params (uv), positions
+// (Float32 xyz for WebGL), connectivity (Uint32, 0-based) and references (Int32).
+val meshToJs(const Mesh& mesh) {
+  const size_t n = mesh.points.size();
+  std::vector<double> vertices(static_cast<size_t>(mesh.dimension) * n), params(2 * n);
+  std::vector<float> positions(3 * n);
+  for (size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < mesh.dimension; ++k) vertices[mesh.dimension * i + k] = mesh.points[i][k];
+    const Vec2 uv = mesh.params.size() == n ? mesh.params[i] : Vec2(mesh.points[i].head<2>());
+    params[2 * i] = uv.x();
+    params[2 * i + 1] = uv.y();
+    for (int k = 0; k < 3; ++k) positions[3 * i + k] = static_cast<float>(mesh.points[i][k]);
+  }
+  auto flat = [](const auto& cells) {
+    std::vector<std::uint32_t> out;
+    out.reserve(cells.size() * (cells.empty() ? 0 : cells[0].size()));
+    for (const auto& c : cells)
+      for (int v : c) out.push_back(static_cast<std::uint32_t>(v));
+    return out;
+  };
+  const auto tris = flat(mesh.triangles), quads = flat(mesh.quads), edges = flat(mesh.edges);
+  std::vector<std::int32_t> vertexRefs(mesh.pointRefs.begin(), mesh.pointRefs.end());
+  vertexRefs.resize(n, 0);
+  val out = val::object();
+  out.set("dimension", mesh.dimension);
+  out.set("vertices", typedCopy(vertices.data(), vertices.size()));
+  out.set("params", typedCopy(params.data(), params.size()));
+  out.set("positions", typedCopy(positions.data(), positions.size()));
+  out.set("triangles", typedCopy(tris.data(), tris.size()));
+  out.set("quads", typedCopy(quads.data(), quads.size()));
+  out.set("edges", typedCopy(edges.data(), edges.size()));
+  out.set("vertexRefs", typedCopy(vertexRefs.data(), vertexRefs.size()));
+  out.set("triangleRefs", typedCopy(mesh.triangleRefs.data(), mesh.triangleRefs.size()));
+  out.set("quadRefs", typedCopy(mesh.quadRefs.data(), mesh.quadRefs.size()));
+  out.set("edgeRefs", typedCopy(mesh.edgeRefs.data(), mesh.edgeRefs.size()));
+  return out;
+}
+
+// The inverse of meshToJs (the wrapper has checked the shapes).
+Mesh meshFromJs(const val& js) {
+  Mesh mesh;
+  mesh.dimension = js["dimension"].as<int>();
+  const auto v = numbers<double>(js, "vertices");
+  const size_t n = v.size() / mesh.dimension;
+  for (size_t i = 0; i < n; ++i)
+    mesh.points.emplace_back(v[mesh.dimension * i], v[mesh.dimension * i + 1],
+                             mesh.dimension == 3 ? v[mesh.dimension * i + 2] : 0.0);
+  const auto params = numbers<double>(js, "params");
+  if (params.size() == 2 * n)
+    for (size_t i = 0; i < n; ++i) mesh.params.emplace_back(params[2 * i], params[2 * i + 1]);
+  auto cells = [&](const char* key, auto& into) {
+    const auto c = numbers<std::uint32_t>(js, key);
+    const size_t k = std::tuple_size<typename std::decay_t<decltype(into)>::value_type>::value;
+    for (size_t i = 0; i + k <= c.size(); i += k) {
+      typename std::decay_t<decltype(into)>::value_type cell;
+      for (size_t j = 0; j < k; ++j) {
+        require(c[i + j] < n, ErrorCode::InvalidArgument,
+                std::string(key) + ": vertex index " + std::to_string(c[i + j]) + " out of range (" +
+                    std::to_string(n) + " vertices)");
+        cell[j] = static_cast<int>(c[i + j]);
+      }
+      into.push_back(cell);
+    }
+  };
+  cells("triangles", mesh.triangles);
+  cells("quads", mesh.quads);
+  cells("edges", mesh.edges);
+  auto refs = [&](const char* key, std::vector<int>& into, size_t count) {
+    into = numbers<int>(js, key);
+    into.resize(count, 0);
+  };
+  refs("vertexRefs", mesh.pointRefs, n);
+  refs("triangleRefs", mesh.triangleRefs, mesh.triangles.size());
+  refs("quadRefs", mesh.quadRefs, mesh.quads.size());
+  refs("edgeRefs", mesh.edgeRefs, mesh.edges.size());
+  return mesh;
+}
+
+MeshFormat formatFromName(const std::string& name) {
+  if (name == "mesh" || name == "medit") return MeshFormat::Medit;
+  if (name == "vtk") return MeshFormat::Vtk;
+  if (name == "obj") return MeshFormat::Obj;
+  throw Error(ErrorCode::InvalidArgument, "unknown mesh format '" + name + "' (expected mesh, vtk or obj)");
+}
+
+// A whole JSON case: { mesh, stats (JSON text), controlSpace (JSON text or null) }.
+val meshCaseJson(std::string jsonText, bool inspectControlSpace) {
+  return guarded([&] {
+    RunCaseOptions o;
+    o.inspectControlSpace = inspectControlSpace;
+    const CaseRun run = runCase(jsonText, o);
+    val out = val::object();
+    out.set("mesh", meshToJs(run.mesh));
+    out.set("stats", caseRunStatsJson(run).dump());
+    out.set("controlSpace", inspectControlSpace ? val(run.controlSpace.dump()) : val::null());
+    return out;
+  });
+}
+
+val writeMeshText(val mesh, std::string format) {
+  return guarded([&] {
+    val out = val::object();
+    if (format == "svg") out.set("text", writeSvg(meshFromJs(mesh)));
+    else out.set("text", writeMeshString(meshFromJs(mesh), formatFromName(format)));
+    return out;
+  });
+}
+
+val readMeshText(std::string text, std::string format) {
+  return guarded([&] {
+    val out = val::object();
+    out.set("mesh", meshToJs(parseMeshString(text, formatFromName(format))));
+    return out;
+  });
+}
+
+// A .sol as per-vertex tensors (m11, m12, m22 each), validated as metrics.
+val readSolText(std::string text, int vertexCount) {
+  return guarded([&] {
+    const std::vector<Metric> metrics = solToMetrics(parseSol(text), vertexCount);
+    std::vector<double> m;
+    m.reserve(3 * metrics.size());
+    for (const Metric& x : metrics) {
+      const Mat2 t = x.tensor();
+      m.insert(m.end(), {t(0, 0), t(0, 1), t(1, 1)});
+    }
+    val out = val::object();
+    out.set("metrics", typedCopy(m.data(), m.size()));
+    return out;
+  });
+}
+
+std::vector<Metric> metricsFromFlat(const std::vector<double>& m) {
+  std::vector<Metric> metrics;
+  metrics.reserve(m.size() / 3);
+  for (size_t i = 0; i + 3 <= m.size(); i += 3) metrics.push_back(Metric::fromTensor(m[i], m[i + 1], m[i + 2]));
+  return metrics;
+}
+
+val writeSolText(val metrics) {
+  return guarded([&] {
+    val out = val::object();
+    out.set("text", writeSol(metricsToSol(metricsFromFlat(emscripten::convertJSArrayToNumberVector<double>(metrics)))));
+    return out;
+  });
+}
+
+// Remeshing of a mesh under per-vertex tensors: { mesh, stats }.
+val remeshJs(val mesh, val metrics, val options) {
+  return guarded([&] {
+    const Mesh input = meshFromJs(mesh);
+    const std::vector<Metric> m = metricsFromFlat(emscripten::convertJSArrayToNumberVector<double>(metrics));
+    require(m.size() == input.points.size(), ErrorCode::InvalidArgument,
+            "metrics: " + std::to_string(m.size()) + " tensors for " + std::to_string(input.points.size()) +
+                " vertices");
+    RemeshOptions o;
+    if (options.hasOwnProperty("hmin")) o.hmin = options["hmin"].as<double>();
+    if (options.hasOwnProperty("hmax")) o.hmax = options["hmax"].as<double>();
+    if (options.hasOwnProperty("hgrad")) o.hgrad = options["hgrad"].as<double>();
+    if (options.hasOwnProperty("maxElements")) o.mesher.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
+    PipelineReport report;
+    const Mesh out = remesh(input, m, o, &report);
+    val r = val::object();
+    r.set("mesh", meshToJs(out));
+    nlohmann::json stats;
+    stats["vertices"] = out.vertexCount();
+    stats["triangles"] = out.triangles.size();
+    stats["notes"] = report.notes;
+    r.set("stats", stats.dump());
+    return r;
+  });
+}
+
+// Checks an expression in u, v; returns its value at (u, v) or the parse error.
+val checkExpression(std::string text, double u, double v) {
+  return guarded([&] {
+    ExpressionOptions o;
+    o.name = "expression";
+    const Expression e = Expression::parse(text, o);
+    val out = val::object();
+    out.set("value", e.value(u, v));
+    return out;
+  });
+}
+
+// A long-lived control space built from the "controlSpace", "sources" and "domain"
+// parts of a JSON case; JS owns it and frees it with delete() (the wrapper's dispose()).
+class ControlSpaceHandle {
+ public:
+  val build(std::string jsonText) {
+    return guarded([&] {
+      const CaseSpec spec = parseCaseJson(jsonText);
+      cs_ = buildCaseControlSpace(spec);
+      val out = val::object();
+      out.set("ok", true);
+      return out;
+    });
+  }
+  // Metrics at n points (xy interleaved): Float64Array of m11, m12, m22 per point.
+  val metricsAt(val xy) {
+    return guarded([&] {
+      require(cs_ != nullptr, ErrorCode::InvalidArgument, "control space is not built");
+      const auto p = emscripten::convertJSArrayToNumberVector<double>(xy);
+      std::vector<double> m(3 * (p.size() / 2));
+      for (size_t i = 0; 2 * i + 1 < p.size(); ++i) {
+        const Mat2 t = cs_->metricAt(Vec2(p[2 * i], p[2 * i + 1])).tensor();
+        m[3 * i] = t(0, 0);
+        m[3 * i + 1] = t(0, 1);
+        m[3 * i + 2] = t(1, 1);
+      }
+      val out = val::object();
+      out.set("metrics", typedCopy(m.data(), m.size()));
+      return out;
+    });
+  }
+  // Nodes and cells for display, as JSON text (see io/control_space_export.h).
+  val inspect(int sampleGrid) {
+    return guarded([&] {
+      require(cs_ != nullptr, ErrorCode::InvalidArgument, "control space is not built");
+      val out = val::object();
+      if (const auto* a = dynamic_cast<const AdaptiveControlSpace*>(cs_.get()))
+        out.set("json", controlSpaceToJson(*a).dump());
+      else
+        out.set("json", sampledControlSpaceToJson(*cs_, sampleGrid, sampleGrid).dump());
+      return out;
+    });
+  }
+  val toVtk() {
+    return guarded([&] {
+      const auto* a = dynamic_cast<const AdaptiveControlSpace*>(cs_.get());
+      require(a != nullptr, ErrorCode::InvalidArgument, "only an adaptive control space (quadtree or background mesh) exports to VTK");
+      val out = val::object();
+      out.set("text", controlSpaceToVtk(*a));
+      return out;
+    });
+  }
+
+ private:
+  std::unique_ptr<ControlSpace> cs_;
+};
+
 std::string version() { return "0.1.0"; }
 
 }  // namespace
@@ -134,4 +402,17 @@ EMSCRIPTEN_BINDINGS(anisomesh) {
   emscripten::function("metricLength", &metricLength);
   emscripten::function("metricDifference", &metricDifference);
   emscripten::function("metricEllipse", &metricEllipse);
+  emscripten::function("meshCase", &meshCaseJson);
+  emscripten::function("remesh", &remeshJs);
+  emscripten::function("writeMesh", &writeMeshText);
+  emscripten::function("readMesh", &readMeshText);
+  emscripten::function("readSol", &readSolText);
+  emscripten::function("writeSol", &writeSolText);
+  emscripten::function("checkExpression", &checkExpression);
+  emscripten::class_<ControlSpaceHandle>("ControlSpaceHandle")
+      .constructor<>()
+      .function("build", &ControlSpaceHandle::build)
+      .function("metricsAt", &ControlSpaceHandle::metricsAt)
+      .function("inspect", &ControlSpaceHandle::inspect)
+      .function("toVtk", &ControlSpaceHandle::toVtk);
 }

@@ -49,6 +49,60 @@ export interface Metric {
 
 export type Vec2 = readonly [number, number] | Float64Array;
 
+/**
+ * A mesh as typed arrays. Connectivity is 0-based. `vertices` holds `dimension` values per
+ * vertex, `params` the parameter coordinates (u, v) (= x, y for planar meshes) and
+ * `positions` Float32 x, y, z ready for a three.js BufferAttribute.
+ */
+export interface MeshArrays {
+  dimension: 2 | 3;
+  vertices: Float64Array;
+  params?: Float64Array;
+  positions?: Float32Array;
+  triangles?: Uint32Array;
+  quads?: Uint32Array;
+  edges?: Uint32Array;
+  vertexRefs?: Int32Array;
+  triangleRefs?: Int32Array;
+  quadRefs?: Int32Array;
+  edgeRefs?: Int32Array;
+}
+
+/** A JSON case (examples/CASE_FORMAT.md): domain, controlSpace, sources, options. */
+export type Case = Record<string, unknown>;
+
+/** The quality report of a mesh, measured in the metric it was asked to follow. */
+export interface MeshStats {
+  vertices: number;
+  triangles: number;
+  quads: number;
+  edges: number;
+  inverted: number;
+  degenerate: number;
+  [key: string]: unknown;
+}
+
+export interface CaseResult {
+  mesh: MeshArrays;
+  stats: MeshStats;
+  /** The control space's nodes and cells (with inspectControlSpace), else null. */
+  controlSpace: Record<string, unknown> | null;
+}
+
+/** A control space kept alive in the core: free it with dispose() (a FinalizationRegistry is only a safety net). */
+export interface ControlSpace {
+  metricAt(p: Vec2): { m11: number; m12: number; m22: number };
+  /** Metrics at x, y pairs: m11, m12, m22 per point. */
+  metricsAt(xy: Float64Array): Float64Array;
+  /** Nodes (positions, metrics, sizes) and cells (quadtree leaves or triangles). */
+  inspect(options?: { sampleGrid?: number }): Record<string, unknown>;
+  /** Legacy VTK text for ParaView (adaptive structures only). */
+  toVtk(): string;
+  dispose(): void;
+}
+
+export type MeshFormat = 'mesh' | 'vtk' | 'obj';
+
 export interface Anisomesh {
   /** Version of the WebAssembly core. */
   readonly version: string;
@@ -64,6 +118,26 @@ export interface Anisomesh {
   metricDifference(a: MetricSpec, b: MetricSpec): number;
   /** The unit ellipse of a metric around center: a closed polyline as xy pairs. */
   metricEllipse(metric: MetricSpec, center?: Vec2, segments?: number): Float64Array;
+  /** Meshes a JSON case (object or text). */
+  meshCase(c: Case | string, options?: { inspectControlSpace?: boolean }): CaseResult;
+  /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22 each). */
+  remesh(
+    mesh: MeshArrays,
+    metrics: Float64Array,
+    options?: { hmin?: number; hmax?: number; hgrad?: number; maxElements?: number },
+  ): { mesh: MeshArrays; stats: Record<string, unknown> };
+  /** The mesh as text in a file format ('svg' for a picture of a planar mesh). */
+  writeMesh(mesh: MeshArrays, format?: MeshFormat | 'svg'): string;
+  /** Parses mesh text. */
+  readMesh(text: string, format?: MeshFormat): MeshArrays;
+  /** Parses a Medit .sol (scalar sizes or tensors): m11, m12, m22 per vertex. */
+  readSol(text: string, vertexCount: number): Float64Array;
+  /** Writes per-vertex tensors (m11, m12, m22 each) as a Medit .sol. */
+  writeSol(metrics: Float64Array): string;
+  /** Evaluates an expression in u, v (throws PARSE_ERROR naming the column on bad input). */
+  evaluateExpression(text: string, u?: number, v?: number): number;
+  /** Builds a case's control space (its controlSpace, sources and domain). */
+  createControlSpace(c: Case | string): ControlSpace;
 }
 
 /** Loads the WebAssembly core (once; later calls return the same instance). */

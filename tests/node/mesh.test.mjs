@@ -1,0 +1,91 @@
+// Meshing, I/O and control spaces through the package, as a user would call them.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { loadAnisomesh, AnisomeshError } from 'anisomesh';
+
+const am = await loadAnisomesh();
+const example = (name) => JSON.parse(readFileSync(new URL(`../../examples/${name}.json`, import.meta.url), 'utf8'));
+
+test('meshCase returns typed arrays that describe a valid planar mesh', () => {
+  const { mesh, stats } = am.meshCase(example('point_source'));
+  assert.equal(mesh.dimension, 2);
+  assert.ok(mesh.vertices instanceof Float64Array && mesh.triangles instanceof Uint32Array);
+  assert.ok(mesh.positions instanceof Float32Array && mesh.positions.length === 3 * (mesh.vertices.length / 2));
+  const n = mesh.vertices.length / 2;
+  assert.equal(stats.vertices, n);
+  assert.equal(stats.triangles, mesh.triangles.length / 3);
+  assert.equal(stats.inverted, 0);
+  for (const i of mesh.triangles) assert.ok(i < n);
+  // Counter-clockwise triangles with positive area.
+  const v = mesh.vertices;
+  for (let t = 0; t < mesh.triangles.length; t += 3) {
+    const [a, b, c] = [mesh.triangles[t], mesh.triangles[t + 1], mesh.triangles[t + 2]];
+    const area = (v[2 * b] - v[2 * a]) * (v[2 * c + 1] - v[2 * a + 1]) - (v[2 * c] - v[2 * a]) * (v[2 * b + 1] - v[2 * a + 1]);
+    assert.ok(area > 0, `triangle ${t / 3} has area ${area}`);
+  }
+  assert.ok(mesh.edges.length > 0 && mesh.edgeRefs.length === mesh.edges.length / 2);
+});
+
+test('the same case gives the same mesh twice (deterministic)', () => {
+  const a = am.meshCase(example('fig6_rect_holes_nosmooth')).mesh;
+  const b = am.meshCase(example('fig6_rect_holes_nosmooth')).mesh;
+  assert.deepEqual(a.vertices, b.vertices);
+  assert.deepEqual(a.triangles, b.triangles);
+});
+
+test('Medit, VTK and OBJ round trips keep counts', () => {
+  const { mesh } = am.meshCase(example('point_source'));
+  for (const format of ['mesh', 'vtk', 'obj']) {
+    const back = am.readMesh(am.writeMesh(mesh, format), format);
+    assert.equal(back.vertices.length / back.dimension, mesh.vertices.length / 2, format);
+    assert.equal(back.triangles.length, mesh.triangles.length, format);
+  }
+  assert.match(am.writeMesh(mesh, 'svg'), /^<svg/);
+});
+
+test('.sol tensors round trip and drive remesh', () => {
+  const { mesh } = am.meshCase(example('point_source'));
+  const n = mesh.vertices.length / 2;
+  const metrics = new Float64Array(3 * n);
+  for (let i = 0; i < n; i++) metrics.set([400, 0, 400], 3 * i);  // isotropic h = 0.05
+  const back = am.readSol(am.writeSol(metrics), n);
+  assert.deepEqual(Array.from(back.slice(0, 3)), [400, 0, 400]);
+  const r = am.remesh(mesh, back);
+  assert.ok(r.mesh.triangles.length > 0);
+  assert.throws(() => am.readSol(am.writeSol(metrics), n + 1), AnisomeshError);
+});
+
+test('control space: queries, inspection, dispose', () => {
+  const cs = am.createControlSpace(example('point_source'));
+  const m = cs.metricAt([0.5, 0.5]);
+  assert.ok(m.m11 > 0 && m.m22 > 0);
+  const many = cs.metricsAt(new Float64Array([0.1, 0.1, 0.9, 0.9]));
+  assert.equal(many.length, 6);
+  const info = cs.inspect();
+  assert.ok(info && typeof info === 'object');
+  cs.dispose();
+  cs.dispose();  // twice is fine
+  assert.throws(() => cs.metricAt([0, 0]), { code: 'INVALID_ARGUMENT', message: /after dispose/ });
+});
+
+test('bad input becomes AnisomeshError naming the problem; the module keeps working', () => {
+  const check = (fn, code, message) => assert.throws(fn, (e) => {
+    assert.ok(e instanceof AnisomeshError, String(e));
+    assert.equal(e.code, code, e.message);
+    assert.match(e.message, message);
+    return true;
+  });
+  check(() => am.meshCase('{"domain": '), 'PARSE_ERROR', /./);
+  check(() => am.meshCase({ domain: 3 }), 'PARSE_ERROR', /domain/);
+  const open = example('point_source');
+  check(() => am.evaluateExpression('sin(u'), 'PARSE_ERROR', /column/);
+  check(() => am.writeMesh({ dimension: 2, vertices: new Float32Array(4) }), 'INVALID_ARGUMENT', /mesh\.vertices: expected a Float64Array/);
+  check(() => am.writeMesh({ dimension: 2, vertices: new Float64Array(3) }), 'INVALID_ARGUMENT', /multiple of dimension/);
+  check(() => am.writeMesh({ dimension: 2, vertices: new Float64Array(4), triangles: new Uint32Array([0, 1, 5]) }), 'INVALID_ARGUMENT', /out of range/);
+  check(() => am.writeMesh({ dimension: 2, vertices: new Float64Array(4) }, 'stl'), 'INVALID_ARGUMENT', /unknown mesh format/);
+  check(() => am.readMesh('MeshVersionFormatted 1\nDimension 2\nVertices\n2\n0 0\n', 'mesh'), 'PARSE_ERROR', /line/);
+  check(() => am.createControlSpace('not json'), 'PARSE_ERROR', /./);
+  // Still works.
+  assert.ok(am.meshCase(open).mesh.triangles.length > 0);
+});
