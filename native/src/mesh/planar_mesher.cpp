@@ -855,8 +855,9 @@ void Mesher::insertInnerNodes() {
     }
     for (const int nt : newTris_) {
       if (tri_[nt].acc) {
-        for (int i = 0; i < 3; ++i)
-          if (tri_[nt].n[i] >= 0) pushIfActive(tri_[nt].n[i]);
+        // Only the outer neighbour can newly join the front: the other two neighbours
+        // are new triangles, handled by this loop.
+        if (tri_[nt].n[2] >= 0) pushIfActive(tri_[nt].n[2]);
       } else {
         pushIfActive(nt);
       }
