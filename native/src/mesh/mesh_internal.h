@@ -56,6 +56,6 @@ inline double metricQuadQuality(const SymMt& m, const Vec2* p) {
 
 // Quad-dominant conversion (greedy merge of triangle pairs by metric quad quality) and,
 // with allQuads, the split of every element into quads. vertexMt holds Mt per vertex.
-void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, bool allQuads, const ControlSpace& cs);
+void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, bool allQuads);
 
 }  // namespace anisomesh

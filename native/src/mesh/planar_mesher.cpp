@@ -147,7 +147,6 @@ class Mesher {
   std::vector<double> tq_;  // triangle metric quality (improvement stage)
   std::vector<int> colBall_, colRing_;
   std::vector<std::uint8_t> vdirty_;  // improvement: vertex whose surroundings changed
-  bool metricMode_ = false;
 
   double estimate_ = 0.0;
   double elementRatio_ = 1.0;  // final elements per triangle
@@ -739,7 +738,6 @@ double Mesher::triQuality(int a, int b, int c, const Vec2& pa) const {
 }
 
 void Mesher::insertInnerNodes() {
-  metricMode_ = true;
   // Bucket queue on the metric radius (4 buckets per doubling of r^2), last in first out
   // within a bucket: the largest triangles go first as in Rebay's method, while the LIFO
   // order keeps consecutive insertions close together (cache locality).
@@ -1312,7 +1310,7 @@ Mesh Mesher::run() {
       vm.reserve(vx_.size() - kSuper);
       for (size_t v = kSuper; v < vx_.size(); ++v)
         if (vbnd_[v] != 2) vm.push_back(vx_[v].m);
-      convertToQuads(mesh, vm, opt_.allQuads, cs_);
+      convertToQuads(mesh, vm, opt_.allQuads);
       timings_.quads = secondsSince(t0);
     }
   }

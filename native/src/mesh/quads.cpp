@@ -136,7 +136,7 @@ void splitIntoQuads(Mesh& mesh) {
 
 }  // namespace
 
-void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, bool allQuads, const ControlSpace& /*cs*/) {
+void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, bool allQuads) {
   mergeTriangles(mesh, vertexMt);
   if (allQuads) splitIntoQuads(mesh);
 }
