@@ -174,6 +174,8 @@ void Mesher::validate() const {
           "meshPlanarBoundary: improvementPasses must be >= 0");
   require(std::isfinite(opt_.minNodeDistance) && opt_.minNodeDistance >= 0.0 && opt_.minNodeDistance < 1.0,
           ErrorCode::InvalidArgument, "meshPlanarBoundary: minNodeDistance must be in [0, 1)");
+  require(std::isfinite(opt_.minQuadQuality) && opt_.minQuadQuality > 0.0 && opt_.minQuadQuality <= 1.0,
+          ErrorCode::InvalidArgument, "meshPlanarBoundary: minQuadQuality must be in (0, 1]");
 }
 
 void Mesher::checkProgress(double fraction) {
@@ -1310,7 +1312,7 @@ Mesh Mesher::run() {
       vm.reserve(vx_.size() - kSuper);
       for (size_t v = kSuper; v < vx_.size(); ++v)
         if (vbnd_[v] != 2) vm.push_back(vx_[v].m);
-      convertToQuads(mesh, vm, opt_.allQuads);
+      convertToQuads(mesh, vm, opt_.allQuads, opt_.minQuadQuality);
       timings_.quads = secondsSince(t0);
     }
   }
