@@ -44,7 +44,7 @@ TEST(MeshQuads, QuadDominant) {
   const QualityReport r = measureQuality(m, cs);
   EXPECT_EQ(r.inverted, 0);
   EXPECT_EQ(r.degenerate, 0);
-  EXPECT_GT(r.quadQualityMin, 0.29);
+  EXPECT_GE(r.quadQualityMin, opt.minQuadQuality);
   std::cout << "quad dominant: " << qualityReportToJson(r).dump() << "\n";
   EXPECT_TRUE(sameMesh(m, meshPlanarBoundary(loops, cs, opt)));
 }

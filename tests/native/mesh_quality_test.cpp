@@ -48,3 +48,15 @@ TEST(MeshQuality, MetricScalesLengths) {
   EXPECT_NEAR(b.edgeLengthMean, 2.0 * a.edgeLengthMean, 1e-9);
   EXPECT_NEAR(b.qualityMean, a.qualityMean, 1e-9);  // shape quality is scale free
 }
+
+// Metric areas of the boundary-only triangulation sum to the domain's metric area.
+TEST(MeshQuality, TriangleMetricAreas) {
+  UniformControlSpace cs({{0, 0}, {1, 1}}, Metric::fromSizes(0.3, 0.1, 0.2));
+  PlanarMesherOptions opt;
+  opt.boundaryOnly = true;
+  const Mesh m = meshPlanarBoundary({polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 5)}, cs, opt);
+  const std::vector<double> areas = triangleMetricAreas(m, cs);
+  ASSERT_EQ(areas.size(), m.triangles.size());
+  EXPECT_NEAR(std::accumulate(areas.begin(), areas.end(), 0.0), 1.0 / (0.1 * 0.2), 1e-9);
+  for (const double a : areas) EXPECT_GT(a, 0.0);
+}

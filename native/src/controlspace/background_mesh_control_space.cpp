@@ -191,7 +191,7 @@ bool BackgroundMeshControlSpace::triangleContains(int t, const Vec2& p) const {
 }
 
 int BackgroundMeshControlSpace::locateTriangle(const Vec2& p) const {
-  const Vec2 q = p.cwiseMax(box_.lo).cwiseMin(box_.hi);
+  const Vec2 q = p.allFinite() ? Vec2(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) : box_.lo;
   const int gi = std::clamp(static_cast<int>((q.x() - box_.lo.x()) * gridInv_.x()), 0, gridSide_ - 1);
   const int gj = std::clamp(static_cast<int>((q.y() - box_.lo.y()) * gridInv_.y()), 0, gridSide_ - 1);
   int t = grid_[static_cast<size_t>(gj) * gridSide_ + gi];

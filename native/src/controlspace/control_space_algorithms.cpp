@@ -197,19 +197,21 @@ int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback) {
   if (any) {
     std::vector<int> start, nbr;
     adjacency(cs, start, nbr);
-    std::vector<int> front;
-    std::vector<std::pair<int, SymMt>> values;
-    for (;;) {
-      front.clear();
-      for (int i = 0; i < n; ++i) {
-        if (known[i] || !cs.nodeIsFree(i)) continue;
-        for (int k = start[i]; k < start[i + 1]; ++k)
-          if (known[nbr[k]]) {
-            front.push_back(i);
-            break;
+    // Breadth-first fronts: the unknown free neighbours of the nodes known so far.
+    std::vector<int> front, next;
+    std::vector<char> inFront(n, 0);
+    for (int i = 0; i < n; ++i)
+      if (known[i])
+        for (int k = start[i]; k < start[i + 1]; ++k) {
+          const int j = nbr[k];
+          if (!known[j] && !inFront[j] && cs.nodeIsFree(j)) {
+            inFront[j] = 1;
+            front.push_back(j);
           }
-      }
-      if (front.empty()) break;
+        }
+    std::vector<std::pair<int, SymMt>> values;
+    while (!front.empty()) {
+      std::sort(front.begin(), front.end());
       // Values of a whole front come from the previous fronts only (order independent).
       values.clear();
       for (int i : front) {
@@ -232,6 +234,16 @@ int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback) {
         known[i] = 1;
         ++filled;
       }
+      next.clear();
+      for (int i : front)
+        for (int k = start[i]; k < start[i + 1]; ++k) {
+          const int j = nbr[k];
+          if (!known[j] && !inFront[j] && cs.nodeIsFree(j)) {
+            inFront[j] = 1;
+            next.push_back(j);
+          }
+        }
+      front.swap(next);
     }
   }
   for (int i = 0; i < n; ++i)

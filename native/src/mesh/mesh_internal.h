@@ -54,8 +54,9 @@ inline double metricQuadQuality(const SymMt& m, const Vec2* p) {
   return q;
 }
 
-// Quad-dominant conversion (greedy merge of triangle pairs by metric quad quality) and,
+// Quad-dominant conversion (greedy merge of triangle pairs by metric quad quality, pairs
+// below minQuadQuality kept as triangles) and,
 // with allQuads, the split of every element into quads. vertexMt holds Mt per vertex.
-void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, bool allQuads, const ControlSpace& cs);
+void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, bool allQuads, double minQuadQuality);
 
 }  // namespace anisomesh

@@ -147,7 +147,6 @@ class Mesher {
   std::vector<double> tq_;  // triangle metric quality (improvement stage)
   std::vector<int> colBall_, colRing_;
   std::vector<std::uint8_t> vdirty_;  // improvement: vertex whose surroundings changed
-  bool metricMode_ = false;
 
   double estimate_ = 0.0;
   double elementRatio_ = 1.0;  // final elements per triangle
@@ -175,6 +174,8 @@ void Mesher::validate() const {
           "meshPlanarBoundary: improvementPasses must be >= 0");
   require(std::isfinite(opt_.minNodeDistance) && opt_.minNodeDistance >= 0.0 && opt_.minNodeDistance < 1.0,
           ErrorCode::InvalidArgument, "meshPlanarBoundary: minNodeDistance must be in [0, 1)");
+  require(std::isfinite(opt_.minQuadQuality) && opt_.minQuadQuality > 0.0 && opt_.minQuadQuality <= 1.0,
+          ErrorCode::InvalidArgument, "meshPlanarBoundary: minQuadQuality must be in (0, 1]");
 }
 
 void Mesher::checkProgress(double fraction) {
@@ -739,7 +740,6 @@ double Mesher::triQuality(int a, int b, int c, const Vec2& pa) const {
 }
 
 void Mesher::insertInnerNodes() {
-  metricMode_ = true;
   // Bucket queue on the metric radius (4 buckets per doubling of r^2), last in first out
   // within a bucket: the largest triangles go first as in Rebay's method, while the LIFO
   // order keeps consecutive insertions close together (cache locality).
@@ -855,8 +855,9 @@ void Mesher::insertInnerNodes() {
     }
     for (const int nt : newTris_) {
       if (tri_[nt].acc) {
-        for (int i = 0; i < 3; ++i)
-          if (tri_[nt].n[i] >= 0) pushIfActive(tri_[nt].n[i]);
+        // Only the outer neighbour can newly join the front: the other two neighbours
+        // are new triangles, handled by this loop.
+        if (tri_[nt].n[2] >= 0) pushIfActive(tri_[nt].n[2]);
       } else {
         pushIfActive(nt);
       }
@@ -1311,7 +1312,7 @@ Mesh Mesher::run() {
       vm.reserve(vx_.size() - kSuper);
       for (size_t v = kSuper; v < vx_.size(); ++v)
         if (vbnd_[v] != 2) vm.push_back(vx_[v].m);
-      convertToQuads(mesh, vm, opt_.allQuads, cs_);
+      convertToQuads(mesh, vm, opt_.allQuads, opt_.minQuadQuality);
       timings_.quads = secondsSince(t0);
     }
   }

@@ -90,13 +90,12 @@ int scaleExpansion(int elen, const double* e, double b, double* h) {
   twoProduct(e[0], b, q, hh);
   if (hh != 0.0) h[hlen++] = hh;
   for (int i = 1; i < elen; ++i) {
-    double t1, t0, sum, s;
+    double t1, t0, sum;
     twoProduct(e[i], b, t1, t0);
     twoSum(q, t0, sum, hh);
     if (hh != 0.0) h[hlen++] = hh;
     twoSum(t1, sum, q, hh);
     if (hh != 0.0) h[hlen++] = hh;
-    (void)s;
   }
   if (q != 0.0 || hlen == 0) h[hlen++] = q;
   return hlen;

@@ -13,14 +13,12 @@
 namespace anisomesh {
 namespace {
 
-constexpr double kMinQuadQuality = 0.3;  // below, two triangles are better than one quad
-
 inline std::uint64_t edgeKey(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
 
-void mergeTriangles(Mesh& mesh, const std::vector<SymMt>& vmt) {
+void mergeTriangles(Mesh& mesh, const std::vector<SymMt>& vmt, double minQuality) {
   const int nt = static_cast<int>(mesh.triangles.size());
   struct HalfEdge {
     std::uint64_t key;
@@ -63,7 +61,7 @@ void mergeTriangles(Mesh& mesh, const std::vector<SymMt>& vmt) {
                   0.25 * (vmt[p].b + vmt[u].b + vmt[q].b + vmt[w].b),
                   0.25 * (vmt[p].c + vmt[u].c + vmt[q].c + vmt[w].c)};
     const double quality = metricQuadQuality(m, pts);
-    if (quality < kMinQuadQuality) continue;
+    if (quality < minQuality) continue;
     cands.push_back({quality, hes[k].tri, hes[k + 1].tri, quad});
   }
   std::sort(cands.begin(), cands.end(), [](const Candidate& x, const Candidate& y) {
@@ -136,8 +134,8 @@ void splitIntoQuads(Mesh& mesh) {
 
 }  // namespace
 
-void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, bool allQuads, const ControlSpace& /*cs*/) {
-  mergeTriangles(mesh, vertexMt);
+void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, bool allQuads, double minQuadQuality) {
+  mergeTriangles(mesh, vertexMt, minQuadQuality);
   if (allQuads) splitIntoQuads(mesh);
 }
 

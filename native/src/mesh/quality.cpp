@@ -113,6 +113,25 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace)
   return r;
 }
 
+std::vector<double> triangleMetricAreas(const Mesh& mesh, const ControlSpace& controlSpace) {
+  const int nv = mesh.vertexCount();
+  const bool useParams = mesh.params.size() == static_cast<size_t>(nv);
+  std::vector<Vec2> uv(nv);
+  std::vector<SymMt> mt(nv);
+  for (int v = 0; v < nv; ++v) {
+    uv[v] = useParams ? mesh.params[v] : Vec2(mesh.points[v].x(), mesh.points[v].y());
+    mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
+  }
+  std::vector<double> out;
+  out.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) {
+    const SymMt m = SymMt::average3(mt[t[0]], mt[t[1]], mt[t[2]]);
+    const Vec2 e1 = uv[t[1]] - uv[t[0]], e2 = uv[t[2]] - uv[t[0]];
+    out.push_back(0.5 * (e1.x() * e2.y() - e1.y() * e2.x()) * m.det());
+  }
+  return out;
+}
+
 nlohmann::json qualityReportToJson(const QualityReport& r) {
   nlohmann::json j;
   j["vertices"] = r.vertices;

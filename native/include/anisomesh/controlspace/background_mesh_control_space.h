@@ -8,6 +8,9 @@
 // weights (eq. 11), taking a vertex's metric directly within epsilon of it. The choice
 // of V* = 3 vertices keeps the query short; a linear (barycentric) option gives a
 // continuous field when that matters (e.g. exact minima of nested meshes).
+//
+// Threads: metricAt/mtAt/locate* only read, so concurrent queries are safe; building
+// operations (refine, set*, the algorithms) need exclusive access.
 #include <array>
 #include <optional>
 #include <vector>

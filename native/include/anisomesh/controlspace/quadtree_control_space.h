@@ -10,6 +10,9 @@
 // Layout: cells in flat arrays (child index, node indices), nodes addressed by integer
 // lattice coordinates of resolution 2^(maxLevel+1) per axis, so a query descends by
 // integer bit tests from a grid of main-level cells, without allocation or virtual calls.
+//
+// Threads: metricAt/mtAt/locate* only read, so concurrent queries are safe; building
+// operations (refine, set*, the algorithms) need exclusive access.
 #include <cstdint>
 #include <optional>
 #include <vector>

@@ -53,6 +53,8 @@ struct PlanarMesherOptions {
   std::function<bool(double)> progress;
   // Candidate inner nodes closer than this (metric length) to an existing vertex are rejected.
   double minNodeDistance = 0.6;
+  // Quad-dominant merge: pairs whose quad would have a lower metric quality stay triangles.
+  double minQuadQuality = 0.3;
   MesherTimings* timings = nullptr;     // optional output: stage times
 };
 

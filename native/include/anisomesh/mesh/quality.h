@@ -3,6 +3,7 @@
 // (target 1), element shape quality in metric space, inverted/degenerate counts, and
 // the mesher's stage timings.
 #include <array>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "anisomesh/controlspace/control_space.h"
@@ -39,6 +40,11 @@ struct QualityReport {
 
 // Measures mesh in the metric of controlSpace (queried once per vertex at its params, or xy).
 QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace);
+
+// Metric area of every triangle (det of the vertex-averaged Mt times the area), in the
+// order of mesh.triangles: the paper's boundary-proximity check (section 3.2) flags
+// triangles of the boundary-only triangulation below eps2 = 0.2.
+std::vector<double> triangleMetricAreas(const Mesh& mesh, const ControlSpace& controlSpace);
 
 // The report as JSON (stable key names, for the CLI and the web front end).
 nlohmann::json qualityReportToJson(const QualityReport& report);
