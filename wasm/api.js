@@ -129,6 +129,10 @@ export function wrapCore(core) {
   return Object.freeze({
     /** Version of the core. */
     version: core.version(),
+    /** Bytes malloc has in use in the wasm heap, and the heap's size (for leak checks). */
+    memoryStats() {
+      return core.memoryStats();
+    },
     /** A metric from {alpha, h1, h2}, {h} or {m11, m12, m22}; returns all three forms. */
     metric(spec) {
       return metricOut(unwrap(core.metricCreate(checkMetricSpec(spec, 'metric'))));

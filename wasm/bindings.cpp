@@ -6,6 +6,7 @@
 // and the module stays usable after bad input.
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
+#include <malloc.h>
 
 #include <cmath>
 #include <cstdint>
@@ -392,6 +393,16 @@ class ControlSpaceHandle {
 
 std::string version() { return "0.1.0"; }
 
+// Bytes of the wasm heap in use by malloc and the heap's total size: lets tests and
+// users check that repeated runs leak nothing.
+val memoryStats() {
+  const struct mallinfo mi = mallinfo();
+  val out = val::object();
+  out.set("inUseBytes", static_cast<double>(mi.uordblks));
+  out.set("heapBytes", static_cast<double>(emscripten::val::module_property("HEAP8")["length"].as<double>()));
+  return out;
+}
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(anisomesh) {
@@ -402,6 +413,7 @@ EMSCRIPTEN_BINDINGS(anisomesh) {
   emscripten::function("metricLength", &metricLength);
   emscripten::function("metricDifference", &metricDifference);
   emscripten::function("metricEllipse", &metricEllipse);
+  emscripten::function("memoryStats", &memoryStats);
   emscripten::function("meshCase", &meshCaseJson);
   emscripten::function("remesh", &remeshJs);
   emscripten::function("writeMesh", &writeMeshText);

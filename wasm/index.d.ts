@@ -106,6 +106,8 @@ export type MeshFormat = 'mesh' | 'vtk' | 'obj';
 export interface Anisomesh {
   /** Version of the WebAssembly core. */
   readonly version: string;
+  /** Bytes malloc has in use in the wasm heap and the heap's size, for leak checks. */
+  memoryStats(): { inUseBytes: number; heapBytes: number };
   /** Validates a metric and returns all its forms. Throws INVALID_METRIC for NaN, non-positive sizes or a non-SPD tensor. */
   metric(spec: MetricSpec): Metric;
   /** Metric intersection (the paper's min(M1, M2)): the largest unit ellipse inside both. */

@@ -36,20 +36,23 @@ std::string describe(const Mat2& m) {
   return os.str();
 }
 
+// Checks build their messages only on failure: they sit on the hot path of every
+// validated metric construction.
 void checkSpd(const Mat2& m, const char* what) {
-  require(m.allFinite(), ErrorCode::InvalidMetric,
-          std::string(what) + " has a NaN or infinite entry: " + describe(m));
+  if (!m.allFinite())
+    throw Error(ErrorCode::InvalidMetric, std::string(what) + " has a NaN or infinite entry: " + describe(m));
   const double scale = m.cwiseAbs().maxCoeff();
-  require(std::abs(m(0, 1) - m(1, 0)) <= 1e-12 * scale, ErrorCode::InvalidMetric,
-          std::string(what) + " is not symmetric: " + describe(m));
+  if (!(std::abs(m(0, 1) - m(1, 0)) <= 1e-12 * scale))
+    throw Error(ErrorCode::InvalidMetric, std::string(what) + " is not symmetric: " + describe(m));
   const SymEigen2 e = symEigen(m);
-  require(e.l2 > 0.0 && std::isfinite(1.0 / std::sqrt(e.l2)), ErrorCode::InvalidMetric,
-          std::string(what) + " is not positive definite: " + describe(m));
+  if (!(e.l2 > 0.0 && std::isfinite(1.0 / std::sqrt(e.l2))))
+    throw Error(ErrorCode::InvalidMetric, std::string(what) + " is not positive definite: " + describe(m));
 }
 
 void checkSize(double h, const char* name) {
-  require(std::isfinite(h) && h > 0.0, ErrorCode::InvalidMetric,
-          std::string("metric size ") + name + " must be finite and positive, got " + std::to_string(h));
+  if (!(std::isfinite(h) && h > 0.0))
+    throw Error(ErrorCode::InvalidMetric,
+                std::string("metric size ") + name + " must be finite and positive, got " + std::to_string(h));
 }
 
 }  // namespace
