@@ -8,6 +8,7 @@
 #include "anisomesh/io/medit.h"
 #include "anisomesh/pipeline/case_control_space.h"
 #include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/pipeline/mesh_metric_field.h"
 #include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/pipeline/remesh_geometry.h"
 
@@ -167,6 +168,22 @@ TEST(CaseControlSpace, BoundaryLayerExampleHasAspectRatio100) {
   const auto cs = buildCaseControlSpace(spec);
   EXPECT_GE(caseAnalyticMetric(spec)({2, 0}).aspectRatio(), 100 - 1e-9);
   EXPECT_GE(cs->metricAt({2, 0}).aspectRatio(), 95);
+}
+
+TEST(MeshMetricField, InterpolatesLinearlyAndClampsOutside) {
+  const Mesh m = squareMesh();
+  // Mt linear in x: sizes 0.1 at x = 0, 0.1 / (1 + x) ... via Mt = (10 + 5x) I.
+  std::vector<Metric> metrics;
+  for (const Vec3& p : m.points) metrics.push_back(Metric::fromTransform(Mat2::Identity() * (10 + 5 * p.x() + 2 * p.y())));
+  const TriangleMeshMetricField f(m, metrics);
+  for (const Vec2& q : {Vec2(0.3, 0.2), Vec2(1.7, 1.1), Vec2(1.0, 1.0), Vec2(2, 2), Vec2(0.01, 1.99)}) {
+    const double expected = 10 + 5 * q.x() + 2 * q.y();
+    EXPECT_NEAR(f.metricAt(q).transform()(0, 0), expected, 1e-9) << q.transpose();
+    EXPECT_NEAR(f.metricAt(q).transform()(0, 1), 0.0, 1e-12);
+  }
+  // Outside: the nearest boundary value.
+  EXPECT_NEAR(f.metricAt({3, 1}).transform()(0, 0), 10 + 10 + 2, 1e-9);
+  EXPECT_THROW(TriangleMeshMetricField(m, std::vector<Metric>(3)), Error);
 }
 
 TEST(RemeshGeometry, BoundaryLoopsKeepRefsAndOrientation) {

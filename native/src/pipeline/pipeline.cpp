@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <utility>
 
 #include "anisomesh/controlspace/control_space_algorithms.h"
@@ -12,6 +13,7 @@
 #include "anisomesh/core/error.h"
 #include "anisomesh/geometry/discretize.h"
 #include "anisomesh/pipeline/case_control_space.h"
+#include "anisomesh/pipeline/mesh_metric_field.h"
 #include "anisomesh/pipeline/remesh_geometry.h"
 
 namespace anisomesh {
@@ -310,10 +312,18 @@ std::unique_ptr<AdaptiveControlSpace> buildRemeshControlSpace(const Mesh& input,
   box.lo -= margin;
   box.hi += margin;
   s.box = box;
-  NodeSource nodes;
-  for (const Vec3& p : input.points) nodes.points.push_back(p.head<2>());
-  nodes.metrics = metrics;
-  s.sources.emplace_back(std::in_place_type<NodeSource>, std::move(nodes));
+  if (options.insertion == RemeshMetricInsertion::PiecewiseLinear) {
+    // Continuous source (section 2.3): exact values at the control nodes, elements split
+    // where the field varies; the input triangles only serve to evaluate it.
+    auto field = std::make_shared<const TriangleMeshMetricField>(input, metrics);
+    s.analytic = [field](const Vec2& p) { return field->metricAt(p); };
+    s.refineThreshold = options.refineThreshold;
+  } else {
+    NodeSource nodes;
+    for (const Vec3& p : input.points) nodes.points.push_back(p.head<2>());
+    nodes.metrics = metrics;
+    s.sources.emplace_back(std::in_place_type<NodeSource>, std::move(nodes));
+  }
   s.hmin = options.hmin;
   s.hmax = options.hmax;
   s.gradation = options.hgrad;

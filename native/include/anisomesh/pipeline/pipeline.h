@@ -62,15 +62,31 @@ PlanarMesherOptions mesherOptionsFromCase(const CaseSpec& spec);
 Mesh meshCase(const CaseSpec& spec, PipelineReport* report = nullptr, const BoundaryUpdateOptions& updates = {},
               std::unique_ptr<AdaptiveControlSpace>* controlSpace = nullptr);
 
+// How the input's per-vertex metrics enter the background-mesh control space.
+enum class RemeshMetricInsertion {
+  // Continuous source (section 2.3): Mt interpolated linearly over the input triangles
+  // (TriangleMeshMetricField) evaluated at the control nodes, elements split where it
+  // varies by more than refineThreshold. Default: on the peer benchmark it follows the
+  // input metric much better (99.8% vs 95.2% unit edges at scale 1).
+  PiecewiseLinear,
+  // Discrete NodeSource (section 2.2): structure refined to each vertex's size near it,
+  // weighted averages of the vertices reaching a control node, extrapolation.
+  NodeSource,
+};
+
 struct RemeshOptions {
   double hmin = 0.0;   // clamp every requested size to >= hmin (0: off)
   double hmax = 0.0;   // clamp every requested size to <= hmax (0: off)
   double hgrad = 0.0;  // gradation ratio dr of the control space smoothing (0: off, else >= 1)
+  RemeshMetricInsertion insertion = RemeshMetricInsertion::PiecewiseLinear;
+  double refineThreshold = 0.2;  // PiecewiseLinear: metric difference that splits a control element
   PlanarMesherOptions mesher;
 };
 
-// The background-mesh control space of a remeshing run: the input vertices with their
-// metrics inserted as a NodeSource (section 2.2), clamped, smoothed with hgrad (2.5).
+// The background-mesh control space of a remeshing run (buildAdaptiveControlSpace with
+// kind BackgroundMesh): the input metrics inserted as options.insertion says, clamped to
+// [hmin, hmax], smoothed with hgrad (section 2.5). Throws InvalidArgument on a count
+// mismatch or an input without triangles (PiecewiseLinear).
 std::unique_ptr<AdaptiveControlSpace> buildRemeshControlSpace(const Mesh& input, const std::vector<Metric>& metrics,
                                                               const RemeshOptions& options = {});
 

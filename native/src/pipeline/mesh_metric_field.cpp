@@ -1,0 +1,119 @@
+#include "anisomesh/pipeline/mesh_metric_field.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "anisomesh/core/error.h"
+
+namespace anisomesh {
+
+TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<Metric> metrics)
+    : metrics_(std::move(metrics)) {
+  require(int(metrics_.size()) == mesh.vertexCount(), ErrorCode::InvalidArgument,
+          "metric field: " + std::to_string(metrics_.size()) + " metrics for " + std::to_string(mesh.vertexCount()) +
+              " vertices");
+  for (const Vec3& p : mesh.points) pts_.push_back(p.head<2>());
+  tris_ = mesh.triangles;
+  for (const auto& q : mesh.quads) {
+    tris_.push_back({q[0], q[1], q[2]});
+    tris_.push_back({q[0], q[2], q[3]});
+  }
+  require(!tris_.empty(), ErrorCode::InvalidArgument, "metric field: the mesh has no triangles or quadrilaterals");
+  box_.lo = box_.hi = pts_[tris_[0][0]];
+  for (const auto& t : tris_)
+    for (int v : t) {
+      box_.lo = box_.lo.cwiseMin(pts_[v]);
+      box_.hi = box_.hi.cwiseMax(pts_[v]);
+    }
+  // About one triangle per cell on square-ish cells.
+  const Vec2 size = box_.size().cwiseMax(Vec2::Constant(1e-300));
+  const double side = std::sqrt(size.x() * size.y() / double(tris_.size()));
+  nx_ = std::max(1, std::min(2048, side > 0 ? int(size.x() / side) : 1));
+  ny_ = std::max(1, std::min(2048, side > 0 ? int(size.y() / side) : 1));
+  cell_ = Vec2(size.x() / nx_, size.y() / ny_);
+  auto range = [&](const std::array<int, 3>& t, int* x0, int* x1, int* y0, int* y1) {
+    Vec2 lo = pts_[t[0]], hi = pts_[t[0]];
+    for (int v : t) {
+      lo = lo.cwiseMin(pts_[v]);
+      hi = hi.cwiseMax(pts_[v]);
+    }
+    *x0 = std::min(nx_ - 1, std::max(0, int((lo.x() - box_.lo.x()) / cell_.x())));
+    *x1 = std::min(nx_ - 1, std::max(0, int((hi.x() - box_.lo.x()) / cell_.x())));
+    *y0 = std::min(ny_ - 1, std::max(0, int((lo.y() - box_.lo.y()) / cell_.y())));
+    *y1 = std::min(ny_ - 1, std::max(0, int((hi.y() - box_.lo.y()) / cell_.y())));
+  };
+  cellStart_.assign(size_t(nx_) * ny_ + 1, 0);
+  int x0, x1, y0, y1;
+  for (const auto& t : tris_) {
+    range(t, &x0, &x1, &y0, &y1);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) ++cellStart_[cellIndex(x, y) + 1];
+  }
+  for (size_t c = 1; c < cellStart_.size(); ++c) cellStart_[c] += cellStart_[c - 1];
+  cellTris_.resize(size_t(cellStart_.back()));
+  std::vector<int> fill(cellStart_.begin(), cellStart_.end() - 1);
+  for (int i = 0; i < int(tris_.size()); ++i) {
+    range(tris_[i], &x0, &x1, &y0, &y1);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) cellTris_[size_t(fill[cellIndex(x, y)]++)] = i;
+  }
+}
+
+Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
+  const int cx = std::min(nx_ - 1, std::max(0, int(std::floor((p.x() - box_.lo.x()) / cell_.x()))));
+  const int cy = std::min(ny_ - 1, std::max(0, int(std::floor((p.y() - box_.lo.y()) / cell_.y()))));
+  // Interpolates Mt at q, given in triangle t.
+  auto interpolateAt = [this](int t, const Vec2& q) {
+    const auto& tri = tris_[size_t(t)];
+    const Vec2 &a = pts_[tri[0]], &b = pts_[tri[1]], &c = pts_[tri[2]];
+    const double det = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+    double l1 = ((q.x() - a.x()) * (c.y() - a.y()) - (q.y() - a.y()) * (c.x() - a.x())) / det;
+    double l2 = ((b.x() - a.x()) * (q.y() - a.y()) - (b.y() - a.y()) * (q.x() - a.x())) / det;
+    double l0 = 1.0 - l1 - l2;
+    l0 = std::max(l0, 0.0), l1 = std::max(l1, 0.0), l2 = std::max(l2, 0.0);
+    const double sum = l0 + l1 + l2;
+    const Mat2 mt = (l0 * metrics_[size_t(tri[0])].transform() + l1 * metrics_[size_t(tri[1])].transform() +
+                     l2 * metrics_[size_t(tri[2])].transform()) / sum;
+    return Metric::fromTransformUnchecked(mt);
+  };
+  auto closestOnSegment = [](const Vec2& q, const Vec2& a, const Vec2& b) {
+    const Vec2 ab = b - a;
+    const double l2 = ab.squaredNorm();
+    const double t = l2 > 0 ? std::min(1.0, std::max(0.0, (q - a).dot(ab) / l2)) : 0.0;
+    return Vec2(a + t * ab);
+  };
+  int best = -1, foundRing = -1;
+  double bestDist = INFINITY;
+  Vec2 bestPoint = p;
+  // Rings of cells around p's cell: a containing triangle ends the search; otherwise the
+  // nearest triangle seen up to one ring past the first ring with candidates.
+  for (int r = 0; r <= std::max(nx_, ny_); ++r) {
+    for (int y = cy - r; y <= cy + r; ++y)
+      for (int x = cx - r; x <= cx + r; ++x) {
+        if (x < 0 || y < 0 || x >= nx_ || y >= ny_) continue;
+        if (std::max(std::abs(x - cx), std::abs(y - cy)) != r) continue;
+        const int c = cellIndex(x, y);
+        for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
+          const int t = cellTris_[size_t(k)];
+          const auto& tri = tris_[size_t(t)];
+          const Vec2 &a = pts_[tri[0]], &b = pts_[tri[1]], &d = pts_[tri[2]];
+          const double det = (b.x() - a.x()) * (d.y() - a.y()) - (b.y() - a.y()) * (d.x() - a.x());
+          if (det == 0) continue;
+          const double l1 = ((p.x() - a.x()) * (d.y() - a.y()) - (p.y() - a.y()) * (d.x() - a.x())) / det;
+          const double l2 = ((b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x())) / det;
+          if (l1 >= -1e-12 && l2 >= -1e-12 && 1.0 - l1 - l2 >= -1e-12) return interpolateAt(t, p);
+          for (int e = 0; e < 3; ++e) {
+            const Vec2 q = closestOnSegment(p, pts_[tri[e]], pts_[tri[(e + 1) % 3]]);
+            const double dist = (q - p).squaredNorm();
+            if (dist < bestDist) bestDist = dist, best = t, bestPoint = q;
+          }
+        }
+      }
+    if (best >= 0 && foundRing < 0) foundRing = r;
+    if (foundRing >= 0 && r >= foundRing + 1) break;
+  }
+  require(best >= 0, ErrorCode::InvalidArgument, "metric field: every triangle of the mesh is degenerate");
+  return interpolateAt(best, bestPoint);
+}
+
+}  // namespace anisomesh
