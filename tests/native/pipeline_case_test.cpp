@@ -73,7 +73,7 @@ void expectSameMesh(const Mesh& a, const Mesh& b) {
 
 TEST(PipelineCase, EveryExampleMeshesWithTheRealControlSpace) {
   for (const char* name : {"fig6_rect_holes_nosmooth", "fig7_rect_holes_dr8", "fig7_rect_holes_dr2", "boundary_layer",
-                           "shear_layer", "point_source"}) {
+                           "shear_layer", "point_source", "expression_field"}) {
     SCOPED_TRACE(name);
     const CaseSpec spec = example(name);
     PipelineReport report;
