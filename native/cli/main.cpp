@@ -8,12 +8,12 @@
 
 #include "anisomesh/anisomesh.h"
 #include "anisomesh/io/case_json.h"
+#include "anisomesh/io/file_io.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/io/mesh_formats.h"
-#include "anisomesh/pipeline/case_control_space.h"
-#include "anisomesh/pipeline/mesh_metric_field.h"
+#include "anisomesh/io/svg.h"
+#include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
-#include "anisomesh/pipeline/remesh_geometry.h"
 
 namespace {
 
@@ -22,11 +22,11 @@ using namespace anisomesh;
 int usage(std::ostream& os, int code) {
   os << "usage: anisomesh <command> [options]\n"
         "commands:\n"
-        "  mesh CASE.json -o OUT [--quads] [--all-quads] [--stats] [--max-elements N]\n"
-        "                            mesh a JSON case (OUT: .mesh, .vtk or .obj)\n"
-        "  remesh IN.mesh -sol IN.sol -o OUT [-hgrad R] [-hmin H] [-hmax H] [--stats]\n"
-        "                            remesh the domain of IN.mesh under the metric IN.sol\n"
-        "                            (-hgrad is accepted but not applied yet)\n"
+        "  mesh CASE.json -o OUT [--quads] [--all-quads] [--stats] [--max-elements N] [--no-updates]\n"
+        "                            mesh a JSON case (OUT: .mesh, .vtk, .obj or .svg)\n"
+        "  remesh IN.mesh -sol IN.sol -o OUT [-hgrad R] [-hmin H] [-hmax H] [--stats] [--max-elements N]\n"
+        "                            remesh the domain of IN.mesh under the metric IN.sol, used as\n"
+        "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1)\n"
         "  metric ALPHA H1 H2        print the metric tensor for sizes (h1, h2) at angle ALPHA (radians)\n"
         "  --version                 print the version\n"
         "--stats prints one JSON object on stdout. Errors: exit 1 (bad input), 2 (bad usage).\n";
@@ -70,34 +70,32 @@ class Args {
   int i_ = 2;
 };
 
-// The --stats JSON. Switching to the mesher's quality report is this one line:
-//   return qualityReportToJson(measureQuality(mesh, cs)) (plus the report fields).
-std::string statsJson(const Mesh& mesh, const ControlSpace& /*cs*/, const PipelineReport& report) {
-  nlohmann::json j;
-  j["vertices"] = mesh.vertexCount();
-  j["triangles"] = mesh.triangles.size();
-  j["quads"] = mesh.quads.size();
-  j["edges"] = mesh.edges.size();
-  j["boundaryPoints"] = report.boundaryPoints;
-  j["secondsGeometry"] = report.secondsGeometry;
-  j["secondsMeshing"] = report.secondsMeshing;
-  j["notes"] = report.notes;
-  return j.dump();
-}
+bool isSvg(const std::string& path) { return fileExtension(path) == "svg"; }
 
 void requireOutput(const std::string& out) {
   if (out.empty()) throw UsageError{"missing -o OUT"};
+  if (isSvg(out)) return;
   try {
     meshFormatFromPath(out);
   } catch (const Error& e) {
-    throw UsageError{e.what()};
+    throw UsageError{std::string(e.what()) + " (or .svg)"};
   }
+}
+
+// Writes the mesh by extension; .svg pictures colour elements by metric quality.
+void writeOutput(const std::string& path, const Mesh& mesh, const ControlSpace& cs) {
+  if (!isSvg(path)) return writeMeshFile(path, mesh);
+  SvgOptions o;
+  o.width = 900;
+  o.strokeWidth = 0.3;
+  o.elementValues = elementQualities(mesh, cs);
+  writeTextFileAtomic(path, writeSvg(mesh, o));
 }
 
 int runMesh(int argc, char** argv) {
   Args args(argc, argv);
   std::string input, output;
-  bool stats = false, quads = false, allQuads = false;
+  bool stats = false, quads = false, allQuads = false, updates = true;
   long long maxElements = -1;
   while (!args.done()) {
     const std::string a = args.next();
@@ -105,6 +103,7 @@ int runMesh(int argc, char** argv) {
     else if (a == "--quads") quads = true;
     else if (a == "--all-quads") allQuads = true;
     else if (a == "--stats") stats = true;
+    else if (a == "--no-updates") updates = false;
     else if (a == "--max-elements") maxElements = parseCount(a, args.value(a));
     else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option '" + a + "' for mesh"};
     else if (input.empty()) input = a;
@@ -118,9 +117,12 @@ int runMesh(int argc, char** argv) {
   if (allQuads) spec.options.allQuads = true;
   if (maxElements > 0) spec.options.maxElements = maxElements;
   PipelineReport report;
-  const Mesh mesh = meshCase(spec, &report);
-  writeMeshFile(output, mesh);
-  if (stats) std::cout << statsJson(mesh, *buildCaseControlSpace(spec), report) << "\n";
+  BoundaryUpdateOptions u;
+  u.enabled = updates;
+  std::unique_ptr<AdaptiveControlSpace> cs;
+  const Mesh mesh = meshCase(spec, &report, u, &cs);
+  writeOutput(output, mesh, *cs);
+  if (stats) std::cout << pipelineStatsJson(mesh, *cs, report).dump() << "\n";
   return 0;
 }
 
@@ -137,6 +139,7 @@ int runRemesh(int argc, char** argv) {
     else if (a == "-hmin" || a == "--hmin") options.hmin = parseNumber(a, args.value(a));
     else if (a == "-hmax" || a == "--hmax") options.hmax = parseNumber(a, args.value(a));
     else if (a == "--stats") stats = true;
+    else if (a == "--max-elements") options.mesher.maxElements = parseCount(a, args.value(a));
     else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option '" + a + "' for remesh"};
     else if (input.empty()) input = a;
     else throw UsageError{"unexpected argument '" + a + "'"};
@@ -146,16 +149,15 @@ int runRemesh(int argc, char** argv) {
   requireOutput(output);
   if (options.hmin > 0 && options.hmax > 0 && options.hmin > options.hmax)
     throw UsageError{"-hmin must not exceed -hmax"};
+  if (options.hgrad > 0 && options.hgrad < 1) throw UsageError{"-hgrad expects a ratio >= 1 (or 0: off)"};
 
   const Mesh in = readMeditFile(input);
   const std::vector<Metric> metrics = solToMetrics(readSolFile(sol), in.vertexCount());
   PipelineReport report;
-  const Mesh mesh = remesh(in, metrics, options, &report);
-  writeMeshFile(output, mesh);
-  if (stats) {
-    const TriangleMeshMetricField field(in, clampMetricSizes(metrics, options.hmin, options.hmax));
-    std::cout << statsJson(mesh, field, report) << "\n";
-  }
+  std::unique_ptr<AdaptiveControlSpace> cs;
+  const Mesh mesh = remesh(in, metrics, options, &report, &cs);
+  writeOutput(output, mesh, *cs);
+  if (stats) std::cout << pipelineStatsJson(mesh, *cs, report).dump() << "\n";
   return 0;
 }
 

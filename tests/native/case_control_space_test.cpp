@@ -7,7 +7,9 @@
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/pipeline/case_control_space.h"
+#include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/pipeline/mesh_metric_field.h"
+#include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/pipeline/remesh_geometry.h"
 
 using namespace anisomesh;
@@ -41,35 +43,49 @@ Mesh squareMesh() {
 
 }  // namespace
 
-TEST(CaseControlSpace, BackgroundAndRadialWithoutGradation) {
+// Relative closeness: the quadtree interpolates between its nodes.
+::testing::AssertionResult near(double value, double expected, double relative) {
+  if (std::abs(value - expected) <= relative * std::abs(expected)) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << value << " is not within " << relative * 100 << "% of " << expected;
+}
+
+TEST(CaseControlSpace, HmaxDefaultAndRadialWithoutGradation) {
   const auto cs = buildCaseControlSpace(caseWith(R"({"hmax": 0.5})", kRadial));
+  EXPECT_STREQ(cs->kindName(), "quadtree");
   EXPECT_TRUE(cs->bounds().contains(Vec2(0, 0)));
   EXPECT_TRUE(cs->bounds().contains(Vec2(10, 5)));
   const Metric far = cs->metricAt({1, 1});
-  EXPECT_NEAR(far.sizeAlong({1, 0}), 0.5, 1e-12);
-  EXPECT_NEAR(far.sizeAlong({0, 1}), 0.5, 1e-12);
+  EXPECT_NEAR(far.sizeAlong({1, 0}), 0.5, 1e-9);
+  EXPECT_NEAR(far.sizeAlong({0, 1}), 0.5, 1e-9);
   const Metric in = cs->metricAt({5.2, 2.5});
-  EXPECT_NEAR(in.sizeAlong({1, 0}), 0.05, 1e-12);
-  EXPECT_NEAR(in.sizeAlong({0, 1}), 0.2, 1e-12);
-  // No gradation: the source ends at its radius.
-  EXPECT_NEAR(cs->metricAt({5.6, 2.5}).sizeAlong({1, 0}), 0.5, 1e-12);
+  EXPECT_TRUE(near(in.sizeAlong({1, 0}), 0.05, 0.02));
+  EXPECT_TRUE(near(in.sizeAlong({0, 1}), 0.2, 0.02));
+  // No gradation: the source ends near its radius (within a quarter radius), abruptly.
+  EXPECT_NEAR(cs->metricAt({5.7, 2.5}).sizeAlong({1, 0}), 0.5, 1e-9);
+  EXPECT_NEAR(cs->metricAt({5, 3.2}).sizeAlong({0, 1}), 0.5, 1e-9);
 }
 
-TEST(CaseControlSpace, GradationSlopeFollowsPaperEq4) {
-  EXPECT_NEAR(gradationSlope(2.0), 2.0 / 3.0, 1e-15);
-  EXPECT_NEAR(gradationSlope(1.0), 0.0, 1e-15);
+TEST(CaseControlSpace, BackgroundKindBuildsABackgroundMesh) {
+  const auto cs = buildCaseControlSpace(caseWith(R"({"kind": "background", "hmax": 0.5})", kRadial));
+  EXPECT_STREQ(cs->kindName(), "background");
+  EXPECT_TRUE(near(cs->metricAt({5.1, 2.5}).sizeAlong({1, 0}), 0.05, 0.02));
+  EXPECT_NEAR(cs->metricAt({1, 1}).sizeAlong({1, 0}), 0.5, 1e-9);
+}
+
+TEST(CaseControlSpace, GradationBoundsTheGrowthOfSizes) {
   const auto cs = buildCaseControlSpace(caseWith(R"({"hmax": 0.5, "gradation": 2})", kRadial));
-  // At distance radius + 0.3 the x-size grew by slope * 0.3.
-  EXPECT_NEAR(cs->metricAt({5.8, 2.5}).sizeAlong({1, 0}), 0.05 + 0.3 * 2.0 / 3.0, 1e-9);
-  // Along a ray the requested size never grows faster than the slope.
+  // Along a ray the requested size stays below the line of slope a_max (eq. 4) from the
+  // source's edge (the smoothing bounds it at the control nodes; interpolating Mt inside
+  // a leaf bends h between them, hence the slack), up to hmax.
   const double a = gradationSlope(2.0);
-  double prev = cs->metricAt({5.5, 2.5}).sizeAlong({1, 0});
-  for (double x = 5.51; x < 9.9; x += 0.01) {
-    const double h = cs->metricAt({x, 2.5}).sizeAlong({1, 0});
-    EXPECT_LE(h - prev, a * 0.01 * (1 + 1e-9)) << x;
-    prev = h;
+  double h = 0.0;
+  for (double x = 5.5; x < 9.9; x += 0.02) {
+    h = cs->metricAt({x, 2.5}).sizeAlong({1, 0});
+    EXPECT_LE(h, 0.05 + 1.05 * a * (x - 5.5) + 0.02) << x;
   }
-  EXPECT_NEAR(prev, 0.5, 1e-12);  // capped by hmax
+  EXPECT_NEAR(h, 0.5, 1e-9);  // capped by hmax
+  // Without gradation the same point is coarse; with it, graded.
+  EXPECT_LT(cs->metricAt({6.0, 2.5}).sizeAlong({1, 0}), 0.45);
 }
 
 TEST(CaseControlSpace, SegmentSourceAndHminClamp) {
@@ -77,34 +93,81 @@ TEST(CaseControlSpace, SegmentSourceAndHminClamp) {
       R"({"hmax": 1, "hmin": 0.1})",
       R"([{"type": "segment", "p1": [1, 1], "p2": [9, 1], "metric": {"alpha": 0, "h1": 0.5, "h2": 0.01}, "radius": 0.2}])"));
   const Metric m = cs->metricAt({4, 1.1});
-  EXPECT_NEAR(m.sizeAlong({1, 0}), 0.5, 1e-9);
-  EXPECT_NEAR(m.sizeAlong({0, 1}), 0.1, 1e-9);  // 0.01 clamped to hmin
-  EXPECT_NEAR(cs->metricAt({4, 2}).sizeAlong({0, 1}), 1.0, 1e-12);
+  EXPECT_TRUE(near(m.sizeAlong({1, 0}), 0.5, 0.02));
+  EXPECT_TRUE(near(m.sizeAlong({0, 1}), 0.1, 0.02));  // 0.01 clamped to hmin
+  EXPECT_NEAR(cs->metricAt({4, 2}).sizeAlong({0, 1}), 1.0, 1e-9);
+}
+
+TEST(CaseControlSpace, PolylineAndNodeSources) {
+  const auto cs = buildCaseControlSpace(caseWith(R"({"hmax": 1})", R"([
+      {"type": "polyline", "points": [[1, 1], [3, 1], [3, 3]], "metric": {"h1": 0.05}, "radius": 0.1},
+      {"type": "nodes", "points": [[8, 4]], "metrics": [{"alpha": 0, "h1": 0.02, "h2": 0.3}]}])"));
+  EXPECT_TRUE(near(cs->metricAt({2, 1}).sizeAlong({1, 0}), 0.05, 0.03));
+  EXPECT_TRUE(near(cs->metricAt({3, 2}).sizeAlong({0, 1}), 0.05, 0.03));
+  // A radius-0 node reaches the control nodes of its own small leaf only.
+  EXPECT_LT(cs->metricAt({8, 4}).sizeAlong({1, 0}), 0.03);
+  EXPECT_NEAR(cs->metricAt({6, 1}).sizeAlong({1, 0}), 1.0, 1e-9);
 }
 
 TEST(CaseControlSpace, AnalyticFields) {
-  const auto cs = buildCaseControlSpace(caseWith(R"({"hmax": 0.2, "gradation": 2})", R"([
+  const CaseSpec spec = caseWith(R"({"hmax": 0.2, "gradation": 2, "maxLevel": 12})", R"([
       {"type": "analytic", "field": "boundary_layer", "p1": [0, 0], "p2": [10, 0], "h0": 0.001, "hTangent": 0.1, "thickness": 0.5},
       {"type": "analytic", "field": "shear_layer_circle", "center": [5, 2.5], "radius": 1, "h0": 0.002, "hTangent": 0.05, "thickness": 0.1},
-      {"type": "analytic", "field": "point", "center": [8, 4], "h0": 0.003, "growth": 0.5}])"));
+      {"type": "analytic", "field": "point", "center": [8, 4], "h0": 0.003, "growth": 0.5}])");
+  // The analytic function itself.
+  const MetricFunction f = caseAnalyticMetric(spec);
+  EXPECT_NEAR(f({2, 0}).sizeAlong({0, 1}), 0.001, 1e-12);
+  EXPECT_NEAR(f({2, 0}).sizeAlong({1, 0}), 0.1, 1e-12);
+  EXPECT_NEAR(f({2, 0.25}).sizeAlong({0, 1}), 0.001 + 0.099 * 0.5, 1e-12);
+  EXPECT_NEAR(f({8.1, 4}).sizeAlong({1, 0}), 0.003 + 0.05, 1e-12);
+  // The structure resolves it.
+  const auto cs = buildCaseControlSpace(spec);
   const Metric wall = cs->metricAt({2, 0});
-  EXPECT_NEAR(wall.sizeAlong({0, 1}), 0.001, 1e-12);
-  EXPECT_NEAR(wall.sizeAlong({1, 0}), 0.1, 1e-12);
-  EXPECT_GE(wall.aspectRatio(), 100 - 1e-9);
-  EXPECT_NEAR(cs->metricAt({2, 0.25}).sizeAlong({0, 1}), 0.001 + 0.099 * 0.5, 1e-12);
-  // On the circle: fine radially, long tangentially.
+  // Refinement threshold 0.1 and the smallest leaf (no hmin: hmax / 100) bound the error.
+  EXPECT_TRUE(near(wall.sizeAlong({0, 1}), 0.001, 0.15));
+  EXPECT_TRUE(near(wall.sizeAlong({1, 0}), 0.1, 0.03));
+  EXPECT_GE(wall.aspectRatio(), 85);
   const Vec2 onCircle(5 + std::cos(0.7), 2.5 + std::sin(0.7));
   const Metric s = cs->metricAt(onCircle);
-  EXPECT_NEAR(s.sizeAlong(Vec2(std::cos(0.7), std::sin(0.7))), 0.002, 1e-12);
-  EXPECT_NEAR(s.sizeAlong(Vec2(-std::sin(0.7), std::cos(0.7))), 0.05, 1e-12);
-  EXPECT_NEAR(cs->metricAt({8, 4}).sizeAlong({1, 0}), 0.003, 1e-12);
-  EXPECT_NEAR(cs->metricAt({8.1, 4}).sizeAlong({1, 0}), 0.003 + 0.05, 1e-12);
+  // Across the layer the size changes by ~half of h0 over one smallest leaf (maxLevel 12:
+  // 0.0025), which bounds the interpolation error there.
+  EXPECT_TRUE(near(s.sizeAlong(Vec2(std::cos(0.7), std::sin(0.7))), 0.002, 0.25));
+  EXPECT_TRUE(near(s.sizeAlong(Vec2(-std::sin(0.7), std::cos(0.7))), 0.05, 0.1));
+  EXPECT_TRUE(near(cs->metricAt({8, 4}).sizeAlong({1, 0}), 0.003, 0.1));
+}
+
+TEST(CaseControlSpace, ExpressionField) {
+  const CaseSpec spec = caseWith(R"({"hmax": 1})", R"j([
+      {"type": "analytic", "field": "expression", "alpha": "atan2(y, x)", "h1": "0.01 + 0.1 * abs(x - 5)", "h2": 0.5}])j");
+  const MetricFunction f = caseAnalyticMetric(spec);
+  EXPECT_NEAR(f({5, 1}).sizeAlong({std::cos(std::atan2(1.0, 5.0)), std::sin(std::atan2(1.0, 5.0))}), 0.01, 1e-12);
+  EXPECT_NEAR(f({7, 1}).sizeAlong({-std::sin(std::atan2(1.0, 7.0)), std::cos(std::atan2(1.0, 7.0))}), 0.5, 1e-12);
+  const auto cs = buildCaseControlSpace(spec);
+  EXPECT_TRUE(near(cs->metricAt({5, 2}).sizes().h1, 0.01, 0.05));
+  // Errors name the JSON path and the column.
+  try {
+    caseWith(R"({"hmax": 1})", R"([{"type": "analytic", "field": "expression", "h1": "0.1 + z"}])");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::ParseError);
+    EXPECT_NE(std::string(e.what()).find("sources[0].h1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("column 7"), std::string::npos) << e.what();
+  }
+  // A size that is not positive somewhere: InvalidMetric naming the source.
+  try {
+    buildCaseControlSpace(caseWith(R"({"hmax": 1})", R"([{"type": "analytic", "field": "expression", "h1": "x - 5"}])"));
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidMetric);
+    EXPECT_NE(std::string(e.what()).find("sources[0]"), std::string::npos) << e.what();
+  }
 }
 
 TEST(CaseControlSpace, BoundaryLayerExampleHasAspectRatio100) {
   const CaseSpec spec = readCaseFile(std::string(ANISOMESH_SOURCE_DIR) + "/examples/boundary_layer.json");
   const auto cs = buildCaseControlSpace(spec);
-  EXPECT_GE(cs->metricAt({2, 0}).aspectRatio(), 100 - 1e-9);
+  EXPECT_GE(caseAnalyticMetric(spec)({2, 0}).aspectRatio(), 100 - 1e-9);
+  EXPECT_GE(cs->metricAt({2, 0}).aspectRatio(), 95);
 }
 
 TEST(MeshMetricField, InterpolatesLinearlyAndClampsOutside) {
@@ -213,10 +276,10 @@ TEST(RemeshGeometry, DiscretizeUnderMeshMetricField) {
   const Mesh m = squareMesh();
   std::vector<Metric> metrics;
   for (const Vec3& p : m.points) metrics.push_back(Metric::isotropic(0.05 + 0.05 * p.x()));
-  const TriangleMeshMetricField field(m, metrics);
+  const auto field = buildRemeshControlSpace(m, metrics);
   const Domain d = domainFromBoundaryLoops(boundaryLoopsFromMesh(m));
   ASSERT_NO_THROW(validateDomain(d));
-  const auto loops = discretizeDomain(d, field);
+  const auto loops = discretizeDomain(d, *field);
   ASSERT_EQ(loops.size(), 1u);
   EXPECT_GT(loops[0].points.size(), 40u);
   // Corners stay boundary points and refs are carried to the new edges.

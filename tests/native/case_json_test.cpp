@@ -66,7 +66,7 @@ TEST(CaseJson, AllCurveAndSourceKinds) {
          {"type": "arc", "center": [2, 1], "radius": 0.3, "start": 3.141592653589793, "end": 6.283185307179586}]
       ]
     },
-    "controlSpace": {"kind": "background", "hmin": 0.01, "hmax": 0.5, "gradation": 2.5, "interpolation": "serendipity"},
+    "controlSpace": {"kind": "background", "hmin": 0.01, "hmax": 0.5, "gradation": 2.5, "interpolation": "inverse_distance"},
     "sources": [
       {"type": "radial", "center": [1, 1], "metric": {"alpha": 0.5, "h1": 0.02, "h2": 0.2}, "radius": 0.3},
       {"type": "segment", "p1": [0, 0], "p2": [4, 0], "metric": {"h1": 0.05}, "radius": 0.1},
@@ -91,7 +91,7 @@ TEST(CaseJson, AllCurveAndSourceKinds) {
   EXPECT_LT((c[1].curve->end() - Vec2(4, 2)).norm(), 1e-12);
   EXPECT_EQ(s.controlSpace.kind, "background");
   EXPECT_EQ(*s.controlSpace.gradation, 2.5);
-  EXPECT_EQ(s.controlSpace.interpolation, "serendipity");
+  EXPECT_EQ(s.controlSpace.interpolation, "inverse_distance");
   ASSERT_EQ(s.sources.size(), 5u);
   EXPECT_EQ(s.sources[0].type, SourceType::Radial);
   EXPECT_EQ(s.sources[0].metric.h2, 0.2);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <utility>
 
 #include "anisomesh/core/error.h"
 
@@ -181,7 +182,8 @@ inline Dual2 binaryDual(Op op, const Dual2& a, const Dual2& b) {
 // constant folding at emission time (a single Const instruction is always a whole operand).
 class ExpressionCompiler {
  public:
-  ExpressionCompiler(Expression& out, const std::string& text) : e_(out), s_(text) {}
+  ExpressionCompiler(Expression& out, const std::string& text, std::string uName = "u", std::string vName = "v")
+      : e_(out), s_(text), uName_(std::move(uName)), vName_(std::move(vName)) {}
 
   void run() {
     skipSpace();
@@ -197,6 +199,7 @@ class ExpressionCompiler {
 
   Expression& e_;
   const std::string& s_;
+  std::string uName_, vName_;
   size_t pos_ = 0;
   int depth_ = 0;
   int nesting_ = 0;
@@ -425,13 +428,13 @@ class ExpressionCompiler {
       return;
     }
     if (findFunction(name)) failAt(start, "'" + name + "' is a function", ", expected '(' after it");
-    if (name == "u") return push(Op::U);
-    if (name == "v") return push(Op::V);
+    if (name == uName_) return push(Op::U);
+    if (name == vName_) return push(Op::V);
     if (name == "pi") return pushConst(3.14159265358979323846);
     if (name == "e") return pushConst(std::exp(1.0));
     for (size_t i = 0; i < e_.paramNames_.size(); ++i)
       if (e_.paramNames_[i] == name) return push(Op::Param, static_cast<std::int32_t>(i));
-    std::string known = "u, v, pi, e";
+    std::string known = uName_ + ", " + vName_ + ", pi, e";
     for (const auto& p : e_.paramNames_) known += ", " + p;
     failAt(start, "unknown variable '" + name + "'", " (known: " + known + ")");
   }
@@ -450,13 +453,13 @@ Expression Expression::parse(const std::string& text, const ExpressionOptions& o
   for (const auto& [name, value] : options.parameters) {
     bool ident = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_');
     for (char c : name) ident = ident && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
-    require(ident && name != "u" && name != "v" && name != "pi" && name != "e" && !findFunction(name),
+    require(ident && name != options.uName && name != options.vName && name != "pi" && name != "e" && !findFunction(name),
             ErrorCode::InvalidArgument,
             options.name + ": parameter name '" + name + "' is not a free identifier");
     e.paramNames_.push_back(name);
     e.paramValues_.push_back(value);
   }
-  ExpressionCompiler(e, text).run();
+  ExpressionCompiler(e, text, options.uName, options.vName).run();
   return e;
 }
 

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/geometry/expression.h"
 #include "anisomesh/io/file_io.h"
 
 namespace anisomesh {
@@ -165,6 +166,30 @@ MetricSizes parseMetric(const json& v, const std::string& path) {
 AnalyticFieldSpec parseAnalytic(const json& v, const std::string& path) {
   AnalyticFieldSpec a;
   a.field = string(member(v, path, "field"), child(path, "field"));
+  a.path = path;
+  if (a.field == "expression") {
+    checkKeys(v, path, {"type", "field", "alpha", "h1", "h2"});
+    // Compiled here only to report syntax errors with the JSON path and the column.
+    auto formula = [&](const char* key, bool required, const std::string& fallback) {
+      if (!v.contains(key)) {
+        if (required) fail(child(path, key), "missing field");
+        return fallback;
+      }
+      std::string text;
+      if (v[key].is_number()) text = v[key].dump();
+      else text = string(v[key], child(path, key));
+      ExpressionOptions o;
+      o.name = child(path, key);
+      o.uName = "x";
+      o.vName = "y";
+      Expression::parse(text, o);
+      return text;
+    };
+    a.alpha = formula("alpha", false, "0");
+    a.h1 = formula("h1", true, "");
+    a.h2 = formula("h2", false, a.h1);
+    return a;
+  }
   if (a.field == "boundary_layer") {
     checkKeys(v, path, {"type", "field", "p1", "p2", "h0", "hTangent", "thickness"});
     a.p1 = pointField(v, path, "p1");
@@ -182,7 +207,7 @@ AnalyticFieldSpec parseAnalytic(const json& v, const std::string& path) {
     require(a.growth >= 0, ErrorCode::InvalidArgument, child(path, "growth") + ": must be >= 0");
     return a;
   } else {
-    fail(child(path, "field"), "unknown analytic field '" + a.field + "' (expected boundary_layer, shear_layer_circle or point)");
+    fail(child(path, "field"), "unknown analytic field '" + a.field + "' (expected boundary_layer, shear_layer_circle, point or expression)");
   }
   a.h0 = positiveField(v, path, "h0");
   a.hTangent = positiveField(v, path, "hTangent");
@@ -203,12 +228,27 @@ SourceSpec parseSource(const json& v, const std::string& path) {
     s.type = SourceType::Segment;
     s.p1 = pointField(v, path, "p1");
     s.p2 = pointField(v, path, "p2");
+  } else if (type == "polyline") {
+    checkKeys(v, path, {"type", "points", "metric", "radius"});
+    s.type = SourceType::Polyline;
+    s.points = points(member(v, path, "points"), child(path, "points"), 2);
+  } else if (type == "nodes") {
+    checkKeys(v, path, {"type", "points", "metrics"});
+    s.type = SourceType::Nodes;
+    s.points = points(member(v, path, "points"), child(path, "points"), 1);
+    const json& ms = member(v, path, "metrics");
+    const std::string mp = child(path, "metrics");
+    if (!ms.is_array()) fail(mp, std::string("expected an array of metrics, got ") + typeName(ms));
+    if (ms.size() != s.points.size())
+      fail(mp, "expected one metric per point (" + std::to_string(s.points.size()) + "), got " + std::to_string(ms.size()));
+    for (size_t i = 0; i < ms.size(); ++i) s.metrics.push_back(parseMetric(ms[i], index(mp, i)));
+    return s;
   } else if (type == "analytic") {
     s.type = SourceType::Analytic;
     s.analytic = parseAnalytic(v, path);
     return s;
   } else {
-    fail(child(path, "type"), "unknown source type '" + type + "' (expected radial, segment or analytic)");
+    fail(child(path, "type"), "unknown source type '" + type + "' (expected radial, segment, polyline, nodes or analytic)");
   }
   s.metric = parseMetric(member(v, path, "metric"), child(path, "metric"));
   s.radius = number(member(v, path, "radius"), child(path, "radius"));
@@ -218,7 +258,7 @@ SourceSpec parseSource(const json& v, const std::string& path) {
 
 CaseControlSpaceSpec parseControlSpace(const json& v, const std::string& path) {
   expectObject(v, path);
-  checkKeys(v, path, {"kind", "hmin", "hmax", "gradation", "interpolation"});
+  checkKeys(v, path, {"kind", "hmin", "hmax", "gradation", "interpolation", "refineThreshold", "maxLevel"});
   CaseControlSpaceSpec cs;
   if (v.contains("kind")) {
     cs.kind = string(v["kind"], child(path, "kind"));
@@ -236,10 +276,21 @@ CaseControlSpaceSpec parseControlSpace(const json& v, const std::string& path) {
     require(dr >= 1, ErrorCode::InvalidArgument, child(path, "gradation") + ": must be >= 1 or null, got " + std::to_string(dr));
     cs.gradation = dr;
   }
+  if (v.contains("refineThreshold")) cs.refineThreshold = positive(v["refineThreshold"], child(path, "refineThreshold"));
+  if (v.contains("maxLevel")) {
+    cs.maxLevel = integer(v["maxLevel"], child(path, "maxLevel"));
+    require(cs.maxLevel >= 2 && cs.maxLevel <= 20, ErrorCode::InvalidArgument,
+            child(path, "maxLevel") + ": must be in [2, 20], got " + std::to_string(cs.maxLevel));
+  }
   if (v.contains("interpolation")) {
     cs.interpolation = string(v["interpolation"], child(path, "interpolation"));
-    if (cs.interpolation != "bilinear" && cs.interpolation != "serendipity")
-      fail(child(path, "interpolation"), "expected \"bilinear\" or \"serendipity\", got \"" + cs.interpolation + "\"");
+    const bool quadtree = cs.kind == "quadtree";
+    const bool ok = cs.interpolation == "bilinear" || (quadtree ? cs.interpolation == "serendipity"
+                                                                : cs.interpolation == "linear" || cs.interpolation == "inverse_distance");
+    if (!ok)
+      fail(child(path, "interpolation"), std::string(quadtree ? "expected \"bilinear\" or \"serendipity\" for a quadtree"
+                                                             : "expected \"linear\" or \"inverse_distance\" for a background mesh") +
+                                            ", got \"" + cs.interpolation + "\"");
   }
   return cs;
 }

@@ -2,102 +2,167 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
+#include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/core/error.h"
+#include "anisomesh/geometry/expression.h"
 
 namespace anisomesh {
 namespace {
 // Not M_PI: strict C++17 headers (libc++/musl under Emscripten) need not define it.
 constexpr double kPiValue = 3.14159265358979323846;
-}  // namespace
-namespace {
 
-double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  const double t = l2 > 0 ? std::min(1.0, std::max(0.0, (p - a).dot(ab) / l2)) : 0.0;
-  return (p - (a + t * ab)).norm();
-}
+// Source sizes near discrete sources: elements of a quarter of the source's extent keep
+// the source's edge sharp (without gradation the paper's fig. 6 shows abrupt jumps).
+constexpr double kSourceSizeFactor = 0.25;
 
 // A layer field: size hTangent along direction alpha, across it h0 at distance 0 growing
-// linearly to hTangent at the layer thickness, then both growing with the slope.
-bool layerMetric(const AnalyticFieldSpec& f, double alpha, double d, double slope, Metric* out) {
-  if (d <= f.thickness) {
-    const double hn = f.h0 + (f.hTangent - f.h0) * d / f.thickness;
-    *out = Metric::fromSizes(alpha, f.hTangent, hn);
-    return true;
-  }
-  if (slope < 0) return false;
-  const double h = f.hTangent + slope * (d - f.thickness);
-  *out = Metric::isotropic(h);
+// linearly to hTangent at the layer thickness; nothing beyond (the hmax default and
+// the gradation smoothing of the structure take over).
+bool layerMetric(const AnalyticFieldSpec& f, double alpha, double d, Metric* out) {
+  if (d > f.thickness) return false;
+  const double hn = f.h0 + (f.hTangent - f.h0) * d / f.thickness;
+  *out = Metric::fromSizes(alpha, f.hTangent, hn);
   return true;
 }
 
-}  // namespace
+// One analytic field as a function; false where the field does not act.
+using FieldFunction = std::function<bool(const Vec2&, Metric*)>;
 
-
-bool sourceMetricAt(const SourceSpec& s, const Vec2& p, double slope, Metric* out) {
-  switch (s.type) {
-    case SourceType::Radial:
-    case SourceType::Segment: {
-      const double d = s.type == SourceType::Radial ? (p - s.center).norm() : distanceToSegment(p, s.p1, s.p2);
-      if (d <= s.radius) {
-        *out = Metric::fromSizes(s.metric.alpha, s.metric.h1, s.metric.h2);
-        return true;
-      }
-      if (slope < 0) return false;
-      // Both sizes grow by the same amount, so the anisotropy fades with distance.
-      const double grow = slope * (d - s.radius);
-      *out = Metric::fromSizes(s.metric.alpha, s.metric.h1 + grow, s.metric.h2 + grow);
+FieldFunction fieldFunction(const AnalyticFieldSpec& f) {
+  if (f.field == "point")
+    return [f](const Vec2& p, Metric* out) {
+      *out = Metric::isotropic(f.h0 + f.growth * (p - f.center).norm());
       return true;
-    }
-    case SourceType::Analytic: {
-      const AnalyticFieldSpec& f = s.analytic;
-      if (f.field == "point") {
-        *out = Metric::isotropic(f.h0 + f.growth * (p - f.center).norm());
-        return true;
-      }
-      if (f.field == "boundary_layer") {
-        const Vec2 t = (f.p2 - f.p1).normalized();
-        const Vec2 n(-t.y(), t.x());
-        return layerMetric(f, std::atan2(t.y(), t.x()), std::abs(n.dot(p - f.p1)), slope, out);
-      }
-      if (f.field == "shear_layer_circle") {
-        const Vec2 r = p - f.center;
-        const double theta = std::atan2(r.y(), r.x());
-        return layerMetric(f, theta + kPiValue / 2, std::abs(r.norm() - f.radius), slope, out);
-      }
-      throw Error(ErrorCode::InvalidArgument, "unknown analytic field '" + f.field + "'");
-    }
+    };
+  if (f.field == "boundary_layer")
+    return [f](const Vec2& p, Metric* out) {
+      const Vec2 t = (f.p2 - f.p1).normalized();
+      const Vec2 n(-t.y(), t.x());
+      return layerMetric(f, std::atan2(t.y(), t.x()), std::abs(n.dot(p - f.p1)), out);
+    };
+  if (f.field == "shear_layer_circle")
+    return [f](const Vec2& p, Metric* out) {
+      const Vec2 r = p - f.center;
+      return layerMetric(f, std::atan2(r.y(), r.x()) + kPiValue / 2, std::abs(r.norm() - f.radius), out);
+    };
+  if (f.field == "expression") {
+    ExpressionOptions o;
+    o.uName = "x";
+    o.vName = "y";
+    o.name = f.path + ".alpha";
+    const Expression alpha = Expression::parse(f.alpha, o);
+    o.name = f.path + ".h1";
+    const Expression h1 = Expression::parse(f.h1, o);
+    o.name = f.path + ".h2";
+    const Expression h2 = Expression::parse(f.h2, o);
+    const std::string path = f.path;
+    return [alpha, h1, h2, path](const Vec2& p, Metric* out) {
+      const double a = alpha.value(p.x(), p.y()), s1 = h1.value(p.x(), p.y()), s2 = h2.value(p.x(), p.y());
+      if (!(std::isfinite(a) && std::isfinite(s1) && std::isfinite(s2) && s1 > 0 && s2 > 0))
+        throw Error(ErrorCode::InvalidMetric, path + ": at " + formatPoint(p) + " the formulas give alpha = " +
+                                                  std::to_string(a) + ", h1 = " + std::to_string(s1) +
+                                                  ", h2 = " + std::to_string(s2) + " (sizes must be finite and > 0)");
+      *out = Metric::fromSizes(a, s1, s2);
+      return true;
+    };
   }
-  return false;
+  throw Error(ErrorCode::InvalidArgument, "unknown analytic field '" + f.field + "'");
 }
 
-MetricFunction caseMetricFunction(const CaseSpec& spec) {
-  const double hmin = spec.controlSpace.hmin, hmax = spec.controlSpace.hmax;
-  const double slope = spec.controlSpace.gradation ? gradationSlope(*spec.controlSpace.gradation) : -1.0;
-  const std::vector<SourceSpec> sources = spec.sources;
-  const Metric background = Metric::isotropic(hmax);
-  return [=](const Vec2& p) {
+}  // namespace
+
+MetricFunction caseAnalyticMetric(const CaseSpec& spec) {
+  std::vector<FieldFunction> fields;
+  for (const SourceSpec& s : spec.sources)
+    if (s.type == SourceType::Analytic) fields.push_back(fieldFunction(s.analytic));
+  const double hmin = spec.controlSpace.hmin;
+  const Metric background = Metric::isotropic(spec.controlSpace.hmax);
+  return [fields, hmin, background](const Vec2& p) {
     Metric m = background;
     Metric s;
-    for (const SourceSpec& src : sources)
-      if (sourceMetricAt(src, p, slope, &s)) m = intersect(m, s);
-    if (hmin > 0) {
-      // Clamp to hmin; the background already bounds every size by hmax.
-      const MetricSizes z = m.sizes();
-      if (z.h1 < hmin) m = Metric::fromSizes(z.alpha, hmin, std::max(z.h2, hmin));
-    }
-    return m;
+    for (const FieldFunction& f : fields)
+      if (f(p, &s)) m = intersect(m, s);
+    // The background already bounds every size by hmax.
+    return hmin > 0 ? clampMetricSizes(m, hmin, std::numeric_limits<double>::infinity()) : m;
   };
 }
 
-std::unique_ptr<ControlSpace> buildCaseControlSpace(const CaseSpec& spec) {
+// (emplace_back with in_place_type: push_back of a temporary variant trips GCC 12's
+// false -Wmaybe-uninitialized.)
+std::vector<MetricSource> caseDiscreteSources(const CaseSpec& spec) {
+  std::vector<MetricSource> out;
+  for (const SourceSpec& s : spec.sources) {
+    const Metric m = Metric::fromSizes(s.metric.alpha, s.metric.h1, s.metric.h2);
+    switch (s.type) {
+      case SourceType::Radial: out.emplace_back(std::in_place_type<RadialSource>, RadialSource{s.center, m, s.radius}); break;
+      case SourceType::Segment: out.emplace_back(std::in_place_type<SegmentSource>, SegmentSource{s.p1, s.p2, m, s.radius}); break;
+      case SourceType::Polyline: out.emplace_back(std::in_place_type<PolylineSource>, PolylineSource{s.points, m, s.radius}); break;
+      case SourceType::Nodes: {
+        NodeSource n;
+        n.points = s.points;
+        for (const MetricSizes& z : s.metrics) n.metrics.push_back(Metric::fromSizes(z.alpha, z.h1, z.h2));
+        out.emplace_back(std::in_place_type<NodeSource>, std::move(n));
+        break;
+      }
+      case SourceType::Analytic: break;
+    }
+  }
+  return out;
+}
+
+ControlSpaceSpec caseControlSpaceSpec(const CaseSpec& spec) {
+  const CaseControlSpaceSpec& c = spec.controlSpace;
+  ControlSpaceSpec s;
+  s.kind = c.kind == "background" ? ControlSpaceKind::BackgroundMesh : ControlSpaceKind::Quadtree;
   Box2 box = domainBounds(spec.domain);
   const Vec2 margin = Vec2::Constant(0.01 * std::max(box.size().norm(), 1e-12));
   box.lo -= margin;
   box.hi += margin;
-  return std::make_unique<AnalyticControlSpace>(box, caseMetricFunction(spec));
+  s.box = box;
+  s.interpolation = c.interpolation == "serendipity" ? QuadtreeInterpolation::Serendipity : QuadtreeInterpolation::Bilinear;
+  // Barycentric by default: a continuous field; eq. 11 on request.
+  s.backgroundInterpolation = c.interpolation == "inverse_distance" ? BackgroundInterpolation::InverseSquaredDistance
+                                                                    : BackgroundInterpolation::Linear;
+  s.analytic = caseAnalyticMetric(spec);
+  s.refineThreshold = c.refineThreshold;
+  if (c.maxLevel > 0) {
+    s.maxLevel = c.maxLevel;
+  } else {
+    // Elements need not get smaller than the smallest size the case allows.
+    const double side = std::max(box.size().x(), box.size().y());
+    const double h = c.hmin > 0 ? c.hmin : c.hmax / 100.0;
+    s.maxLevel = std::clamp(int(std::ceil(std::log2(side / h))), s.initialLevel, 14);
+  }
+  return s;
+}
+
+void finishCaseControlSpace(AdaptiveControlSpace& cs, const CaseSpec& spec) {
+  const CaseControlSpaceSpec& c = spec.controlSpace;
+  clampSizes(cs, c.hmin > 0 ? c.hmin : std::numeric_limits<double>::min(), c.hmax);
+  if (c.gradation) {
+    GradationOptions g;
+    g.ratio = *c.gradation;
+    smoothGradation(cs, g);
+  }
+}
+
+void addCaseSources(AdaptiveControlSpace& cs, const CaseSpec& spec, const std::vector<MetricSource>& sources) {
+  if (!sources.empty()) {
+    DiscreteInsertionOptions o;
+    o.source.sizeFactor = kSourceSizeFactor;
+    o.fallbackMetric = Metric::isotropic(spec.controlSpace.hmax);
+    insertSources(cs, sources, o);
+  }
+  finishCaseControlSpace(cs, spec);
+}
+
+std::unique_ptr<AdaptiveControlSpace> buildCaseControlSpace(const CaseSpec& spec) {
+  std::unique_ptr<AdaptiveControlSpace> cs = buildAdaptiveControlSpace(caseControlSpaceSpec(spec));
+  addCaseSources(*cs, spec, caseDiscreteSources(spec));
+  return cs;
 }
 
 }  // namespace anisomesh

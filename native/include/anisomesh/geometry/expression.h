@@ -41,6 +41,9 @@ struct ExpressionOptions {
   // Named parameters usable in the formula, with their initial values (names must not
   // clash with u, v, pi, e or a function name).
   std::map<std::string, double> parameters;
+  // Names of the two variables (e.g. "x", "y" for planar metric formulas).
+  std::string uName = "u";
+  std::string vName = "v";
 };
 
 // A compiled formula f(u, v). Copyable value type.

@@ -1,23 +1,45 @@
 #pragma once
-// The control space of a JSON case, for now an analytic one (the quadtree / background
-// structures replace it later): the intersection of the hmax background, every discrete
-// source and every analytic field, clamped to hmin.
+// The control space of a JSON case: the paper's adaptive structure (quadtree or
+// background mesh, section 2) built from the case's settings and sources.
+//
+// Construction order (why not everything through ControlSpaceSpec::sources):
+// buildAdaptiveControlSpace inserts discrete sources first and extrapolates them into
+// every node no source reached (fig. 2c), which would spread a fine radial source over
+// the whole domain and lose the case's hmax default. So the structure is built by
+// buildAdaptiveControlSpace with the continuous part only (hmax default intersected with
+// every analytic field, section 2.3); then the discrete sources are inserted into the
+// already initialized nodes (intersected, section 2.2), then sizes are clamped to
+// [hmin, hmax] and smoothed with the gradation ratio dr (section 2.5).
 #include <memory>
+#include <vector>
 
-#include "anisomesh/controlspace/control_space.h"
-#include "anisomesh/controlspace/control_space_algorithms.h"  // gradationSlope
+#include "anisomesh/controlspace/control_space_spec.h"
 #include "anisomesh/io/case_json.h"
 
 namespace anisomesh {
 
-// The metric one source asks for at p, or false when it does not reach p (outside its
-// radius and no gradation). slope < 0 means no gradation.
-bool sourceMetricAt(const SourceSpec& source, const Vec2& p, double slope, Metric* out);
+// The continuous part of a case: isotropic hmax intersected with every analytic field
+// (each field where it acts), sizes clamped to hmin. No discrete source, no gradation.
+// Evaluation errors of expression fields (size <= 0, NaN) throw InvalidMetric naming the source.
+MetricFunction caseAnalyticMetric(const CaseSpec& spec);
 
-// The case's metric function (captures a copy of what it needs from spec).
-MetricFunction caseMetricFunction(const CaseSpec& spec);
+// The discrete sources of a case (radial, segment, polyline, nodes) as MetricSources.
+std::vector<MetricSource> caseDiscreteSources(const CaseSpec& spec);
 
-// The control space of a case over the domain's bounding box (slightly enlarged).
-std::unique_ptr<ControlSpace> buildCaseControlSpace(const CaseSpec& spec);
+// The ControlSpaceSpec of the structure: kind, interpolation, box = domain bounds
+// enlarged by 1% of the diagonal, analytic = caseAnalyticMetric; no sources, no clamps,
+// no gradation (applied afterwards, see the header comment).
+ControlSpaceSpec caseControlSpaceSpec(const CaseSpec& spec);
+
+// Builds the case's adaptive control space (see the header comment).
+std::unique_ptr<AdaptiveControlSpace> buildCaseControlSpace(const CaseSpec& spec);
+
+// Section 3.2 updates: intersects more discrete sources into cs, then clamps and smooths
+// again with the case's settings (clamping and smoothing only ever make sizes smaller
+// where needed, so repeated updates are consistent).
+void addCaseSources(AdaptiveControlSpace& cs, const CaseSpec& spec, const std::vector<MetricSource>& sources);
+
+// Clamps to [hmin, hmax] and smooths with the case's gradation (no-op parts when unset).
+void finishCaseControlSpace(AdaptiveControlSpace& cs, const CaseSpec& spec);
 
 }  // namespace anisomesh

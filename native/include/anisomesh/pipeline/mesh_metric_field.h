@@ -1,7 +1,7 @@
 #pragma once
 // A piecewise-linear metric field over a triangulation (per-vertex metrics, barycentric
-// interpolation of Mt), with a uniform grid for point location. Stand-in for the
-// background-mesh control space when remeshing from a Medit .mesh + .sol.
+// interpolation of Mt), with a uniform grid for point location. Remeshing evaluates it
+// as the continuous source of its background-mesh control space (pipeline.h).
 #include <vector>
 
 #include "anisomesh/controlspace/control_space.h"

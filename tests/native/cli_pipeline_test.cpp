@@ -1,0 +1,139 @@
+// CLI runs of the planar pipeline: bad input is reported (named, exit 1, no output
+// file), --stats carries the pipeline report, .svg output.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct CliRun {
+  int code;
+  std::string out, err;
+};
+
+std::string tmp(const std::string& name) { return ::testing::TempDir() + "anisomesh_clipipe_" + name; }
+std::string example(const std::string& name) { return std::string(ANISOMESH_SOURCE_DIR) + "/examples/" + name; }
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void writeFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+
+CliRun run(const std::string& args) {
+  const std::string out = tmp("stdout.txt"), err = tmp("stderr.txt");
+  const std::string cmd = std::string("\"") + ANISOMESH_CLI_PATH + "\" " + args + " >\"" + out + "\" 2>\"" + err + "\"";
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+// Meshes a case given as JSON text; expects failure with the code and message parts.
+void expectCaseFails(const std::string& json, const std::string& code, const std::string& part,
+                     const std::string& extra = "") {
+  const std::string in = tmp("case.json"), out = tmp("case_out.mesh");
+  std::remove(out.c_str());
+  writeFile(in, json);
+  const CliRun r = run("mesh " + in + " -o " + out + " " + extra);
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("error " + code + ": "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(part), std::string::npos) << r.err;
+  EXPECT_FALSE(exists(out));
+}
+
+const char* kSquare = R"({"type": "polyline", "points": [[0, 0], [4, 0], [4, 4], [0, 4], [0, 0]]})";
+
+std::string withHoles(const std::string& holes) {
+  return std::string(R"({"domain": {"outer": [)") + kSquare + R"(], "holes": )" + holes +
+         R"(}, "controlSpace": {"hmax": 0.5}})";
+}
+
+}  // namespace
+
+TEST(CliPipeline, BadDomainsAreNamed) {
+  expectCaseFails(R"({"domain": {"outer": [{"type": "line", "p1": [0, 0], "p2": [1, 0]}, {"type": "line", "p1": [1, 0], "p2": [1, 1]}]},
+                      "controlSpace": {"hmax": 0.1}})",
+                  "OPEN_CONTOUR", "outer");
+  expectCaseFails(R"({"domain": {"outer": [{"type": "polyline", "points": [[0, 0], [2, 2], [2, 0], [0, 2], [0, 0]]}]},
+                      "controlSpace": {"hmax": 0.1}})",
+                  "SELF_INTERSECTING_CONTOUR", "outer");
+  expectCaseFails(withHoles(R"([[{"type": "circle", "center": [10, 10], "radius": 1}]])"), "HOLE_OUTSIDE_DOMAIN", "holes[0]");
+  expectCaseFails(withHoles(R"([[{"type": "circle", "center": [1.5, 2], "radius": 0.8}],
+                                [{"type": "circle", "center": [2.5, 2], "radius": 0.8}]])"),
+                  "SELF_INTERSECTING_CONTOUR", "holes[1]");
+  expectCaseFails(std::string(R"({"domain": {"outer": [)") + kSquare + R"(,
+                      {"type": "line", "p1": [0, 0], "p2": [0, 0]}]}, "controlSpace": {"hmax": 0.5}})",
+                  "ZERO_LENGTH_CURVE", "outer");
+}
+
+TEST(CliPipeline, BadJsonAndBudgetAreNamed) {
+  expectCaseFails("{\"domain\": ", "PARSE_ERROR", "malformed JSON");
+  expectCaseFails(std::string(R"({"domain": {"outer": [)") + kSquare + R"(]}, "controlSpace": {"hmax": 0.5},
+                      "sources": [{"type": "analytic", "field": "expression", "h1": "0.1 * (x + "}]})",
+                  "PARSE_ERROR", "sources[0].h1");
+  expectCaseFails(std::string(R"({"domain": {"outer": [)") + kSquare + R"(]}, "controlSpace": {"hmax": 0.5},
+                      "sources": [{"type": "nodes", "points": [[1, 1]], "metrics": []}]})",
+                  "PARSE_ERROR", "sources[0].metrics");
+  expectCaseFails(std::string(R"({"domain": {"outer": [)") + kSquare + R"(]}, "controlSpace": {"hmax": 0.05}})",
+                  "ELEMENT_BUDGET_EXCEEDED", "", "--max-elements 100");
+}
+
+TEST(CliPipeline, RemeshBadSolutions) {
+  const std::string mesh = tmp("in.mesh"), sol = tmp("in.sol"), out = tmp("remesh_out.mesh");
+  std::remove(out.c_str());
+  writeFile(mesh, "MeshVersionFormatted 2\nDimension 2\nVertices\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+                  "Triangles\n2\n1 2 3 0\n1 3 4 0\nEnd\n");
+  // A non-SPD tensor (m11 m12 m22 with m12^2 > m11 m22).
+  writeFile(sol, "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n4\n1 3\n100 0 100\n100 500 100\n100 0 100\n100 0 100\nEnd\n");
+  CliRun r = run("remesh " + mesh + " -sol " + sol + " -o " + out);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("INVALID_METRIC"), std::string::npos) << r.err;
+  // Count mismatch.
+  writeFile(sol, "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n3\n1 1\n0.1\n0.1\n0.1\nEnd\n");
+  r = run("remesh " + mesh + " -sol " + sol + " -o " + out);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("3 values but the mesh has 4 vertices"), std::string::npos) << r.err;
+  // Malformed .sol.
+  writeFile(sol, "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\nfour\n");
+  r = run("remesh " + mesh + " -sol " + sol + " -o " + out);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("PARSE_ERROR"), std::string::npos) << r.err;
+  // Budget.
+  writeFile(sol, "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n4\n1 1\n0.01\n0.01\n0.01\n0.01\nEnd\n");
+  r = run("remesh " + mesh + " -sol " + sol + " -o " + out + " --max-elements 50");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("ELEMENT_BUDGET_EXCEEDED"), std::string::npos) << r.err;
+  // hgrad below 1 is a usage error.
+  EXPECT_EQ(run("remesh " + mesh + " -sol " + sol + " -o " + out + " -hgrad 0.5").code, 2);
+  EXPECT_FALSE(exists(out));
+  // And a good run with hgrad.
+  r = run("remesh " + mesh + " -sol " + sol + " -o " + out + " -hgrad 1.3 --stats");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(exists(out));
+  std::remove(out.c_str());
+}
+
+TEST(CliPipeline, StatsAndSvg) {
+  const std::string out = tmp("dr2.svg");
+  const CliRun r = run("mesh " + example("fig7_rect_holes_dr2.json") + " -o " + out + " --stats");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"triangles", "edgeLength", "quality", "largestNeighbourSizeRatio", "pipelineSeconds",
+                          "boundaryUpdates", "timings", "controlElements"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_GE(j["boundaryUpdates"]["rounds"].get<int>(), 1);
+  EXPECT_EQ(j["inverted"], 0);
+  const std::string svg = slurp(out);
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  std::remove(out.c_str());
+}
