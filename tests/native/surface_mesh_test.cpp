@@ -200,6 +200,26 @@ TEST(SurfaceMesh, PatchControlSpaceFollowsCurvature) {
   }
 }
 
+TEST(SurfaceMesh, Source3DRefinesAroundItsCenter) {
+  SurfaceCaseSpec spec = parseSurfaceCaseJson(readExample("surface_sphere.json"));
+  spec.model.sources3d.push_back({Vec3(1, 0, 0.3), 0.04, 0.15});
+  SurfaceMeshReport r;
+  const Mesh mesh = meshSurfaceCase(spec, &r);
+  expectConforming(mesh, r);
+  // Edges inside the source's ball are about h; far away they follow the curvature (~0.18).
+  double nearMax = 0, farMin = 1e9;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& a = mesh.points[size_t(t[size_t(k)])];
+      const Vec3& b = mesh.points[size_t(t[size_t((k + 1) % 3)])];
+      const double d = (0.5 * (a + b) - Vec3(1, 0, 0.3)).norm(), l = (a - b).norm();
+      if (d < 0.08) nearMax = std::max(nearMax, l);
+      if (d > 0.8) farMin = std::min(farMin, l);
+    }
+  EXPECT_LT(nearMax, 0.04 * 1.6);
+  EXPECT_GT(farMin, 0.04 * 1.6);
+}
+
 TEST(SurfaceMesh, EverySurfaceExampleParses) {
   for (const char* f : {"surface_p2_holes.json", "surface_sphere.json", "surface_torus.json", "surface_two_patch_c.json",
                         "surface_two_patch_c_noadapt.json"}) {

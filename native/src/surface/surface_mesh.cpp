@@ -845,7 +845,14 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
       return metric3DFromParameter(cs.metricAt(uv), d);
     };
     int count = 0;
-    for (const auto& t : pm.triangles) {
+    if (!o_.measureQuality) {
+      for (const auto& t : pm.triangles) {
+        out.triangles.push_back({gid[size_t(t[0])], gid[size_t(t[1])], gid[size_t(t[2])]});
+        out.triangleRefs.push_back(patch.id);
+        ++count;
+      }
+    }
+    for (const auto& t : o_.measureQuality ? pm.triangles : std::vector<std::array<int, 3>>{}) {
       const Vec2 a = uvOfLocal(t[0]), b = uvOfLocal(t[1]), c = uvOfLocal(t[2]);
       const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
       if (!(area > 0)) ++q.inverted;

@@ -70,6 +70,7 @@ struct SurfaceMeshOptions {
   double sharedTolerance = 1e-6;   // shared curves must match within this * model size
   PlanarMesherOptions mesher;      // inner nodes and improvement
   bool mergeMesh = true;           // false: keep patches' vertices separate (debugging)
+  bool measureQuality = true;      // fill SurfaceMeshReport::quality (3D measures cost about a mesh run)
 };
 
 // 3D quality of a surface mesh in the requested metric (each patch's control space,
