@@ -99,6 +99,22 @@ TEST(SurfaceMesh, SphereBandClosedAcrossSeam) {
   EXPECT_LE(r.quality.chordDeviationMaxRelative, 2.25);
 }
 
+TEST(SurfaceMesh, ChordSafetyKeepsTheTolerance) {
+  for (const char* f : {"surface_p2_holes.json", "surface_sphere.json", "surface_torus.json"}) {
+    SCOPED_TRACE(f);
+    SurfaceCaseSpec spec = parseSurfaceCaseJson(readExample(f));
+    spec.options.chordSafety = 1.5;
+    SurfaceMeshReport r;
+    const Mesh mesh = meshSurfaceCase(spec, &r);
+    print(f, r);
+    if (!r.sharedEdgeList.empty()) expectConforming(mesh, r);
+    EXPECT_EQ(r.quality.inverted, 0);
+    EXPECT_GE(r.quality.edgesWithinSqrt2, 0.97);
+    EXPECT_LE(r.quality.chordDeviationMaxRelative, 1.0);
+    EXPECT_GE(r.quality.qualityMean, 0.9);
+  }
+}
+
 TEST(SurfaceMesh, TorusClosedWithoutBoundary) {
   SurfaceMeshReport r;
   const Mesh mesh = meshSurfaceCase(readExample("surface_torus.json"), &r);

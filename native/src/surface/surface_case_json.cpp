@@ -293,7 +293,9 @@ SurfaceCaseSpec parseSurfaceCaseJson(const std::string& text) {
   if (root.contains("metric")) {
     const json& m = root["metric"];
     object(m, "metric");
-    keys(m, "metric", {"chordTolerance", "angleTolerance", "hmin", "hmax", "maxAspectRatio", "gradation"});
+    keys(m, "metric", {"chordTolerance", "chordSafety", "angleTolerance", "hmin", "hmax", "maxAspectRatio", "gradation"});
+    o.chordSafety = m.contains("chordSafety") ? num(m["chordSafety"], "metric.chordSafety") : 1.0;
+    require(o.chordSafety >= 1.0, ErrorCode::InvalidArgument, "metric.chordSafety: must be >= 1");
     o.metric.chordTolerance = numOr(m, "metric", "chordTolerance", o.metric.chordTolerance);
     o.metric.angleTolerance = numOr(m, "metric", "angleTolerance", o.metric.angleTolerance);
     o.metric.hmin = posOr(m, "metric", "hmin", o.metric.hmin);

@@ -72,7 +72,10 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
                                                             const std::vector<Source3D>& sources3d,
                                                             const SurfaceMeshOptions& o, Counters& counters) {
   const Surface& surf = *patch.surface;
-  SurfaceCurvatureControlSpace curv(patch.surface, o.metric);
+  SurfaceMetricOptions sizing = o.metric;
+  require(std::isfinite(o.chordSafety) && o.chordSafety >= 1.0, ErrorCode::InvalidArgument, "chordSafety must be >= 1");
+  sizing.chordTolerance /= o.chordSafety * o.chordSafety;
+  SurfaceCurvatureControlSpace curv(patch.surface, sizing);
   if (!sources3d.empty()) {
     const double hmax = o.metric.hmax;
     curv.setUserMetric3D([sources3d, hmax](const Vec3& x) {

@@ -61,6 +61,10 @@ struct SurfaceModel {
 
 struct SurfaceMeshOptions {
   SurfaceMetricOptions metric;     // chord tolerance, hmin, hmax, d_max (3D)
+  // Sizes come from chordTolerance / chordSafety^2, so edges up to chordSafety in metric
+  // length keep the sagitta within chordTolerance (1: the paper's sizing, where edges of
+  // metric length 1 reach the tolerance and the allowed sqrt2 reaches twice it).
+  double chordSafety = 1.0;
   double gradation = 2.0;          // dr in the parameter plane; 0 = off
   bool adaptation = true;          // adjust control spaces of adjacent patches (figs. 11-13)
   int maxRounds = 4;               // bound of Algorithm 1's invalidation loop
