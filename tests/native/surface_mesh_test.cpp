@@ -182,6 +182,19 @@ TEST(SurfaceMesh, TwoFlatPatchesShareIdenticalVertices) {
   const Mesh mesh = meshSurfaceModel(m, o, &r);
   expectConforming(mesh, r);
   EXPECT_EQ(r.sharedEdges, int(std::round(1.0 / 0.15)));
+  // B's parameterization is mirrored: it was flipped so both sides agree in 3D
+  // (every shared edge traversed once each way).
+  std::map<EdgeKey, int> dir;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int x = t[size_t(k)], y = t[size_t((k + 1) % 3)];
+      dir[key(x, y)] += x < y ? 1 : -1;
+    }
+  for (const auto& e : r.sharedEdgeList) EXPECT_EQ(dir[e], 0);
+  for (const auto& t : mesh.triangles) {
+    const Vec3 n = (mesh.points[size_t(t[1])] - mesh.points[size_t(t[0])]).cross(mesh.points[size_t(t[2])] - mesh.points[size_t(t[0])]);
+    EXPECT_GT(n.z(), 0.0);
+  }
   for (const auto& e : r.sharedEdgeList) {
     EXPECT_NEAR(mesh.points[size_t(e[0])].x(), 1.0, 1e-12);
     EXPECT_NEAR(mesh.points[size_t(e[1])].x(), 1.0, 1e-12);

@@ -299,6 +299,48 @@ SegmentSource segmentSource(const Vec2& a, const Vec2& b, const Metric& m, doubl
   return s;
 }
 
+// Flips whole patches so that triangles on both sides of every shared edge traverse it in
+// opposite directions (one consistent 3D orientation), starting from the first patch of
+// each connected group; a patch whose sharing contradicts itself (non-orientable) is left.
+void orientPatches(Mesh& out, const std::vector<int>& patchTriangles, const std::set<std::array<int, 2>>& shared) {
+  const size_t np = patchTriangles.size();
+  std::vector<int> patchOf;
+  for (size_t p = 0; p < np; ++p) patchOf.insert(patchOf.end(), size_t(patchTriangles[p]), int(p));
+  // For each shared edge, the (patch, +1/-1 direction) of its triangles.
+  std::map<std::array<int, 2>, std::vector<std::pair<int, int>>> uses;
+  for (size_t t = 0; t < out.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = out.triangles[t][size_t(k)], b = out.triangles[t][size_t((k + 1) % 3)];
+      const std::array<int, 2> e{std::min(a, b), std::max(a, b)};
+      if (shared.count(e)) uses[e].push_back({patchOf[t], a < b ? 1 : -1});
+    }
+  // Graph: patches p, q must flip alike (0) or oppositely (1).
+  std::vector<std::vector<std::pair<int, int>>> adj(np);
+  for (const auto& u : uses)
+    if (u.second.size() == 2 && u.second[0].first != u.second[1].first) {
+      const int differ = u.second[0].second == u.second[1].second ? 1 : 0;
+      adj[size_t(u.second[0].first)].push_back({u.second[1].first, differ});
+      adj[size_t(u.second[1].first)].push_back({u.second[0].first, differ});
+    }
+  std::vector<int> flip(np, -1);
+  for (size_t s = 0; s < np; ++s) {
+    if (flip[s] >= 0) continue;
+    flip[s] = 0;
+    std::vector<int> stack{int(s)};
+    while (!stack.empty()) {
+      const int p = stack.back();
+      stack.pop_back();
+      for (const auto& e : adj[size_t(p)])
+        if (flip[size_t(e.first)] < 0) {
+          flip[size_t(e.first)] = flip[size_t(p)] ^ e.second;
+          stack.push_back(e.first);
+        }
+    }
+  }
+  for (size_t t = 0; t < out.triangles.size(); ++t)
+    if (flip[size_t(patchOf[t])] == 1) std::swap(out.triangles[t][1], out.triangles[t][2]);
+}
+
 // Everything one run keeps per patch.
 struct PatchState {
   std::unique_ptr<AdaptiveControlSpace> cs;
@@ -897,6 +939,7 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
   if (!q.edges) q.edgeLengthMin = 0.0;
   if (!triCount) q.qualityMin = 0.0;
   q.chordDeviationMaxRelative = o_.metric.chordTolerance > 0 ? q.chordDeviationMax / o_.metric.chordTolerance : 0.0;
+  if (o_.consistentOrientation) orientPatches(out, patchTriangles, sharedEdges);
   // Drop merged ids left over from earlier discretizations (never placed).
   {
     std::vector<int> remap(out.points.size(), -1);

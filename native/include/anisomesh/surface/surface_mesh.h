@@ -74,6 +74,9 @@ struct SurfaceMeshOptions {
   double sharedTolerance = 1e-6;   // shared curves must match within this * model size
   PlanarMesherOptions mesher;      // inner nodes and improvement
   bool mergeMesh = true;           // false: keep patches' vertices separate (debugging)
+  // Flip whole patches so the merged mesh has one 3D orientation across shared curves;
+  // a flipped patch's triangles are then clockwise in its own (u, v).
+  bool consistentOrientation = true;
   bool measureQuality = true;      // fill SurfaceMeshReport::quality (3D measures cost about a mesh run)
 };
 
