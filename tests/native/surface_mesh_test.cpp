@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/io/medit.h"
 #include "anisomesh/surface/surface_case_json.h"
 #include "anisomesh/surface/surface_mesh.h"
 
@@ -131,6 +132,12 @@ TEST(SurfaceMesh, TorusClosedWithoutBoundary) {
   // Gap: the curvature size h = sqrt(8 tol / |k|) puts the sagitta at tol for edges of
   // metric length 1; edges up to 1.5 (sagitta ~ h^2) reach 2.25 tol. Reached: about 2.2.
   EXPECT_LE(r.quality.chordDeviationMaxRelative, 2.25);
+  // The merged mesh goes through the Medit writer as a 3D mesh.
+  const std::string text = writeMedit(mesh);
+  EXPECT_NE(text.find("Dimension 3"), std::string::npos);
+  const Mesh back = parseMedit(text);
+  EXPECT_EQ(back.points.size(), mesh.points.size());
+  EXPECT_EQ(back.triangles.size(), mesh.triangles.size());
 }
 
 TEST(SurfaceMesh, TwoPatchCConformingAndAdaptationSmoothsAcross) {
