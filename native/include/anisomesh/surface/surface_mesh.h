@@ -1,0 +1,144 @@
+#pragma once
+// Anisotropic meshing of 3D surface patches (paper section 3, Algorithm 1). Every patch
+// is meshed in its parameter plane (u, v) with its own adaptive quadtree control space:
+// the curvature metric pulled back through J (M_uv = J^T M3 J), intersected with user
+// sources, smoothed for gradation. Patches share boundary curves: a shared curve is
+// discretized once in 3D (at each point the stricter of the patches' metrics) and mapped
+// into each patch's plane, so the merged mesh is conforming (shared vertices have one index).
+//
+// Gradation note: smoothing runs on each patch's quadtree in the parameter plane, so the
+// ratio dr bounds the growth of parameter-space sizes per parameter-space distance. For a
+// parameterization with nearly constant stretching (|Mp| slowly varying) that is the 3D
+// bound; where Mp varies strongly the 3D growth differs by the local stretch ratio.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "anisomesh/controlspace/adaptive_control_space.h"
+#include "anisomesh/controlspace/metric_sources.h"
+#include "anisomesh/geometry/domain.h"
+#include "anisomesh/geometry/surface.h"
+#include "anisomesh/geometry/surface_metric.h"
+#include "anisomesh/mesh/mesh.h"
+#include "anisomesh/mesh/planar_mesher.h"
+
+namespace anisomesh {
+
+// An isotropic size h requested within `radius` of a 3D point (applies to every patch).
+struct Source3D {
+  Vec3 center = Vec3::Zero();
+  double h = 1.0;
+  double radius = 0.0;
+};
+
+// One trimmed patch: the surface and, in its (u, v) plane, the outer contour and holes.
+struct SurfacePatch {
+  std::shared_ptr<const Surface> surface;
+  Domain domain;
+  int id = 0;                         // triangle reference of the patch's elements
+  std::string name;                   // used in error messages
+  std::vector<MetricSource> sources;  // user metric sources in (u, v)
+};
+
+// Where a curve sits in a patch: contour 0 = outer, k + 1 = hole k; curve index in that contour.
+struct CurveRef {
+  int patch = 0;
+  int contour = 0;
+  int curve = 0;
+};
+
+// Two boundary curves that are one curve in 3D; reversed: a.start meets b.end.
+struct SharedCurve {
+  CurveRef a, b;
+  bool reversed = false;
+};
+
+struct SurfaceModel {
+  std::vector<SurfacePatch> patches;
+  std::vector<SharedCurve> shared;
+  std::vector<Source3D> sources3d;
+};
+
+struct SurfaceMeshOptions {
+  SurfaceMetricOptions metric;     // chord tolerance, hmin, hmax, d_max (3D)
+  // Sizes come from chordTolerance / chordSafety^2, so edges up to chordSafety in metric
+  // length keep the sagitta within chordTolerance (1: the paper's sizing, where edges of
+  // metric length 1 reach the tolerance and the allowed sqrt2 reaches twice it).
+  double chordSafety = 1.0;
+  double gradation = 2.0;          // dr in the parameter plane; 0 = off
+  bool adaptation = true;          // adjust control spaces of adjacent patches (figs. 11-13)
+  int maxRounds = 4;               // bound of Algorithm 1's invalidation loop
+  int initialLevel = 3;            // quadtree main-level grid 2^initialLevel
+  int maxLevel = 12;               // deepest quadtree level
+  double refineThreshold = 0.25;   // difference() between node metrics that splits a leaf
+  double sharedTolerance = 1e-6;   // shared curves must match within this * model size
+  PlanarMesherOptions mesher;      // inner nodes and improvement
+  bool mergeMesh = true;           // false: keep patches' vertices separate (debugging)
+  // Flip whole patches so the merged mesh has one 3D orientation across shared curves;
+  // a flipped patch's triangles are then clockwise in its own (u, v).
+  bool consistentOrientation = true;
+  bool measureQuality = true;      // fill SurfaceMeshReport::quality (3D measures cost about a mesh run)
+};
+
+// 3D quality of a surface mesh in the requested metric (each patch's control space,
+// pulled forward into 3D; shared edges counted once).
+struct Surface3DQuality {
+  int edges = 0;
+  double edgesWithinSqrt2 = 0.0;  // fraction of edges with 3D metric length in [1/sqrt2, sqrt2]
+  double edgeLengthMin = 0.0, edgeLengthMean = 0.0, edgeLengthMax = 0.0;
+  double qualityMean = 0.0, qualityMin = 0.0;  // triangleQuality3D
+  double chordDeviationMax = 0.0;              // largest edge-to-surface gap (along the normal) over edges
+  double isoChordDeviationMax = 0.0;           // chordDeviation(): to the image of the parameter segment
+  double chordDeviationMaxRelative = 0.0;      // the same divided by the chord tolerance
+  int inverted = 0;                            // clockwise triangles in their patch's (u, v)
+};
+
+struct SurfaceMeshReport {
+  int patches = 0;
+  int rounds = 0;                  // Algorithm 1 rounds until no contour was invalid
+  int invalidations = 0;           // contour invalidations over all rounds
+  int vertices = 0, triangles = 0;
+  int sharedEdges = 0;             // mesh edges on shared curves
+  double crossSharedSizeRatioMax = 0.0;  // largest sqrt(area) ratio of the two triangles at a shared edge
+  Surface3DQuality quality;
+  // Cost counters: curvature metric evaluations (building the control spaces) and
+  // control space queries (discretization and meshing), with their times.
+  long long curvatureEvaluations = 0;
+  double curvatureSeconds = 0.0;
+  long long controlSpaceQueries = 0;
+  double controlSpaceSeconds = 0.0;
+  double secondsTotal = 0.0;
+  std::vector<int> patchTriangles;  // per patch
+  std::vector<std::array<int, 2>> sharedEdgeList;  // merged-mesh vertex pairs (i < j) on shared curves
+};
+
+// Meshes every patch of the model (Algorithm 1) and merges them into one 3D Mesh:
+// points = S(u, v), params = (u, v) of the first patch using the vertex, triangleRefs =
+// patch ids, edges = boundary edges of the merged mesh (non-shared contours).
+// Errors: InvalidSurface (shared curves not matching, NaN/degenerate parameterization,
+// naming the patch and the (u, v) place), InvalidDomain (contour off the patch domain).
+Mesh meshSurfaceModel(const SurfaceModel& model, const SurfaceMeshOptions& options = {},
+                      SurfaceMeshReport* report = nullptr);
+
+// One patch (a model with a single patch and no sharing).
+Mesh meshSurfacePatch(const SurfacePatch& patch, const SurfaceMeshOptions& options = {},
+                      SurfaceMeshReport* report = nullptr);
+
+// The initial control space of a patch (section 3.1): curvature metric sampled into an
+// adaptive quadtree (extrapolated where the parameterization is degenerate), user
+// sources, 3D sources, size clamps, gradation. Exposed for tests and the benchmark.
+std::unique_ptr<AdaptiveControlSpace> buildPatchControlSpace(const SurfacePatch& patch,
+                                                             const std::vector<Source3D>& sources3d,
+                                                             const SurfaceMeshOptions& options);
+
+// The 3D tangent metric equivalent to the (u, v) metric m at a point with derivatives d:
+// T = J+^T M J+ on the tangent plane plus n n^T / hn^2 (hn the smallest size).
+Mat3 metric3DFromParameter(const Metric& m, const SurfaceDerivatives& d);
+
+// Largest ratio sqrt(area) of the two triangles at each edge listed (3D areas); 0 if none.
+double acrossEdgeSizeRatio(const Mesh& mesh, const std::vector<std::array<int, 2>>& edges);
+
+// Boundary edges (used by one triangle) of a mesh, sorted pairs (i < j).
+std::vector<std::array<int, 2>> openEdges(const Mesh& mesh);
+
+}  // namespace anisomesh

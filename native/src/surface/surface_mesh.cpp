@@ -1,0 +1,1061 @@
+// Surface meshing, paper section 3 (Algorithm 1): per-patch control spaces in the
+// parameter plane, shared contours discretized once in 3D, the invalidation loop
+// (segment length, contour chord, boundary proximity), adaptation of neighbouring
+// control spaces across shared contours, inner meshing and merging.
+#include "anisomesh/surface/surface_mesh.h"
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+
+#include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/controlspace/quadtree_control_space.h"
+#include "anisomesh/core/error.h"
+#include "anisomesh/geometry/discretize.h"
+
+namespace anisomesh {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string fmt(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+std::string fmtUv(const Vec2& p) { return "(u, v) = (" + fmt(p.x()) + ", " + fmt(p.y()) + ")"; }
+
+std::string patchLabel(const SurfacePatch& p, int index) {
+  return "patch '" + (p.name.empty() ? std::to_string(index) : p.name) + "'";
+}
+
+// Cost counters shared by every patch of one run.
+struct Counters {
+  long long curvature = 0;
+  double curvatureSeconds = 0.0;
+  long long queries = 0;
+  double querySeconds = 0.0;
+};
+
+// Counts (and times) the queries the discretization and the mesher make; Mp comes from
+// the surface itself (section 4.3 allows either).
+class CountingControlSpace : public ControlSpace {
+ public:
+  CountingControlSpace(const ControlSpace& inner, const Surface& s, Counters& c) : inner_(inner), s_(s), c_(c) {}
+  Metric metricAt(const Vec2& p) const override {
+    const auto t0 = Clock::now();
+    Metric m = inner_.metricAt(p);
+    c_.querySeconds += since(t0);
+    ++c_.queries;
+    return m;
+  }
+  Mat2 parameterizationAt(const Vec2& p) const override { return parameterizationMatrix(s_, p); }
+  Box2 bounds() const override { return inner_.bounds(); }
+
+ private:
+  const ControlSpace& inner_;
+  const Surface& s_;
+  Counters& c_;
+};
+
+std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& patch,
+                                                            const std::vector<Source3D>& sources3d,
+                                                            const SurfaceMeshOptions& o, Counters& counters) {
+  const Surface& surf = *patch.surface;
+  SurfaceMetricOptions sizing = o.metric;
+  require(std::isfinite(o.chordSafety) && o.chordSafety >= 1.0, ErrorCode::InvalidArgument, "chordSafety must be >= 1");
+  sizing.chordTolerance /= o.chordSafety * o.chordSafety;
+  SurfaceCurvatureControlSpace curv(patch.surface, sizing);
+  if (!sources3d.empty()) {
+    const double hmax = o.metric.hmax;
+    curv.setUserMetric3D([sources3d, hmax](const Vec3& x) {
+      double h = hmax;
+      for (const Source3D& s : sources3d)
+        if ((x - s.center).norm() <= s.radius) h = std::min(h, s.h);
+      return Mat3(Mat3::Identity() / (h * h));
+    });
+  }
+  auto eval = [&](const Vec2& p) {
+    const auto t0 = Clock::now();
+    std::optional<Metric> m = curv.tryMetricAt(p);
+    counters.curvatureSeconds += since(t0);
+    ++counters.curvature;
+    return m;
+  };
+
+  QuadtreeOptions qo;
+  qo.initialLevel = o.initialLevel;
+  qo.maxLevel = o.maxLevel;
+  auto cs = std::make_unique<QuadtreeControlSpace>(surf.domain(), qo);
+  // Main-level grid: curvature where available, extrapolation elsewhere (section 3.1).
+  for (int i = 0; i < cs->nodeCount(); ++i) {
+    if (!cs->nodeIsFree(i)) continue;
+    if (auto m = eval(cs->nodePosition(i))) cs->setNodeMetric(i, *m);
+    else cs->clearNodeInitialized(i);
+  }
+  const Metric fallback = Metric::isotropic(0.1 * surf.domain().size().norm());
+  extrapolateMetric(*cs, fallback);
+  cs->applyConstraints();
+
+  // Split leaves while corner metrics differ, or the analytic metric at the centre differs
+  // from the bilinear value there (the average of the corners' Mt), but not below a
+  // fraction of the requested size: finer leaves cannot change the mesh.
+  const double thr = o.refineThreshold;
+  cs->refine(
+      [&](const ControlElement& e) {
+        Metric corners[4];
+        double hsmall = std::numeric_limits<double>::infinity();
+        for (int k = 0; k < 4; ++k) {
+          corners[k] = cs->nodeMetric(e.nodes[k]);
+          hsmall = std::min(hsmall, corners[k].sizes().h1);
+        }
+        if (e.size <= 0.5 * hsmall) return false;
+        for (int a = 0; a < 4; ++a)
+          for (int b = a + 1; b < 4; ++b)
+            if (difference(corners[a], corners[b]) > thr) return true;
+        const double w[4] = {0.25, 0.25, 0.25, 0.25};
+        const auto m = eval(e.box.center());
+        return m && difference(*m, weightedAverage(corners, w, 4)) > thr;
+      },
+      [&](int first, int last) {
+        for (int i = first; i < last; ++i)
+          if (cs->nodeIsFree(i))
+            if (auto m = eval(cs->nodePosition(i))) cs->setNodeMetric(i, *m);
+      });
+  cs->applyConstraints();
+  if (!patch.sources.empty()) {
+    DiscreteInsertionOptions io;
+    io.fallbackMetric = fallback;
+    insertSources(*cs, patch.sources, io);
+  }
+  if (o.gradation > 0.0) {
+    GradationOptions g;
+    g.ratio = o.gradation;
+    smoothGradation(*cs, g);
+  }
+  return cs;
+}
+
+// --- model bookkeeping ------------------------------------------------------------------
+
+// One boundary curve of one patch and its current discretization (own t ascending).
+struct Slot {
+  int patch = 0, contour = 0, curve = 0;
+  CurvePtr c;
+  int minSegments = 1;
+  int master = -1;         // slot discretized with this one (the "a" side), or -1
+  bool masterReversed = false;
+  int follower = -1;       // the "b" side when this slot is a master
+  std::vector<double> t;   // parameters, 0 ... 1
+  std::vector<int> gid;    // merged-mesh vertex of each point
+  bool invalid = true;
+};
+
+const Contour& contourOf(const SurfacePatch& p, int k) { return k == 0 ? p.domain.outer : p.domain.holes[size_t(k - 1)]; }
+int contourCount(const SurfacePatch& p) { return 1 + int(p.domain.holes.size()); }
+
+std::string slotName(const SurfaceModel& m, const Slot& s) {
+  return patchLabel(m.patches[size_t(s.patch)], s.patch) + " " + contourName(s.contour) + " curve " +
+         std::to_string(s.curve);
+}
+
+// 3D point of a slot's curve at t.
+Vec3 slotPoint(const SurfaceModel& m, const Slot& s, double t) {
+  return m.patches[size_t(s.patch)].surface->point(s.c->point(t));
+}
+
+// Nearest-point map from 3D onto a curve of a patch: coarse table, then golden section.
+class CurveProjector {
+ public:
+  CurveProjector(const SurfaceModel& m, const Slot& s) : m_(m), s_(s) {
+    for (int i = 0; i <= kN; ++i) pts_.push_back(slotPoint(m, s, double(i) / kN));
+  }
+  // Parameter of the point of the curve nearest to x; *dist receives the distance.
+  double project(const Vec3& x, double* dist = nullptr) const {
+    int best = 0;
+    double bd = std::numeric_limits<double>::infinity();
+    for (int i = 0; i <= kN; ++i) {
+      const double d = (pts_[size_t(i)] - x).squaredNorm();
+      if (d < bd) bd = d, best = i;
+    }
+    double lo = double(std::max(best - 1, 0)) / kN, hi = double(std::min(best + 1, kN)) / kN;
+    auto f = [&](double t) { return (slotPoint(m_, s_, t) - x).squaredNorm(); };
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    double a = hi - g * (hi - lo), b = lo + g * (hi - lo), fa = f(a), fb = f(b);
+    for (int it = 0; it < 80 && hi - lo > 1e-15; ++it) {
+      if (fa < fb) hi = b, b = a, fb = fa, a = hi - g * (hi - lo), fa = f(a);
+      else lo = a, a = b, fa = fb, b = lo + g * (hi - lo), fb = f(b);
+    }
+    double t = 0.5 * (lo + hi);
+    // Ends are exact matches of corners: snap when the table's end is the best.
+    for (double e : {0.0, 1.0})
+      if (f(e) <= f(t)) t = e;
+    if (dist) *dist = std::sqrt(f(t));
+    return t;
+  }
+
+ private:
+  static constexpr int kN = 256;
+  const SurfaceModel& m_;
+  const Slot& s_;
+  std::vector<Vec3> pts_;
+};
+
+double modelSize(const SurfaceModel& m) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& p : m.patches) {
+    const Box2 b = p.surface->domain();
+    for (int i = 0; i <= 4; ++i)
+      for (int j = 0; j <= 4; ++j) {
+        const Vec3 x = p.surface->point(b.lo + Vec2(b.size().x() * i / 4.0, b.size().y() * j / 4.0));
+        if (x.allFinite()) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+      }
+  }
+  const double d = (hi - lo).norm();
+  return std::isfinite(d) && d > 0 ? d : 1.0;
+}
+
+// Patch checks: domain valid, contours inside the surface's parameter box, no NaN and no
+// degenerate parameterization on contours or at most of a grid of interior points.
+void checkPatch(const SurfacePatch& p, int index) {
+  const std::string label = patchLabel(p, index);
+  require(p.surface != nullptr, ErrorCode::InvalidArgument, label + ": no surface");
+  try {
+    validateDomain(p.domain);
+  } catch (const Error& e) {
+    throw Error(e.code(), label + ": " + e.what());
+  }
+  const Box2 box = p.surface->domain();
+  const double tol = 1e-9 * (1.0 + box.size().norm());
+  auto derivs = [&](const Vec2& uv) {
+    try {
+      return p.surface->derivatives(uv);
+    } catch (const Error& e) {
+      throw Error(e.code(), label + ": " + e.what());
+    }
+  };
+  for (int k = 0; k < contourCount(p); ++k)
+    for (const Vec2& q : sampleContour(contourOf(p, k), 16)) {
+      require(q.x() >= box.lo.x() - tol && q.x() <= box.hi.x() + tol && q.y() >= box.lo.y() - tol &&
+                  q.y() <= box.hi.y() + tol,
+              ErrorCode::InvalidDomain,
+              label + ": " + contourName(k) + " leaves the surface's parameter domain [" + fmt(box.lo.x()) + ", " +
+                  fmt(box.hi.x()) + "] x [" + fmt(box.lo.y()) + ", " + fmt(box.hi.y()) + "] at " + fmtUv(q));
+      if (isDegenerate(derivs(q)))
+        throw Error(ErrorCode::InvalidSurface, label + ": degenerate parameterization (Su x Sv = 0) on " +
+                                                   contourName(k) + " at " + fmtUv(q));
+    }
+  const auto outer = sampleContour(p.domain.outer, 16);
+  std::vector<std::vector<Vec2>> holes;
+  for (const auto& h : p.domain.holes) holes.push_back(sampleContour(h, 16));
+  int inside = 0, degenerate = 0;
+  Vec2 firstBad;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j) {
+      const Vec2 q = box.lo + Vec2(box.size().x() * (i + 0.5) / 12, box.size().y() * (j + 0.5) / 12);
+      if (!pointInPolygon(outer, q)) continue;
+      bool inHole = false;
+      for (const auto& h : holes) inHole = inHole || pointInPolygon(h, q);
+      if (inHole) continue;
+      ++inside;
+      if (isDegenerate(derivs(q)) && degenerate++ == 0) firstBad = q;
+    }
+  if (degenerate > 0 && 10 * degenerate > inside)
+    throw Error(ErrorCode::InvalidSurface, label + ": degenerate parameterization (Su x Sv = 0) at " + fmtUv(firstBad) +
+                                               " and " + std::to_string(degenerate - 1) + " more sample points");
+}
+
+// Distance between the chord x0x1 and the surface, along the surface normal at samples of
+// the parameter segment u0u1 (the edge-to-surface gap, without the tangential offset a
+// curved parameter line adds).
+double normalChordDeviation(const Surface& s, const Vec2& u0, const Vec2& u1, const Vec3& x0, const Vec3& x1) {
+  double worst = 0.0;
+  for (int i = 1; i <= 7; ++i) {
+    const double t = i / 8.0;
+    const SurfaceDerivatives d = s.derivatives((1.0 - t) * u0 + t * u1);
+    const Vec3 n = d.su.cross(d.sv);
+    if (!(n.norm() > 0)) continue;
+    worst = std::max(worst, std::abs(n.normalized().dot(d.p - ((1.0 - t) * x0 + t * x1))));
+  }
+  return worst;
+}
+
+SegmentSource segmentSource(const Vec2& a, const Vec2& b, const Metric& m, double r) {
+  SegmentSource s;
+  s.a = a;
+  s.b = b;
+  s.metric = m;
+  s.radius = r;
+  return s;
+}
+
+// Flips whole patches so that triangles on both sides of every shared edge traverse it in
+// opposite directions (one consistent 3D orientation), starting from the first patch of
+// each connected group; a patch whose sharing contradicts itself (non-orientable) is left.
+void orientPatches(Mesh& out, const std::vector<int>& patchTriangles, const std::set<std::array<int, 2>>& shared) {
+  const size_t np = patchTriangles.size();
+  std::vector<int> patchOf;
+  for (size_t p = 0; p < np; ++p) patchOf.insert(patchOf.end(), size_t(patchTriangles[p]), int(p));
+  // For each shared edge, the (patch, +1/-1 direction) of its triangles.
+  std::map<std::array<int, 2>, std::vector<std::pair<int, int>>> uses;
+  for (size_t t = 0; t < out.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = out.triangles[t][size_t(k)], b = out.triangles[t][size_t((k + 1) % 3)];
+      const std::array<int, 2> e{std::min(a, b), std::max(a, b)};
+      if (shared.count(e)) uses[e].push_back({patchOf[t], a < b ? 1 : -1});
+    }
+  // Graph: patches p, q must flip alike (0) or oppositely (1).
+  std::vector<std::vector<std::pair<int, int>>> adj(np);
+  for (const auto& u : uses)
+    if (u.second.size() == 2 && u.second[0].first != u.second[1].first) {
+      const int differ = u.second[0].second == u.second[1].second ? 1 : 0;
+      adj[size_t(u.second[0].first)].push_back({u.second[1].first, differ});
+      adj[size_t(u.second[1].first)].push_back({u.second[0].first, differ});
+    }
+  std::vector<int> flip(np, -1);
+  for (size_t s = 0; s < np; ++s) {
+    if (flip[s] >= 0) continue;
+    flip[s] = 0;
+    std::vector<int> stack{int(s)};
+    while (!stack.empty()) {
+      const int p = stack.back();
+      stack.pop_back();
+      for (const auto& e : adj[size_t(p)])
+        if (flip[size_t(e.first)] < 0) {
+          flip[size_t(e.first)] = flip[size_t(p)] ^ e.second;
+          stack.push_back(e.first);
+        }
+    }
+  }
+  for (size_t t = 0; t < out.triangles.size(); ++t)
+    if (flip[size_t(patchOf[t])] == 1) std::swap(out.triangles[t][1], out.triangles[t][2]);
+}
+
+// Everything one run keeps per patch.
+struct PatchState {
+  std::unique_ptr<AdaptiveControlSpace> cs;
+  std::unique_ptr<CountingControlSpace> counted;
+  std::vector<std::vector<int>> slots;  // per contour, per curve: slot index
+  bool invalid = true;
+  bool modified = false;
+};
+
+class ModelMesher {
+ public:
+  ModelMesher(const SurfaceModel& m, const SurfaceMeshOptions& o) : m_(m), o_(o) {}
+  Mesh run(SurfaceMeshReport* report);
+
+ private:
+  void setupSlots();
+  void validateSharing();
+  void assignCornerIds();
+  void discretize(int slot);
+  std::vector<double> discretizeShared(const Slot& a, const Slot& b, std::vector<double>* tb);
+  // Boundary loops of a patch with the merged-mesh id of every point and whether each edge lies on a shared curve.
+  std::vector<BoundaryLoop> loopsOf(int patch, std::vector<int>* ids, std::vector<char>* sharedEdge) const;
+  void adaptAcrossShared();
+  void checkPatchBoundary(int patch);
+  // Queues a source for the patch's control space (inserted by flushSources()).
+  template <class S>
+  void addSource(int patch, const S& s) {
+    pending_[size_t(patch)].emplace_back(std::in_place_type<S>, s);
+  }
+  void flushSources();
+  const ControlSpace& space(int patch) const { return *ps_[size_t(patch)].counted; }
+  Vec2 uvOf(const Slot& s, size_t i) const { return s.c->point(s.t[i]); }
+
+  const SurfaceModel& m_;
+  SurfaceMeshOptions o_;
+  Counters counters_;
+  std::vector<Slot> slots_;
+  std::vector<PatchState> ps_;
+  std::vector<std::vector<MetricSource>> pending_;
+  int nextId_ = 0;
+  int invalidations_ = 0;
+  double size_ = 1.0;
+};
+
+void ModelMesher::setupSlots() {
+  ps_.resize(m_.patches.size());
+  pending_.resize(m_.patches.size());
+  for (size_t p = 0; p < m_.patches.size(); ++p) {
+    const SurfacePatch& patch = m_.patches[p];
+    for (int k = 0; k < contourCount(patch); ++k) {
+      const Contour& c = contourOf(patch, k);
+      ps_[p].slots.emplace_back();
+      const int n = int(c.curves.size());
+      for (int j = 0; j < n; ++j) {
+        Slot s;
+        s.patch = int(p), s.contour = k, s.curve = j;
+        s.c = c.curves[size_t(j)].curve;
+        s.minSegments = n == 1 ? 3 : n == 2 ? 2 : 1;
+        ps_[p].slots.back().push_back(int(slots_.size()));
+        slots_.push_back(std::move(s));
+      }
+    }
+  }
+  auto find = [&](const CurveRef& r, const std::string& what) {
+    require(r.patch >= 0 && r.patch < int(m_.patches.size()), ErrorCode::InvalidArgument,
+            what + ": no patch " + std::to_string(r.patch));
+    const auto& cs = ps_[size_t(r.patch)].slots;
+    require(r.contour >= 0 && r.contour < int(cs.size()), ErrorCode::InvalidArgument,
+            what + ": " + patchLabel(m_.patches[size_t(r.patch)], r.patch) + " has no contour " + std::to_string(r.contour));
+    require(r.curve >= 0 && r.curve < int(cs[size_t(r.contour)].size()), ErrorCode::InvalidArgument,
+            what + ": " + patchLabel(m_.patches[size_t(r.patch)], r.patch) + " " + contourName(r.contour) +
+                " has no curve " + std::to_string(r.curve));
+    return cs[size_t(r.contour)][size_t(r.curve)];
+  };
+  for (size_t k = 0; k < m_.shared.size(); ++k) {
+    const std::string what = "shared[" + std::to_string(k) + "]";
+    const int a = find(m_.shared[k].a, what), b = find(m_.shared[k].b, what);
+    require(a != b, ErrorCode::InvalidArgument, what + ": a curve cannot be shared with itself");
+    for (int s : {a, b})
+      require(slots_[size_t(s)].master < 0 && slots_[size_t(s)].follower < 0, ErrorCode::InvalidArgument,
+              what + ": " + slotName(m_, slots_[size_t(s)]) + " is already shared");
+    slots_[size_t(a)].follower = b;
+    slots_[size_t(b)].master = a;
+    slots_[size_t(b)].masterReversed = m_.shared[k].reversed;
+    slots_[size_t(a)].minSegments = slots_[size_t(b)].minSegments =
+        std::max(slots_[size_t(a)].minSegments, slots_[size_t(b)].minSegments);
+  }
+}
+
+// Shared curves must be the same curve in 3D (sampled both ways).
+void ModelMesher::validateSharing() {
+  const double tol = o_.sharedTolerance * size_;
+  for (const Slot& b : slots_) {
+    if (b.master < 0) continue;
+    const Slot& a = slots_[size_t(b.master)];
+    auto mismatch = [&](const Slot& x, const Slot& y, double t, double d) {
+      throw Error(ErrorCode::InvalidSurface,
+                  "shared curve mismatch: " + slotName(m_, x) + " and " + slotName(m_, y) + " are " + fmt(d) +
+                      " apart (tolerance " + fmt(tol) + ") at t = " + fmt(t) + ", " + fmtUv(x.c->point(t)) + " of " +
+                      patchLabel(m_.patches[size_t(x.patch)], x.patch));
+    };
+    for (int end = 0; end < 2; ++end) {
+      const double ta = end, tb = b.masterReversed ? 1.0 - end : double(end);
+      const double d = (slotPoint(m_, a, ta) - slotPoint(m_, b, tb)).norm();
+      if (d > tol) mismatch(a, b, ta, d);
+    }
+    const CurveProjector pa(m_, a), pb(m_, b);
+    for (int i = 1; i < 16; ++i) {
+      const double t = i / 16.0;
+      double d;
+      pb.project(slotPoint(m_, a, t), &d);
+      if (d > tol) mismatch(a, b, t, d);
+      pa.project(slotPoint(m_, b, t), &d);
+      if (d > tol) mismatch(b, a, t, d);
+    }
+  }
+}
+
+// Curve ends: one merged vertex per corner, joined along contours and through sharing.
+void ModelMesher::assignCornerIds() {
+  const int n = int(slots_.size());
+  std::vector<int> parent(size_t(2 * n));
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<int(int)> root = [&](int x) { return parent[size_t(x)] == x ? x : parent[size_t(x)] = root(parent[size_t(x)]); };
+  auto unite = [&](int x, int y) { parent[size_t(root(x))] = root(y); };
+  for (size_t p = 0; p < m_.patches.size(); ++p)
+    for (int k = 0; k < contourCount(m_.patches[p]); ++k) {
+      const Contour& c = contourOf(m_.patches[p], k);
+      const auto& ids = ps_[p].slots[size_t(k)];
+      const int cnt = int(ids.size());
+      for (int j = 0; j < cnt; ++j) {
+        const int jn = (j + 1) % cnt;
+        const int exitEnd = c.curves[size_t(j)].reversed ? 0 : 1;
+        const int entryEnd = c.curves[size_t(jn)].reversed ? 1 : 0;
+        unite(2 * ids[size_t(j)] + exitEnd, 2 * ids[size_t(jn)] + entryEnd);
+      }
+    }
+  for (int s = 0; s < n; ++s) {
+    const Slot& b = slots_[size_t(s)];
+    if (b.master < 0) continue;
+    unite(2 * b.master + 0, 2 * s + (b.masterReversed ? 1 : 0));
+    unite(2 * b.master + 1, 2 * s + (b.masterReversed ? 0 : 1));
+  }
+  std::map<int, int> idOf;
+  for (int e = 0; e < 2 * n; ++e)
+    if (!idOf.count(root(e))) idOf[root(e)] = nextId_++;
+  for (int s = 0; s < n; ++s) slots_[size_t(s)].gid = {idOf[root(2 * s)], idOf[root(2 * s + 1)]};
+}
+
+// Shared curve: per piece of a (between its corners), the metric length density is the
+// larger of the two patches' at each sample (stricter metric); points at equal length.
+std::vector<double> ModelMesher::discretizeShared(const Slot& a, const Slot& b, std::vector<double>* tb) {
+  const CurveProjector proj(m_, b);
+  const ControlSpace& csa = space(a.patch);
+  const ControlSpace& csb = space(b.patch);
+  std::vector<double> bounds{0.0};
+  for (double t : a.c->breakpoints())
+    if (t > bounds.back() && t < 1.0) bounds.push_back(t);
+  bounds.push_back(1.0);
+  auto mapB = [&](double t) { return proj.project(slotPoint(m_, a, t)); };
+
+  std::vector<double> ts{0.0};
+  int pieceSegments = 0;
+  std::vector<std::vector<double>> pieceT, pieceCum;
+  for (size_t k = 0; k + 1 < bounds.size(); ++k) {
+    int samples = 32;
+    std::vector<double> t, cum;
+    for (int pass = 0; pass < 2; ++pass) {
+      t.assign(size_t(samples + 1), 0.0);
+      cum.assign(size_t(samples + 1), 0.0);
+      Vec2 ua = a.c->point(bounds[k]), ub = b.c->point(mapB(bounds[k]));
+      for (int i = 0; i <= samples; ++i) {
+        t[size_t(i)] = bounds[k] + (bounds[k + 1] - bounds[k]) * i / samples;
+        if (i == 0) continue;
+        const Vec2 na = a.c->point(t[size_t(i)]), nb = b.c->point(mapB(t[size_t(i)]));
+        const double la = csa.metricAt(0.5 * (ua + na)).length(na - ua);
+        const double lb = csb.metricAt(0.5 * (ub + nb)).length(nb - ub);
+        cum[size_t(i)] = cum[size_t(i - 1)] + std::max(la, lb);
+        ua = na, ub = nb;
+      }
+      const double len = cum.back();
+      require(std::isfinite(len), ErrorCode::InvalidMetric, "metric length of " + slotName(m_, a) + " is not finite");
+      const int want = int(std::min(20000.0, std::ceil(8.0 * len)));
+      if (want <= samples) break;
+      samples = want;
+    }
+    pieceSegments += int(std::max(1.0, std::round(cum.back())));
+    pieceT.push_back(std::move(t));
+    pieceCum.push_back(std::move(cum));
+  }
+  const int extra = std::max(0, a.minSegments - pieceSegments);
+  for (size_t k = 0; k < pieceT.size(); ++k) {
+    const auto& t = pieceT[k];
+    const auto& cum = pieceCum[k];
+    int n = int(std::max(1.0, std::round(cum.back())));
+    if (k == 0) n += extra;
+    require(std::int64_t(n) <= o_.mesher.maxElements, ErrorCode::ElementBudgetExceeded,
+            "discretizing " + slotName(m_, a) + " exceeds the element budget");
+    size_t j = 1;
+    for (int i = 1; i < n; ++i) {
+      const double target = cum.back() * i / n;
+      while (j + 1 < cum.size() && cum[j] < target) ++j;
+      const double w = cum[j] > cum[j - 1] ? (target - cum[j - 1]) / (cum[j] - cum[j - 1]) : 0.5;
+      ts.push_back(std::max(ts.back(), t[j - 1] + w * (t[j] - t[j - 1])));
+    }
+    ts.push_back(bounds[k + 1]);
+  }
+  tb->clear();
+  for (size_t i = 0; i < ts.size(); ++i) {
+    if (i == 0 || i + 1 == ts.size()) tb->push_back((i == 0) != b.masterReversed ? 0.0 : 1.0);
+    else tb->push_back(mapB(ts[i]));
+  }
+  return ts;
+}
+
+void ModelMesher::discretize(int si) {
+  Slot& s = slots_[size_t(si)];
+  const int first = s.gid.front(), last = s.gid.back();
+  std::vector<int> gid{first};
+  if (s.follower < 0) {
+    DiscretizeOptions d;
+    d.maxSegments = std::max<std::int64_t>(1, o_.mesher.maxElements);
+    s.t = discretizeCurve(*s.c, space(s.patch), s.minSegments, d);
+  } else {
+    Slot& b = slots_[size_t(s.follower)];
+    std::vector<double> tb;
+    s.t = discretizeShared(s, b, &tb);
+    const int bFirst = b.gid.front(), bLast = b.gid.back();
+    b.gid.clear();
+    std::vector<int> inner;
+    for (size_t i = 1; i + 1 < s.t.size(); ++i) inner.push_back(nextId_ + int(i) - 1);
+    std::vector<double> bt = tb;
+    std::vector<int> bid{b.masterReversed ? bLast : bFirst};
+    bid.insert(bid.end(), inner.begin(), inner.end());
+    bid.push_back(b.masterReversed ? bFirst : bLast);
+    if (b.masterReversed) {
+      std::reverse(bt.begin(), bt.end());
+      std::reverse(bid.begin(), bid.end());
+    }
+    // b's ends keep their own corner ids (same corners by construction).
+    bid.front() = bFirst, bid.back() = bLast;
+    b.t = bt;
+    b.gid = bid;
+    b.invalid = false;
+  }
+  for (size_t i = 1; i + 1 < s.t.size(); ++i) gid.push_back(nextId_++);
+  gid.push_back(last);
+  s.gid = gid;
+  s.invalid = false;
+}
+
+std::vector<BoundaryLoop> ModelMesher::loopsOf(int p, std::vector<int>* ids, std::vector<char>* sharedEdge) const {
+  const SurfacePatch& patch = m_.patches[size_t(p)];
+  std::vector<BoundaryLoop> loops;
+  for (int k = 0; k < contourCount(patch); ++k) {
+    const Contour& c = contourOf(patch, k);
+    BoundaryLoop loop;
+    std::vector<int> lid;
+    std::vector<char> lsh;
+    for (size_t j = 0; j < c.curves.size(); ++j) {
+      const Slot& s = slots_[size_t(ps_[size_t(p)].slots[size_t(k)][j])];
+      const bool rev = c.curves[j].reversed;
+      const size_t n = s.t.size();
+      for (size_t i = 0; i + 1 < n; ++i) {
+        const size_t q = rev ? n - 1 - i : i;
+        loop.points.push_back(uvOf(s, q));
+        lid.push_back(s.gid[q]);
+        loop.edgeRefs.push_back(s.c->ref());
+        lsh.push_back(s.master >= 0 || s.follower >= 0);
+      }
+    }
+    const bool ccw = signedArea(loop.points) > 0;
+    if (ccw != (k == 0)) {
+      const size_t n = loop.points.size();
+      BoundaryLoop rev;
+      std::vector<int> rid;
+      std::vector<char> rsh;
+      for (size_t i = 0; i < n; ++i) {
+        rev.points.push_back(loop.points[n - 1 - i]);
+        rid.push_back(lid[n - 1 - i]);
+        const size_t e = (2 * n - 2 - i) % n;
+        rev.edgeRefs.push_back(loop.edgeRefs[e]);
+        rsh.push_back(lsh[e]);
+      }
+      loop = std::move(rev);
+      lid = std::move(rid);
+      lsh = std::move(rsh);
+    }
+    if (ids) ids->insert(ids->end(), lid.begin(), lid.end());
+    if (sharedEdge) sharedEdge->insert(sharedEdge->end(), lsh.begin(), lsh.end());
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+// Each patch takes its neighbour's metric at the shared points, converted through the
+// Jacobians (neighbour (u, v) -> 3D tangent metric -> own (u, v)), as node sources.
+void ModelMesher::adaptAcrossShared() {
+  for (const Slot& a : slots_) {
+    if (a.follower < 0) continue;
+    const Slot& b = slots_[size_t(a.follower)];
+    const Surface& sa = *m_.patches[size_t(a.patch)].surface;
+    const Surface& sb = *m_.patches[size_t(b.patch)].surface;
+    NodeSource toA, toB;
+    const size_t n = a.t.size();
+    for (size_t i = 0; i < n; ++i) {
+      const size_t ib = b.masterReversed ? n - 1 - i : i;
+      const Vec2 ua = uvOf(a, i), ub = uvOf(b, ib);
+      const SurfaceDerivatives da = sa.derivatives(ua), db = sb.derivatives(ub);
+      if (isDegenerate(da) || isDegenerate(db)) continue;
+      const Mat3 ma = metric3DFromParameter(space(a.patch).metricAt(ua), da);
+      const Mat3 mb = metric3DFromParameter(space(b.patch).metricAt(ub), db);
+      toA.points.push_back(ua);
+      toA.metrics.push_back(pullBackMetric(mb, da));
+      toB.points.push_back(ub);
+      toB.metrics.push_back(pullBackMetric(ma, db));
+    }
+    if (!toA.points.empty()) addSource(a.patch, std::move(toA));
+    if (!toB.points.empty()) addSource(b.patch, std::move(toB));
+  }
+}
+
+void ModelMesher::flushSources() {
+  for (size_t p = 0; p < ps_.size(); ++p) {
+    if (pending_[p].empty()) continue;
+    insertSources(*ps_[p].cs, pending_[p]);
+    if (o_.gradation > 0.0) {
+      GradationOptions g;
+      g.ratio = o_.gradation;
+      smoothGradation(*ps_[p].cs, g);
+    }
+    pending_[p].clear();
+    ps_[p].modified = true;
+  }
+}
+
+// Section 3.2 on one patch after its boundary-only triangulation: proximity of boundaries
+// (eps2), contour chords (curvature of the contour in 3D), boundary segment lengths (eps1).
+void ModelMesher::checkPatchBoundary(int p) {
+  const SurfacePatch& patch = m_.patches[size_t(p)];
+  const Surface& surf = *patch.surface;
+  const ControlSpace& cs = space(p);
+  PlanarMesherOptions bo = o_.mesher;
+  bo.boundaryOnly = true;
+  bo.timings = nullptr;
+  bo.progress = nullptr;
+  const Mesh bm = meshPlanarBoundary(loopsOf(p, nullptr, nullptr), cs, bo);
+
+  // Boundary vicinity (eps2 = 0.2): a triangle of small metric area whose vertex lies
+  // within half a unit (metric) of the opposite boundary edge joins two boundary pieces
+  // that are closer than the metric asks. Fans onto finely split edges and ears of a
+  // contour (two boundary edges) are not proximity.
+  std::set<std::array<int, 2>> bedges;
+  for (const auto& e : bm.edges) bedges.insert({std::min(e[0], e[1]), std::max(e[0], e[1])});
+  auto uvAt = [&](int i) { return bm.params.empty() ? Vec2(bm.points[size_t(i)].head<2>()) : bm.params[size_t(i)]; };
+  for (const auto& tri : bm.triangles) {
+    int onBoundary = 0, boundaryEdge = -1;
+    for (int k = 0; k < 3; ++k) {
+      const int i0 = tri[size_t(k)], i1 = tri[size_t((k + 1) % 3)];
+      if (bedges.count({std::min(i0, i1), std::max(i0, i1)})) ++onBoundary, boundaryEdge = k;
+    }
+    if (onBoundary > 1) continue;
+    const Vec2 a = uvAt(tri[0]), b = uvAt(tri[1]), c = uvAt(tri[2]);
+    const Vec2 g = (a + b + c) / 3.0;
+    const Metric m = cs.metricAt(g);
+    const Vec2 e[3] = {m.apply(b - a), m.apply(c - b), m.apply(a - c)};
+    const double area = 0.5 * std::abs(e[0].x() * e[1].y() - e[0].y() * e[1].x());
+    if (!(area < 0.2)) continue;
+    double gap;  // metric distance between the boundary pieces the triangle joins
+    if (boundaryEdge >= 0) gap = 2.0 * area / e[boundaryEdge].norm();
+    else gap = 2.0 * area / std::max({e[0].norm(), e[1].norm(), e[2].norm()});
+    if (gap < 0.5) {
+      const double uvLongest = std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()});
+      RadialSource src;
+      src.center = g;
+      src.metric = m.scaled(std::max(gap / 0.5, 0.25));
+      src.radius = 0.5 * uvLongest;
+      addSource(p, src);
+    }
+  }
+
+  const double tol = o_.metric.chordTolerance;
+  for (const auto& contourSlots : ps_[size_t(p)].slots)
+    for (int si : contourSlots) {
+      Slot& s = slots_[size_t(si)];
+      const Slot* other = s.master >= 0 ? &slots_[size_t(s.master)] : s.follower >= 0 ? &slots_[size_t(s.follower)] : nullptr;
+      const int owner = s.master >= 0 ? s.master : si;  // the slot that gets re-discretized
+      const size_t n = s.t.size();
+      for (size_t i = 0; i + 1 < n; ++i) {
+        const Vec2 u0 = uvOf(s, i), u1 = uvOf(s, i + 1), um = 0.5 * (u0 + u1);
+        const double l = cs.metricAt(um).length(u1 - u0);
+        double lOther = 0.0;
+        if (other) {
+          const size_t j = (s.master >= 0 ? s.masterReversed : slots_[size_t(s.follower)].masterReversed) ? n - 1 - i : i;
+          const size_t j1 = (s.master >= 0 ? s.masterReversed : slots_[size_t(s.follower)].masterReversed) ? j - 1 : j + 1;
+          const Vec2 v0 = uvOf(*other, j), v1 = uvOf(*other, j1);
+          lOther = space(other->patch).metricAt(0.5 * (v0 + v1)).length(v1 - v0);
+        }
+        // Contour chord: the 3D chord against the 3D contour at the segment's middle parameter.
+        const Vec3 x0 = surf.point(u0), x1 = surf.point(u1);
+        const double tm = 0.5 * (s.t[i] + s.t[i + 1]);
+        const Vec3 xm = surf.point(s.c->point(tm));
+        const double dev = (xm - 0.5 * (x0 + x1)).norm();
+        if (tol > 0 && dev > tol) {
+          const double h = 0.9 * (u1 - u0).norm() * std::sqrt(tol / dev);
+          const Vec2 d = u1 - u0;
+          addSource(p, segmentSource(u0, u1, Metric::fromSizes(std::atan2(d.y(), d.x()), h, o_.metric.maxAspectRatio * h),
+                                     0.5 * d.norm()));
+          slots_[size_t(owner)].invalid = true;
+        }
+        // Segment length (eps1 = 0.8): refine near short segments, unless without adaptation
+        // the shortness only comes from the neighbour's stricter metric.
+        const bool neighbourMadeIt = other && lOther > l;
+        // The segment's length is the reference along it; across it the metric stays as it is.
+        if (l < 0.8 && (o_.adaptation || !neighbourMadeIt)) {
+          const Vec2 d = u1 - u0;
+          const Metric here = cs.metricAt(um);
+          const double across = here.sizeAlong(Vec2(-d.y(), d.x()));
+          addSource(p, segmentSource(u0, u1, Metric::fromSizes(std::atan2(d.y(), d.x()), d.norm(), std::max(across, d.norm())),
+                                     0.25 * d.norm()));
+        }
+        const double lEff = std::max(l, lOther);
+        if ((lEff < 0.5 && n > 2 && std::max<size_t>(n - 1, 1) > size_t(s.minSegments)) || lEff > 2.0)
+          slots_[size_t(owner)].invalid = true;
+      }
+    }
+}
+
+Mesh ModelMesher::run(SurfaceMeshReport* report) {
+  const auto t0 = Clock::now();
+  require(!m_.patches.empty(), ErrorCode::InvalidArgument, "surface model: no patch");
+  validate(o_.metric);
+  for (size_t p = 0; p < m_.patches.size(); ++p) checkPatch(m_.patches[p], int(p));
+  size_ = modelSize(m_);
+  setupSlots();
+  validateSharing();
+  assignCornerIds();
+
+  // 1-2: initial control spaces, every contour invalid.
+  for (size_t p = 0; p < m_.patches.size(); ++p) {
+    try {
+      ps_[p].cs = buildControlSpaceImpl(m_.patches[p], m_.sources3d, o_, counters_);
+    } catch (const Error& e) {
+      throw Error(e.code(), patchLabel(m_.patches[p], int(p)) + ": " + e.what());
+    }
+    ps_[p].counted = std::make_unique<CountingControlSpace>(*ps_[p].cs, *m_.patches[p].surface, counters_);
+  }
+
+  // 4-13: discretize invalid contours, check patches, update control spaces.
+  int round = 0;
+  for (; round < std::max(1, o_.maxRounds); ++round) {
+    bool any = false;
+    for (size_t s = 0; s < slots_.size(); ++s)
+      if (slots_[s].invalid && slots_[s].master < 0) {
+        ps_[size_t(slots_[s].patch)].invalid = true;
+        if (slots_[s].follower >= 0) ps_[size_t(slots_[size_t(slots_[s].follower)].patch)].invalid = true;
+        discretize(int(s));
+        any = true;
+        if (round > 0) ++invalidations_;
+      }
+    if (!any) break;
+    if (round == 0 && o_.adaptation) {
+      adaptAcrossShared();
+      flushSources();
+    }
+    for (size_t p = 0; p < ps_.size(); ++p)
+      if (ps_[p].invalid) {
+        try {
+          checkPatchBoundary(int(p));
+        } catch (const Error& e) {
+          throw Error(e.code(), patchLabel(m_.patches[p], int(p)) + ": " + e.what());
+        }
+        ps_[p].invalid = false;
+      }
+    flushSources();
+  }
+
+  // 14-16: inner nodes and improvement per patch; merge.
+  Mesh out;
+  out.dimension = 3;
+  std::vector<int> defined(size_t(nextId_), -1);  // patch that placed each merged boundary vertex
+  out.points.resize(size_t(nextId_));
+  out.params.resize(size_t(nextId_));
+  Surface3DQuality q;
+  std::set<std::array<int, 2>> seenEdges, sharedEdges;
+  double lenSum = 0.0, qSum = 0.0;
+  int triCount = 0, within = 0;
+  q.edgeLengthMin = q.qualityMin = std::numeric_limits<double>::infinity();
+  std::vector<int> patchTriangles;
+  for (size_t p = 0; p < m_.patches.size(); ++p) {
+    const SurfacePatch& patch = m_.patches[p];
+    const Surface& surf = *patch.surface;
+    const ControlSpace& cs = space(int(p));
+    std::vector<int> ids;
+    std::vector<char> shared;
+    const auto loops = loopsOf(int(p), &ids, &shared);
+    PlanarMesherOptions mo = o_.mesher;
+    mo.boundaryOnly = false;
+    Mesh pm;
+    try {
+      pm = meshPlanarBoundary(loops, cs, mo);
+    } catch (const Error& e) {
+      throw Error(e.code(), patchLabel(patch, int(p)) + ": " + e.what());
+    }
+    const size_t nb = ids.size();
+    std::vector<int> gid(pm.points.size());
+    for (size_t i = 0; i < pm.points.size(); ++i) {
+      const Vec2 uv = pm.params.empty() ? Vec2(pm.points[i].head<2>()) : pm.params[i];
+      int g;
+      if (i < nb && o_.mergeMesh) g = ids[i];
+      else {
+        g = int(out.points.size());
+        out.points.emplace_back();
+        out.params.emplace_back();
+        defined.push_back(-1);
+      }
+      gid[i] = g;
+      if (defined[size_t(g)] < 0) {
+        const Vec3 x = surf.point(uv);
+        require(x.allFinite(), ErrorCode::InvalidSurface,
+                patchLabel(patch, int(p)) + ": S(u, v) is NaN or infinite at " + fmtUv(uv));
+        out.points[size_t(g)] = x;
+        out.params[size_t(g)] = uv;
+        defined[size_t(g)] = int(p);
+      }
+    }
+    // Boundary edges: shared ones are interior to the merged mesh.
+    {
+      size_t base = 0;
+      for (const auto& loop : loops) {
+        const size_t n = loop.points.size();
+        for (size_t i = 0; i < n; ++i) {
+          const int a = gid[base + i], b = gid[base + (i + 1) % n];
+          const std::array<int, 2> e{std::min(a, b), std::max(a, b)};
+          if (shared[base + i] && o_.mergeMesh) sharedEdges.insert(e);
+          else {
+            out.edges.push_back({a, b});
+            out.edgeRefs.push_back(loop.edgeRefs[i]);
+          }
+        }
+        base += n;
+      }
+    }
+    auto uvOfLocal = [&](int i) { return pm.params.empty() ? Vec2(pm.points[size_t(i)].head<2>()) : pm.params[size_t(i)]; };
+    auto metric3 = [&](const Vec2& uv) {
+      const SurfaceDerivatives d = surf.derivatives(uv);
+      return metric3DFromParameter(cs.metricAt(uv), d);
+    };
+    int count = 0;
+    if (!o_.measureQuality) {
+      for (const auto& t : pm.triangles) {
+        out.triangles.push_back({gid[size_t(t[0])], gid[size_t(t[1])], gid[size_t(t[2])]});
+        out.triangleRefs.push_back(patch.id);
+        ++count;
+      }
+    }
+    for (const auto& t : o_.measureQuality ? pm.triangles : std::vector<std::array<int, 3>>{}) {
+      const Vec2 a = uvOfLocal(t[0]), b = uvOfLocal(t[1]), c = uvOfLocal(t[2]);
+      const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+      if (!(area > 0)) ++q.inverted;
+      const std::array<int, 3> g{gid[size_t(t[0])], gid[size_t(t[1])], gid[size_t(t[2])]};
+      out.triangles.push_back(g);
+      out.triangleRefs.push_back(patch.id);
+      ++count;
+      const Mat3 mc = metric3((a + b + c) / 3.0);
+      const double qq =
+          triangleQuality3D(out.points[size_t(g[0])], out.points[size_t(g[1])], out.points[size_t(g[2])], mc);
+      qSum += qq;
+      q.qualityMin = std::min(q.qualityMin, qq);
+      ++triCount;
+      for (int k = 0; k < 3; ++k) {
+        const int i0 = t[size_t(k)], i1 = t[size_t((k + 1) % 3)];
+        const int g0 = gid[size_t(i0)], g1 = gid[size_t(i1)];
+        if (!seenEdges.insert({std::min(g0, g1), std::max(g0, g1)}).second) continue;
+        const Vec2 u0 = uvOfLocal(i0), u1 = uvOfLocal(i1);
+        const Vec3& x0 = out.points[size_t(g0)];
+        const Vec3& x1 = out.points[size_t(g1)];
+        const double l = (edgeLength3D(x0, x1, metric3(u0)) + 4.0 * edgeLength3D(x0, x1, metric3(0.5 * (u0 + u1))) +
+                          edgeLength3D(x0, x1, metric3(u1))) / 6.0;
+        lenSum += l;
+        q.edgeLengthMin = std::min(q.edgeLengthMin, l);
+        q.edgeLengthMax = std::max(q.edgeLengthMax, l);
+        if (l >= std::sqrt(0.5) && l <= std::sqrt(2.0)) ++within;
+        ChordDeviationOptions co;
+        co.samples = 7;
+        q.isoChordDeviationMax = std::max(q.isoChordDeviationMax, chordDeviation(surf, u0, u1, co));
+        q.chordDeviationMax = std::max(q.chordDeviationMax, normalChordDeviation(surf, u0, u1, x0, x1));
+        ++q.edges;
+      }
+    }
+    patchTriangles.push_back(count);
+  }
+  q.edgesWithinSqrt2 = q.edges ? double(within) / q.edges : 0.0;
+  q.edgeLengthMean = q.edges ? lenSum / q.edges : 0.0;
+  q.qualityMean = triCount ? qSum / triCount : 0.0;
+  if (!q.edges) q.edgeLengthMin = 0.0;
+  if (!triCount) q.qualityMin = 0.0;
+  q.chordDeviationMaxRelative = o_.metric.chordTolerance > 0 ? q.chordDeviationMax / o_.metric.chordTolerance : 0.0;
+  if (o_.consistentOrientation) orientPatches(out, patchTriangles, sharedEdges);
+  // Drop merged ids left over from earlier discretizations (never placed).
+  {
+    std::vector<int> remap(out.points.size(), -1);
+    std::vector<Vec3> pts;
+    std::vector<Vec2> prm;
+    for (size_t i = 0; i < out.points.size(); ++i)
+      if (defined[i] >= 0) {
+        remap[i] = int(pts.size());
+        pts.push_back(out.points[i]);
+        prm.push_back(out.params[i]);
+      }
+    out.points = std::move(pts);
+    out.params = std::move(prm);
+    for (auto& t : out.triangles)
+      for (int& v : t) v = remap[size_t(v)];
+    for (auto& e : out.edges)
+      for (int& v : e) v = remap[size_t(v)];
+    std::set<std::array<int, 2>> se;
+    for (const auto& e : sharedEdges) {
+      const int a = remap[size_t(e[0])], b = remap[size_t(e[1])];
+      se.insert({std::min(a, b), std::max(a, b)});
+    }
+    sharedEdges = std::move(se);
+  }
+  out.pointRefs.assign(out.points.size(), 0);
+
+  if (report) {
+    report->patches = int(m_.patches.size());
+    report->rounds = round;
+    report->invalidations = invalidations_;
+    report->vertices = out.vertexCount();
+    report->triangles = int(out.triangles.size());
+    report->sharedEdgeList.assign(sharedEdges.begin(), sharedEdges.end());
+    report->sharedEdges = int(sharedEdges.size());
+    report->crossSharedSizeRatioMax = acrossEdgeSizeRatio(out, report->sharedEdgeList);
+    report->quality = q;
+    report->curvatureEvaluations = counters_.curvature;
+    report->curvatureSeconds = counters_.curvatureSeconds;
+    report->controlSpaceQueries = counters_.queries;
+    report->controlSpaceSeconds = counters_.querySeconds;
+    report->patchTriangles = patchTriangles;
+    report->secondsTotal = since(t0);
+  }
+  return out;
+}
+
+}  // namespace
+
+Mat3 metric3DFromParameter(const Metric& m, const SurfaceDerivatives& d) {
+  const Eigen::Matrix<double, 3, 2> j = d.jacobian();
+  const Mat2 g = j.transpose() * j;
+  const Eigen::Matrix<double, 2, 3> jp = g.inverse() * j.transpose();  // J+: 3D tangent vector -> (u, v)
+  Mat3 t = jp.transpose() * m.tensor() * jp;
+  t = 0.5 * (t + t.transpose());
+  const Vec3 n = d.su.cross(d.sv);
+  if (n.norm() > 0) {
+    const double lmax = Eigen::SelfAdjointEigenSolver<Mat3>(t, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+    const Vec3 nu = n.normalized();
+    t += lmax * nu * nu.transpose();
+  }
+  return t;
+}
+
+double acrossEdgeSizeRatio(const Mesh& mesh, const std::vector<std::array<int, 2>>& edges) {
+  std::map<std::array<int, 2>, std::vector<int>> at;
+  for (const auto& e : edges) at[{std::min(e[0], e[1]), std::max(e[0], e[1])}];
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.triangles[t][size_t(k)], b = mesh.triangles[t][size_t((k + 1) % 3)];
+      auto it = at.find({std::min(a, b), std::max(a, b)});
+      if (it != at.end()) it->second.push_back(int(t));
+    }
+  auto area = [&](int t) {
+    const auto& tr = mesh.triangles[size_t(t)];
+    const Vec3& a = mesh.points[size_t(tr[0])];
+    return 0.5 * (mesh.points[size_t(tr[1])] - a).cross(mesh.points[size_t(tr[2])] - a).norm();
+  };
+  double worst = 0.0;
+  for (const auto& e : at)
+    if (e.second.size() == 2) {
+      const double s0 = std::sqrt(area(e.second[0])), s1 = std::sqrt(area(e.second[1]));
+      if (s0 > 0 && s1 > 0) worst = std::max(worst, std::max(s0, s1) / std::min(s0, s1));
+    }
+  return worst;
+}
+
+std::vector<std::array<int, 2>> openEdges(const Mesh& mesh) {
+  std::map<std::array<int, 2>, int> count;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[size_t(k)], b = t[size_t((k + 1) % 3)];
+      ++count[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<std::array<int, 2>> out;
+  for (const auto& e : count)
+    if (e.second == 1) out.push_back(e.first);
+  return out;
+}
+
+std::unique_ptr<AdaptiveControlSpace> buildPatchControlSpace(const SurfacePatch& patch,
+                                                             const std::vector<Source3D>& sources3d,
+                                                             const SurfaceMeshOptions& options) {
+  validate(options.metric);
+  Counters c;
+  return buildControlSpaceImpl(patch, sources3d, options, c);
+}
+
+Mesh meshSurfaceModel(const SurfaceModel& model, const SurfaceMeshOptions& options, SurfaceMeshReport* report) {
+  ModelMesher mesher(model, options);
+  return mesher.run(report);
+}
+
+Mesh meshSurfacePatch(const SurfacePatch& patch, const SurfaceMeshOptions& options, SurfaceMeshReport* report) {
+  SurfaceModel m;
+  m.patches.push_back(patch);
+  return meshSurfaceModel(m, options, report);
+}
+
+}  // namespace anisomesh
