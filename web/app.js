@@ -5,7 +5,7 @@ import GUI from 'lil-gui';
 import { JobRunner, CancelledError } from './jobs.js';
 import { presets, presetById, defaultPresetId } from './presets.js';
 import { defaultView, encodeState, decodeState, checkCase, errorTarget, InputError } from './state.js';
-import { Views } from './views.js';
+import { Views, softwareWebGL } from './views.js';
 import { moveHandle } from './overlays.js';
 import { drawHistogram } from './histogram.js';
 import { qualityColor, lengthColor, sizeColor, css } from './colors.js';
@@ -65,6 +65,7 @@ const utilRunner = new JobRunner();  // exports and checks: never cancelled by m
 // --- views ------------------------------------------------------------------------------
 
 let dragFrom = null;
+const query = new URLSearchParams(location.search);
 const views = new Views($('view'), {
   onSelect(i) { selectSource(i); },
   onDrag(i, key, p, phase) {
@@ -83,6 +84,9 @@ const views = new Views($('view'), {
       edited(0);
     }
   },
+}, {
+  // ?aa=1 / ?aa=0 forces antialiasing; by default it is off on software WebGL (4x slower there).
+  antialias: query.has('aa') ? query.get('aa') !== '0' : !softwareWebGL(),
 });
 
 // --- GUI --------------------------------------------------------------------------------

@@ -18,11 +18,13 @@ export class Views {
    * container: element the canvas fills.
    * hooks: { onSelect(sourceIndex), onDrag(sourceIndex, key, [x, y], phase: 'start'|'move'|'end') }
    */
-  constructor(container, hooks = {}) {
+  constructor(container, hooks = {}, { antialias = true, preserveDrawingBuffer = true } = {}) {
     this.container = container;
     this.hooks = hooks;
     this.mode = 'split';
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    // preserveDrawingBuffer: the canvas can be read back (tests, screenshots) at any time.
+    this.renderer = new THREE.WebGLRenderer({ antialias, preserveDrawingBuffer });
+    this.preserveDrawingBuffer = preserveDrawingBuffer;
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
     this.renderer.setClearColor(BG);
     this.renderer.setScissorTest(true);
@@ -54,11 +56,36 @@ export class Views {
     this.group3 = new THREE.Group();
     this.scene3.add(this.group3);
 
+    // Materials are created once and shared: disposing the last user of a shader program
+    // makes three.js delete it, and recompiling costs ~100 ms per program on software WebGL.
+    const line = (o) => new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, transparent: true, ...o });
+    this.mats = {
+      face2: new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, depthTest: false }),
+      face3: new THREE.MeshLambertMaterial({
+        vertexColors: true, side: THREE.DoubleSide, flatShading: true, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+      }),
+      edgeLength2: line({ opacity: 0.95 }),
+      edgePlain2: line({ opacity: 0.55 }),
+      edgeLength3: new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: 0.9 }),
+      edgePlain3: new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: 0.45 }),
+      boundary2: line({ transparent: false }),
+      boundary3: new THREE.LineBasicMaterial({ vertexColors: true }),
+      csLines: new THREE.LineBasicMaterial({ color: 0x6a5acd, transparent: true, opacity: 0.35, depthTest: false }),
+      csEllipses: line({ transparent: false }),
+      srcShape: new THREE.LineBasicMaterial({ color: 0x2c3e50, depthTest: false, transparent: true, opacity: 0.85 }),
+      srcShapeSel: new THREE.LineBasicMaterial({ color: 0xd35400, depthTest: false }),
+      srcEllipse: new THREE.LineBasicMaterial({ color: 0xc0392b, depthTest: false, transparent: true, opacity: 0.85 }),
+      srcEllipseSel: new THREE.LineBasicMaterial({ color: 0xd35400, depthTest: false }),
+      srcGuide: new THREE.LineDashedMaterial({ color: 0x2c3e50, depthTest: false, transparent: true, opacity: 0.8 }),
+      srcGuideSel: new THREE.LineDashedMaterial({ color: 0xd35400, depthTest: false, transparent: true, opacity: 0.8 }),
+      handles: new THREE.PointsMaterial({ size: 11, sizeAttenuation: false, vertexColors: true, depthTest: false }),
+    };
+
     this.#installPointer();
     // OrbitControls after our own listeners: ours run first and enable it only over the 3D viewport.
     this.controls = new OrbitControls(this.cam3, this.canvas);
     this.controls.enableDamping = false;
-    this.controls.addEventListener('change', () => this.requestRender());
+    this.controls.addEventListener('change', () => this.requestRender('3d'));
 
     this.sources = [];
     this.selected = -1;
@@ -123,7 +150,7 @@ export class Views {
     this.view2.halfH = 0.54 * Math.max(y1 - y0, (x1 - x0) / aspect, 1e-9);
     this.#updateCam2();
     this.#refreshSources();
-    this.requestRender();
+    this.requestRender('2d');
   }
 
   fit3D() {
@@ -139,25 +166,37 @@ export class Views {
     this.cam3.far = dist * 100;
     this.cam3.updateProjectionMatrix();
     this.controls.update();
-    this.requestRender();
+    this.requestRender('3d');
   }
 
   // --- rendering ------------------------------------------------------------------------
 
-  requestRender() {
+  /** Schedules a draw of one viewport ('2d', '3d') or of all (default) on the next frame. */
+  requestRender(which = 'all') {
+    (this.dirty ??= new Set()).add(which);
     if (this.renderPending) return;
     this.renderPending = true;
     requestAnimationFrame(() => { this.renderPending = false; this.render(); });
   }
 
+  /**
+   * Draws the dirty viewports now (all when called directly). With preserveDrawingBuffer
+   * the other viewport keeps its pixels, so dragging a source redraws only the 2D half:
+   * with software WebGL the fill rate is what limits the frame rate.
+   */
   render() {
-    const H = this.container.clientHeight;
-    const vps = this.viewports();
-    this.renderer.setScissor(0, 0, this.container.clientWidth, H);
-    this.renderer.setViewport(0, 0, this.container.clientWidth, H);
-    this.renderer.clear();
-    for (const [kind, v] of Object.entries(vps)) {
-      // WebGL's y axis points up.
+    const dirty = this.dirty ?? new Set(['all']);
+    this.dirty = new Set();
+    const all = dirty.has('all') || !this.preserveDrawingBuffer;
+    const W = this.container.clientWidth, H = this.container.clientHeight;
+    if (all) {
+      this.renderer.setScissor(0, 0, W, H);
+      this.renderer.setViewport(0, 0, W, H);
+      this.renderer.clear();
+    }
+    for (const [kind, v] of Object.entries(this.viewports())) {
+      if (!all && !dirty.has(kind)) continue;
+      // WebGL's y axis points up; autoClear clears inside the scissor only.
       this.renderer.setViewport(v.x, H - v.y - v.h, v.w, v.h);
       this.renderer.setScissor(v.x, H - v.y - v.h, v.w, v.h);
       if (kind === '2d') this.renderer.render(this.scene2, this.cam2);
@@ -185,7 +224,7 @@ export class Views {
   #buildMesh(style) {
     const { mesh, measures } = this.result;
     const clear = (g) => {
-      for (const o of [...g.children]) { g.remove(o); o.geometry?.dispose(); o.material?.dispose(); }
+      for (const o of [...g.children]) { g.remove(o); o.geometry?.dispose(); }
     };
     for (const g of [this.layers2.faces, this.layers2.edges, this.layers2.boundary, this.group3]) clear(g);
 
@@ -209,24 +248,19 @@ export class Views {
     const faces2 = faceGeometry(mesh, uvPos, faceColors);
     const faces3 = faceGeometry(mesh, pos3, faceColors);
     faces3.computeVertexNormals();
-    this.layers2.faces.add(new THREE.Mesh(faces2, new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, depthTest: false })));
-    this.group3.add(new THREE.Mesh(faces3, new THREE.MeshLambertMaterial({
-      vertexColors: true, side: THREE.DoubleSide, flatShading: true, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
-    })));
+    this.layers2.faces.add(new THREE.Mesh(faces2, this.mats.face2));
+    this.group3.add(new THREE.Mesh(faces3, this.mats.face3));
 
     if (style.edges !== 'off') {
       const lengths = style.edges === 'length' ? measures.edgeLength : null;
       const colors = edgeColors(measures.edges, lengths);
-      const mat2 = new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, transparent: true, opacity: lengths ? 0.95 : 0.55 });
-      this.layers2.edges.add(new THREE.LineSegments(segmentGeometry(measures.edges, uvPos, colors), mat2));
-      this.group3.add(new THREE.LineSegments(segmentGeometry(measures.edges, pos3, colors),
-        new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: lengths ? 0.9 : 0.45 })));
+      this.layers2.edges.add(new THREE.LineSegments(segmentGeometry(measures.edges, uvPos, colors), lengths ? this.mats.edgeLength2 : this.mats.edgePlain2));
+      this.group3.add(new THREE.LineSegments(segmentGeometry(measures.edges, pos3, colors), lengths ? this.mats.edgeLength3 : this.mats.edgePlain3));
     }
     if (mesh.edges?.length) {
       const black = new Float32Array(mesh.edges.length * 3).fill(0.1);
-      this.layers2.boundary.add(new THREE.LineSegments(segmentGeometry(mesh.edges, uvPos, black),
-        new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false })));
-      this.group3.add(new THREE.LineSegments(segmentGeometry(mesh.edges, pos3, black), new THREE.LineBasicMaterial({ vertexColors: true })));
+      this.layers2.boundary.add(new THREE.LineSegments(segmentGeometry(mesh.edges, uvPos, black), this.mats.boundary2));
+      this.group3.add(new THREE.LineSegments(segmentGeometry(mesh.edges, pos3, black), this.mats.boundary3));
     }
     this.requestRender();
   }
@@ -255,16 +289,16 @@ export class Views {
   /** overlay: { nodes: Float32Array (x, y, h1, h2, alpha), lines: Float32Array (x0, y0, x1, y1) } or null. */
   setControlSpace(overlay, visible) {
     const g = this.layers2.control;
-    for (const o of [...g.children]) { g.remove(o); o.geometry.dispose(); o.material.dispose(); }
+    for (const o of [...g.children]) { g.remove(o); o.geometry.dispose(); }
     this.controlLegend = null;
-    if (!overlay || !visible) { this.requestRender(); return; }
+    if (!overlay || !visible) { this.requestRender('2d'); return; }
     if (overlay.lines.length) {
       const n = overlay.lines.length / 2;
       const pos = new Float32Array(3 * n);
       for (let i = 0; i < n; i++) { pos[3 * i] = overlay.lines[2 * i]; pos[3 * i + 1] = overlay.lines[2 * i + 1]; }
       const geom = new THREE.BufferGeometry();
       geom.setAttribute('position', new THREE.BufferAttribute(pos, 3));
-      g.add(new THREE.LineSegments(geom, new THREE.LineBasicMaterial({ color: 0x6a5acd, transparent: true, opacity: 0.35, depthTest: false })));
+      g.add(new THREE.LineSegments(geom, this.mats.csLines));
     }
     // Ellipses at nodes: the shape and orientation of each metric, scaled to the node
     // spacing so all are readable; the colour gives the size (log scale).
@@ -295,10 +329,10 @@ export class Views {
       const geom = new THREE.BufferGeometry();
       geom.setAttribute('position', new THREE.BufferAttribute(pos, 3));
       geom.setAttribute('color', new THREE.BufferAttribute(col, 3));
-      g.add(new THREE.LineSegments(geom, new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false })));
+      g.add(new THREE.LineSegments(geom, this.mats.csEllipses));
       this.controlLegend = { hmin, hmax, count };
     }
-    this.requestRender();
+    this.requestRender('2d');
   }
 
   // --- sources and handles --------------------------------------------------------------
@@ -313,10 +347,11 @@ export class Views {
 
   #refreshSources() {
     const g = this.layers2.sources;
-    for (const o of [...g.children]) { g.remove(o); o.geometry.dispose(); o.material.dispose(); }
+    for (const o of [...g.children]) { g.remove(o); o.geometry.dispose(); }
     this.handles = [];
-    if (!this.showSources) { this.requestRender(); return; }
+    if (!this.showSources) { this.requestRender('2d'); return; }
     const px = this.pixelSize2();
+    for (const m of [this.mats.srcGuide, this.mats.srcGuideSel]) { m.dashSize = 6 * px; m.gapSize = 4 * px; }
     const handlePos = [], handleCol = [];
     this.sources.forEach((s, i) => {
       const sel = i === this.selected;
@@ -324,10 +359,8 @@ export class Views {
       for (const { points, kind } of lines) {
         const geom = new THREE.BufferGeometry();
         geom.setAttribute('position', new THREE.BufferAttribute(Float32Array.from(points.flatMap(([x, y]) => [x, y, 0])), 3));
-        const color = kind === 'ellipse' ? (sel ? 0xd35400 : 0xc0392b) : (sel ? 0xd35400 : 0x2c3e50);
-        const mat = kind === 'guide'
-          ? new THREE.LineDashedMaterial({ color, dashSize: 6 * px, gapSize: 4 * px, depthTest: false, transparent: true, opacity: 0.8 })
-          : new THREE.LineBasicMaterial({ color, depthTest: false, transparent: true, opacity: sel ? 1 : 0.85 });
+        const name = { ellipse: 'srcEllipse', guide: 'srcGuide', shape: 'srcShape' }[kind] + (sel ? 'Sel' : '');
+        const mat = this.mats[name];
         const line = new THREE.Line(geom, mat);
         if (kind === 'guide') line.computeLineDistances();
         g.add(line);
@@ -342,9 +375,9 @@ export class Views {
       const geom = new THREE.BufferGeometry();
       geom.setAttribute('position', new THREE.Float32BufferAttribute(handlePos, 3));
       geom.setAttribute('color', new THREE.Float32BufferAttribute(handleCol, 3));
-      g.add(new THREE.Points(geom, new THREE.PointsMaterial({ size: 11, sizeAttenuation: false, vertexColors: true, depthTest: false })));
+      g.add(new THREE.Points(geom, this.mats.handles));
     }
-    this.requestRender();
+    this.requestRender('2d');
   }
 
   /** Page (client) coordinates of a world point of the 2D view, or null if the 2D view is hidden. */
@@ -420,7 +453,7 @@ export class Views {
         this.view2.cx = drag.cx - (e.clientX - drag.x) * px;
         this.view2.cy = drag.cy + (e.clientY - drag.y) * px;
         this.#updateCam2();
-        this.requestRender();
+        this.requestRender('2d');
       }
     });
     const end = (e) => {
@@ -455,6 +488,7 @@ export class Views {
 
   /** Fraction of pixels of a viewport ('2d', '3d' or all) that differ from the background. */
   coverage(which = null) {
+    this.requestRender();
     this.render();
     const src = this.canvas;
     const c = document.createElement('canvas');
@@ -481,6 +515,7 @@ export class Views {
       this.controls.autoRotateSpeed = 30;
       const tick = () => {
         this.controls.update(1 / 60);
+        this.dirty = new Set(['3d']);
         this.render();
         frames++;
         const dt = performance.now() - t0;
@@ -553,4 +588,18 @@ function segmentGeometry(pairs, xyz, colors) {
   g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
   g.setAttribute('color', new THREE.BufferAttribute(colors.length === 3 * n ? colors : colors.subarray(0, 3 * n), 3));
   return g;
+}
+
+/** True when WebGL runs on a software rasterizer (SwiftShader, llvmpipe): MSAA is then too costly. */
+export function softwareWebGL() {
+  try {
+    const gl = document.createElement('canvas').getContext('webgl2') ?? document.createElement('canvas').getContext('webgl');
+    if (!gl) return false;
+    const ext = gl.getExtension('WEBGL_debug_renderer_info');
+    const name = ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
+    gl.getExtension('WEBGL_lose_context')?.loseContext();
+    return /swiftshader|llvmpipe|softpipe|software/i.test(String(name));
+  } catch {
+    return false;
+  }
 }
