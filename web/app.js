@@ -424,7 +424,7 @@ function renderStats(s) {
     ['quads', s.quads], ['edges', s.edges],
     ['len in [1/√2, √2]', pct(el.fractionWithinSqrt2)], ['len in [0.6, 1.3]', pct(el['fractionWithin0.6_1.3'])],
     ['len min / mean', `${f3(el.min)} / ${f3(el.mean)}`], ['len max', f3(el.max)],
-    ['Q min / mean', `${f3(q.min)} / ${f3(q.mean)}`], ['inverted / degen.', `${s.inverted} / ${s.degenerate}`],
+    ['Q min / mean', `${f3(q.min)} / ${f3(q.mean)}`], ['inverted, degen.', `${s.inverted ?? '–'}, ${s.degenerate ?? '–'}`],
     ['core geometry', ms(s.secondsGeometry)], ['core meshing', ms(s.secondsMeshing)],
     ['job round trip', state.lastJob ? `${state.lastJob.totalMs} ms` : '…'], ['cancelled jobs', state.cancelled],
   ];
@@ -666,6 +666,14 @@ const app = {
     return h ? views.worldToClient2(h.x, h.y) : null;
   },
   selectSource,
+  /** Changes display settings (keys of state.view) as the panel would. */
+  setView(patch) {
+    const mode = patch.view;
+    Object.assign(state.view, patch);
+    if (mode) applyViewMode(mode);
+    restyle();
+    gui.controllersRecursive().forEach((c) => c.updateDisplay());
+  },
   coverage: (which) => views.coverage(which),
   benchOrbit: (ms) => views.benchOrbit(ms),
   /** Shows a mesh that did not come from a case (e.g. a synthetic surface for a measurement). */

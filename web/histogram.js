@@ -34,6 +34,7 @@ export function drawHistogram(canvas, values, opts) {
   ctx.font = '11px system-ui, sans-serif';
   ctx.fillStyle = '#333';
   ctx.textBaseline = 'top';
+  ctx.textAlign = 'left';  // the context keeps its state between draws
   ctx.fillText(title, pad.l, 1);
   if (!values || values.length === 0) {
     ctx.fillStyle = '#999';

@@ -12,6 +12,7 @@ import { sourceOverlay } from './overlays.js';
 const BG = 0xf7f7f5;
 const FACE_PLAIN = [0.80, 0.85, 0.92];
 const HANDLE_PICK_PX = 12;
+const EDGES_HIDDEN_WHILE_ORBITING = 60000;
 
 export class Views {
   /**
@@ -86,6 +87,10 @@ export class Views {
     this.controls = new OrbitControls(this.cam3, this.canvas);
     this.controls.enableDamping = false;
     this.controls.addEventListener('change', () => this.requestRender('3d'));
+    // Large meshes: the edge lines cost more than the faces on software WebGL, so they
+    // are hidden while the camera moves and come back when it stops.
+    this.controls.addEventListener('start', () => this.#interacting(true));
+    this.controls.addEventListener('end', () => this.#interacting(false));
 
     this.sources = [];
     this.selected = -1;
@@ -205,6 +210,12 @@ export class Views {
     this.framesRendered++;
   }
 
+  #interacting(on) {
+    const hide = on && (this.edgeCount ?? 0) > EDGES_HIDDEN_WHILE_ORBITING;
+    for (const o of this.group3.children) if (o.isLineSegments && o.userData.edges) o.visible = !hide;
+    if (!on) this.requestRender('3d');
+  }
+
   // --- mesh -----------------------------------------------------------------------------
 
   /**
@@ -243,6 +254,7 @@ export class Views {
       for (let i = 0; i < nv; i++) pos3[3 * i + 2] = style.lift * 0.35 * size * (Math.log(hmax / hs[i]) / span);
     }
 
+    this.edgeCount = style.edges === 'off' ? 0 : measures.edges.length / 2;
     const quality = style.colorBy === 'quality' ? measures.quality : null;
     const faceColors = elementColors(mesh, quality);
     const faces2 = faceGeometry(mesh, uvPos, faceColors);
@@ -255,7 +267,9 @@ export class Views {
       const lengths = style.edges === 'length' ? measures.edgeLength : null;
       const colors = edgeColors(measures.edges, lengths);
       this.layers2.edges.add(new THREE.LineSegments(segmentGeometry(measures.edges, uvPos, colors), lengths ? this.mats.edgeLength2 : this.mats.edgePlain2));
-      this.group3.add(new THREE.LineSegments(segmentGeometry(measures.edges, pos3, colors), lengths ? this.mats.edgeLength3 : this.mats.edgePlain3));
+      const lines3 = new THREE.LineSegments(segmentGeometry(measures.edges, pos3, colors), lengths ? this.mats.edgeLength3 : this.mats.edgePlain3);
+      lines3.userData.edges = true;
+      this.group3.add(lines3);
     }
     if (mesh.edges?.length) {
       const black = new Float32Array(mesh.edges.length * 3).fill(0.1);
@@ -291,7 +305,15 @@ export class Views {
     const g = this.layers2.control;
     for (const o of [...g.children]) { g.remove(o); o.geometry.dispose(); }
     this.controlLegend = null;
-    if (!overlay || !visible) { this.requestRender('2d'); return; }
+    // Fade the mesh under the overlay so the ellipses read.
+    const dim = Boolean(overlay && visible);
+    const m = this.mats;
+    m.face2.transparent = dim;
+    m.face2.opacity = dim ? 0.35 : 1;
+    m.face2.needsUpdate = true;
+    m.edgeLength2.opacity = dim ? 0.3 : 0.95;
+    m.edgePlain2.opacity = dim ? 0.2 : 0.55;
+    if (!dim) { this.requestRender('2d'); return; }
     if (overlay.lines.length) {
       const n = overlay.lines.length / 2;
       const pos = new Float32Array(3 * n);
@@ -513,6 +535,7 @@ export class Views {
       let frames = 0;
       this.controls.autoRotate = true;
       this.controls.autoRotateSpeed = 30;
+      this.#interacting(true);  // as while dragging with the mouse
       const tick = () => {
         this.controls.update(1 / 60);
         this.dirty = new Set(['3d']);
@@ -522,6 +545,7 @@ export class Views {
         if (dt < ms) requestAnimationFrame(tick);
         else {
           this.controls.autoRotate = false;
+          this.#interacting(false);
           resolve((frames * 1000) / dt);
         }
       };

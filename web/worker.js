@@ -52,12 +52,8 @@ function overlayFromInspect(cs) {
         lines.push(p[0], p[1], q[0], q[1]);
       }
     }
-  } else if (cs.nx && cs.ny && cs.bounds) {  // sampled analytic field: its sampling grid
-    const { lo, hi } = cs.bounds;
-    const dx = (hi[0] - lo[0]) / cs.nx, dy = (hi[1] - lo[1]) / cs.ny;
-    for (let i = 0; i <= cs.nx; i++) lines.push(lo[0] + i * dx, lo[1], lo[0] + i * dx, hi[1]);
-    for (let j = 0; j <= cs.ny; j++) lines.push(lo[0], lo[1] + j * dy, hi[0], lo[1] + j * dy);
   }
+  // A sampled analytic field has no structure of its own: only the ellipses are drawn.
   const kind = cs.kind ?? (cs.samples ? 'sampled' : 'adaptive');
   return { kind, sampled: Boolean(cs.samples), nodes, lines: Float32Array.from(lines), bounds: cs.bounds ?? null };
 }

@@ -3,6 +3,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { launch, openPage, settle } from './launch.mjs';
+import { sphereMesh } from './fixtures.mjs';
 
 let env;
 before(async () => { env = await launch(); });
@@ -182,6 +183,24 @@ test('a new job supersedes a running one (the worker is replaced) and the last i
   assert.equal(r.meshed, r.version, 'the mesh on screen is the latest input');
   assert.ok(r.restartMs.length >= 1);
   console.log(`# worker restart (precompiled module): ${r.restartMs.join(', ')} ms`);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('a dimension-3 mesh (surface) renders in the 3D view, its (u, v) in the 2D view', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await page.evaluate(() => window.anisomeshApp.setView({ view: '2d' }));
+  const tris = await page.evaluate(sphereMesh, 2000);
+  const r = await page.evaluate(() => {
+    const a = window.anisomeshApp;
+    return { mode: a.state.view.view, dim: a.views.mesh.dimension, cov2: a.coverage('2d'), cov3: a.coverage('3d'), tris: a.views.mesh.triangles.length / 3 };
+  });
+  assert.equal(r.dim, 3);
+  assert.equal(r.tris, tris);
+  assert.equal(r.mode, 'split', 'a surface mesh brings up the 3D view');
+  assert.ok(r.cov3 > 0.05, `3D coverage ${r.cov3}`);
+  assert.ok(r.cov2 > 0.05, `2D coverage ${r.cov2}`);
+  assert.equal(await statValue(page, 'triangles'), String(tris));
   assert.deepEqual(errors, []);
   await page.close();
 });
