@@ -33,13 +33,19 @@ export async function launch() {
   };
 }
 
-/** Opens the page and collects page errors and console errors. */
-export async function openPage(browser, url) {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+/** Opens the app (optionally at a hash) and collects page errors and console errors. */
+export async function openPage(browser, url, { hash = '', acceptDownloads = false } = {}) {
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 }, acceptDownloads });
   const errors = [];
   page.on('pageerror', (e) => errors.push(`pageerror: ${e.message}`));
   page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
-  await page.goto(url);
-  await page.waitForFunction(() => window.anisomeshDemo?.state.ready === true, null, { timeout: 30000 });
+  await page.goto(url + hash);
+  await page.waitForFunction(() => window.anisomeshApp?.state.ready === true, null, { timeout: 30000 });
   return { page, errors };
+}
+
+/** Runs fn in the page, then waits until the app has no edit waiting and no job running. */
+export async function settle(page, fn = null, arg = undefined) {
+  if (fn) await page.evaluate(fn, arg);
+  await page.waitForFunction(() => window.anisomeshApp.idle(), null, { timeout: 60000 });
 }

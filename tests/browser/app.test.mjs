@@ -1,0 +1,206 @@
+// The browser app in headless Chromium: presets mesh and render, sources drag on the
+// canvas, bad input gives inline errors, the state lives in the URL, cancellation.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { launch, openPage, settle } from './launch.mjs';
+import { sphereMesh } from './fixtures.mjs';
+
+let env;
+before(async () => { env = await launch(); });
+after(async () => { await env?.close(); });
+
+const statValue = (page, key) => page.locator(`#stats dd[data-key="${key}"]`).textContent();
+
+test('every preset meshes, renders a non-blank canvas and shows its counts', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  const ids = await page.evaluate(() => window.anisomeshApp.presets);
+  assert.ok(ids.length >= 6, `presets: ${ids}`);
+  for (const id of ids) {
+    await settle(page, (p) => window.anisomeshApp.loadPreset(p), id);
+    const r = await page.evaluate(() => {
+      const a = window.anisomeshApp;
+      const m = a.views.mesh;
+      return {
+        error: a.state.lastError,
+        preset: a.state.presetId,
+        stats: a.state.lastStats,
+        drawn: { vertices: m.params.length / 2, triangles: m.triangles.length / 3, quads: m.quads.length / 4 },
+        meanQ: a.state.lastMeasures.quality.reduce((s, q) => s + q, 0) / a.state.lastMeasures.quality.length,
+        cov2: a.coverage('2d'),
+        cov3: a.coverage('3d'),
+      };
+    });
+    assert.equal(r.error, null, `${id}: ${JSON.stringify(r.error)}`);
+    assert.equal(r.preset, id);
+    assert.ok(r.stats.triangles > 100, `${id}: ${r.stats.triangles} triangles`);
+    assert.deepEqual(r.drawn, { vertices: r.stats.vertices, triangles: r.stats.triangles, quads: r.stats.quads }, id);
+    // The worker's per-element qualities (the colours, the histogram) match the core's report.
+    assert.ok(Math.abs(r.meanQ - r.stats.quality.mean) < 1e-3, `${id}: mean Q ${r.meanQ} vs ${r.stats.quality.mean}`);
+    assert.ok(r.cov2 > 0.05, `${id}: 2D view coverage ${r.cov2}`);
+    assert.ok(r.cov3 > 0.05, `${id}: 3D view coverage ${r.cov3}`);
+    assert.equal(await statValue(page, 'triangles'), String(r.stats.triangles), id);
+    assert.equal(await statValue(page, 'vertices'), String(r.stats.vertices), id);
+  }
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('dragging a radial source with the mouse moves it and remeshes', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('holes-off'));
+  const before = await page.evaluate(() => {
+    const a = window.anisomeshApp;
+    return { center: a.state.case.sources[0].center, jobs: a.state.jobsDone, vertices: Array.from(a.views.mesh.params.slice(0, 4000)), n: a.views.mesh.params.length };
+  });
+  const h = await page.evaluate(() => window.anisomeshApp.handleClientPosition(0, 'center'));
+  assert.ok(h, 'handle of source 0 is on screen');
+  await page.mouse.move(h.x, h.y);
+  await page.mouse.down();
+  for (let k = 1; k <= 8; k++) await page.mouse.move(h.x - 8 * k, h.y + 4 * k);
+  await page.mouse.up();
+  await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 30000 });
+  const after = await page.evaluate(() => {
+    const a = window.anisomeshApp;
+    return { center: a.state.case.sources[0].center, jobs: a.state.jobsDone, vertices: Array.from(a.views.mesh.params.slice(0, 4000)), n: a.views.mesh.params.length, error: a.state.lastError, selected: a.state.selected };
+  });
+  assert.equal(after.error, null);
+  assert.equal(after.selected, 0);
+  assert.ok(after.center[0] < before.center[0] - 0.3 && after.center[1] < before.center[1] - 0.1, `moved: ${before.center} -> ${after.center}`);
+  assert.ok(after.jobs > before.jobs);
+  assert.ok(after.n !== before.n || after.vertices.some((v, i) => v !== before.vertices[i]), 'the mesh changed');
+  // The panel follows the handle.
+  const cx = await page.locator('#gui .lil-controller', { hasText: 'center x' }).locator('input').inputValue();
+  assert.ok(Math.abs(Number(cx) - after.center[0]) < 1e-3, `panel shows ${cx}, source at ${after.center[0]}`);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('bad input shows an inline error next to its control, keeps the mesh, and recovers', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('holes-off'));
+  const meshBefore = await page.evaluate(() => window.anisomeshApp.state.lastStats.triangles);
+
+  // 1. An expression that does not parse, then a valid one.
+  await page.locator('#expr-box summary').click();
+  await page.locator('#expr').fill('0.1 + sin(u');
+  await page.waitForFunction(() => !document.getElementById('expr-msg').hidden && /PARSE_ERROR/.test(document.getElementById('expr-msg').textContent));
+  assert.match(await page.locator('#expr-msg').textContent(), /column/);
+  await page.locator('#expr').fill('0.1 + 0.05*sin(u)');
+  await page.waitForFunction(() => /^ok: h\(/.test(document.getElementById('expr-msg').textContent));
+
+  // 2. A source with zero radius: error under the radius field, previous mesh kept.
+  await settle(page, () => { const a = window.anisomeshApp; a.state.case.sources[1].radius = 0; a.edited(0); });
+  let r = await page.evaluate(() => ({ err: window.anisomeshApp.state.lastError, tris: window.anisomeshApp.views.mesh.triangles.length / 3 }));
+  assert.equal(r.err.target, 'sources[1].radius');
+  assert.equal(r.tris, meshBefore, 'the previous mesh stays');
+  const radiusRow = page.locator('#gui .lil-controller.has-error', { hasText: 'radius' });
+  await radiusRow.waitFor();
+  assert.match(await page.locator('#gui .inline-error[data-target="sources[1].radius"]').textContent(), /radius.*positive/);
+  // Typing a valid radius in that field remeshes.
+  await radiusRow.locator('input').fill('0.4');
+  await radiusRow.locator('input').press('Enter');
+  await settle(page);
+  r = await page.evaluate(() => window.anisomeshApp.state.lastError);
+  assert.equal(r, null);
+  assert.equal(await page.locator('.inline-error').count(), 0);
+
+  // 3. A self-intersecting contour typed in the domain box.
+  await page.locator('#domain-box summary').click();
+  await page.locator('#domain-json').fill(JSON.stringify({ outer: [{ type: 'polyline', points: [[0, 0], [10, 5], [10, 0], [0, 5], [0, 0]] }] }));
+  await page.locator('#domain-apply').click();
+  await page.waitForFunction(() => window.anisomeshApp.state.lastError?.code === 'SELF_INTERSECTING_CONTOUR' && window.anisomeshApp.idle());
+  assert.equal(await page.locator('#error-domain').isVisible(), true);
+  assert.match(await page.locator('#error-domain').textContent(), /intersects itself/);
+  assert.equal(await page.evaluate(() => window.anisomeshApp.views.mesh.triangles.length / 3), meshBefore);
+  // A plain rectangle meshes again.
+  await page.locator('#domain-json').fill(JSON.stringify({ outer: [{ type: 'polyline', points: [[0, 0], [10, 0], [10, 5], [0, 5], [0, 0]] }] }));
+  await page.locator('#domain-apply').click();
+  await page.waitForFunction(() => window.anisomeshApp.state.lastError === null && window.anisomeshApp.idle());
+  assert.equal(await page.locator('#error-domain').isVisible(), false);
+
+  // 4. The element budget: error next to "max elements".
+  const maxRow = page.locator('#gui .lil-controller', { hasText: 'max elements' });
+  await maxRow.locator('input').fill('50');
+  await maxRow.locator('input').press('Enter');
+  await page.waitForFunction(() => window.anisomeshApp.state.lastError?.code === 'ELEMENT_BUDGET_EXCEEDED' && window.anisomeshApp.idle());
+  assert.match(await page.locator('.inline-error[data-target="maxElements"]').textContent(), /budget/);
+  await maxRow.locator('input').fill('2000000');
+  await maxRow.locator('input').press('Enter');
+  await page.waitForFunction(() => window.anisomeshApp.state.lastError === null && window.anisomeshApp.idle());
+
+  // 5. A value the core rejects (hmin > hmax) lands next to hmin.
+  await settle(page, () => { const a = window.anisomeshApp; a.state.case.controlSpace.hmin = 5; a.edited(0); });
+  assert.equal(await page.locator('.inline-error[data-target="hmin"]').count(), 1);
+  await settle(page, () => { const a = window.anisomeshApp; a.state.case.controlSpace.hmin = 0.01; a.edited(0); });
+  assert.equal(await page.evaluate(() => window.anisomeshApp.state.lastError), null);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('the state is kept in the URL and a shared link restores it', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('point-source'));
+  await settle(page, () => {
+    const a = window.anisomeshApp;
+    a.state.case.sources[0].center = [1.1, 0.6];
+    a.state.case.options.quads = true;
+    a.edited(0);
+  });
+  await page.evaluate(() => new Promise((r) => setTimeout(r, 400)));  // the hash is written after 250 ms
+  const hash = await page.evaluate(() => location.hash);
+  assert.match(hash, /^#s=[A-Za-z0-9_-]+$/);
+  const quads = await page.evaluate(() => window.anisomeshApp.state.lastStats.quads);
+  assert.ok(quads > 0, 'quad-dominant mesh');
+  await page.close();
+
+  const { page: page2, errors: errors2 } = await openPage(env.browser, env.url, { hash });
+  const r = await page2.evaluate(() => {
+    const a = window.anisomeshApp;
+    return { preset: a.state.presetId, center: a.state.case.sources[0].center, quads: a.state.lastStats.quads, error: a.state.lastError };
+  });
+  assert.deepEqual(r, { preset: 'point-source', center: [1.1, 0.6], quads, error: null });
+  assert.deepEqual([...errors, ...errors2], []);
+  await page2.close();
+});
+
+test('a new job supersedes a running one (the worker is replaced) and the last input wins', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('holes-dr2'));
+  const r = await page.evaluate(async () => {
+    const a = window.anisomeshApp;
+    const cancelledBefore = a.state.cancelled;
+    a.state.case.sources[0].metric.h1 = 0.04;
+    a.edited(0);
+    await new Promise((res) => setTimeout(res, 150));  // the job is running in the worker now
+    a.state.case.sources[0].metric.h1 = 0.1;
+    a.state.case.sources[0].metric.h2 = 0.1;
+    a.edited(0);
+    await a.whenIdle();
+    return { cancelled: a.state.cancelled - cancelledBefore, meshed: a.state.meshedVersion, version: a.state.caseVersion, restartMs: a.state.workerRestartMs, error: a.state.lastError };
+  });
+  assert.equal(r.error, null);
+  assert.ok(r.cancelled >= 1, `cancelled ${r.cancelled}`);
+  assert.equal(r.meshed, r.version, 'the mesh on screen is the latest input');
+  assert.ok(r.restartMs.length >= 1);
+  console.log(`# worker restart (precompiled module): ${r.restartMs.join(', ')} ms`);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('a dimension-3 mesh (surface) renders in the 3D view, its (u, v) in the 2D view', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await page.evaluate(() => window.anisomeshApp.setView({ view: '2d' }));
+  const tris = await page.evaluate(sphereMesh, 2000);
+  const r = await page.evaluate(() => {
+    const a = window.anisomeshApp;
+    return { mode: a.state.view.view, dim: a.views.mesh.dimension, cov2: a.coverage('2d'), cov3: a.coverage('3d'), tris: a.views.mesh.triangles.length / 3 };
+  });
+  assert.equal(r.dim, 3);
+  assert.equal(r.tris, tris);
+  assert.equal(r.mode, 'split', 'a surface mesh brings up the 3D view');
+  assert.ok(r.cov3 > 0.05, `3D coverage ${r.cov3}`);
+  assert.ok(r.cov2 > 0.05, `2D coverage ${r.cov2}`);
+  assert.equal(await statValue(page, 'triangles'), String(tris));
+  assert.deepEqual(errors, []);
+  await page.close();
+});

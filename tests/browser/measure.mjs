@@ -1,0 +1,110 @@
+// Measurements for the report (not a test: no timed assertions) and the README screenshots.
+//   node tests/browser/measure.mjs [--no-screenshots]
+// Prints: pointer-up -> new mesh drawn for a ~50k-triangle case, and the frame rate while
+// orbiting a ~200k-triangle mesh in the 3D view (headless Chromium, software WebGL).
+import { launch, openPage, settle } from './launch.mjs';
+import { sphereMesh } from './fixtures.mjs';
+import { fileURLToPath } from 'node:url';
+import { stat } from 'node:fs/promises';
+
+const shots = !process.argv.includes('--no-screenshots');
+const out = fileURLToPath(new URL('../../web/screenshots/', import.meta.url));
+const env = await launch();
+const median = (a) => [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)];
+
+try {
+  // --- 1. drag -> mesh for ~50k triangles ---------------------------------------------
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('point-source-fine'));
+  await settle(page, () => {
+    const a = window.anisomeshApp;
+    a.state.case.sources[0].h0 = 0.0006;
+    a.state.case.controlSpace.hmin = 0.0006;
+    a.state.case.controlSpace.hmax = 0.0105;
+    a.edited(0);
+  });
+  const base = await page.evaluate(() => ({ tris: window.anisomeshApp.state.lastStats.triangles, job: window.anisomeshApp.state.lastJob }));
+  console.log(`case: point source, ${base.tris} triangles; job ${JSON.stringify(base.job)}`);
+  const samples = [];
+  for (let rep = 0; rep < 3; rep++) {
+    const h = await page.evaluate(() => window.anisomeshApp.handleClientPosition(0, 'center'));
+    await page.mouse.move(h.x, h.y);
+    await page.mouse.down();
+    const dir = rep % 2 ? 1 : -1;
+    for (let k = 1; k <= 6; k++) await page.mouse.move(h.x + dir * 6 * k, h.y + 2 * k);
+    await page.evaluate(() => { window.anisomeshApp.state.dragToMeshMs = null; });
+    await page.mouse.up();
+    await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
+    const r = await page.evaluate(() => ({ ms: window.anisomeshApp.state.dragToMeshMs, job: window.anisomeshApp.state.lastJob, tris: window.anisomeshApp.state.lastStats.triangles }));
+    samples.push(r.ms);
+    console.log(`  drag ${rep + 1}: pointer up -> mesh drawn ${r.ms} ms (${r.tris} triangles; core ${r.job.meshMs} ms, worker ${r.job.workerMs} ms, round trip ${r.job.totalMs} ms, draw ${r.job.drawMs} ms)`);
+  }
+  console.log(`RESULT drag->mesh (~${base.tris} triangles): median ${median(samples)} ms of ${samples.join(', ')}`);
+  const restarts = await page.evaluate(() => window.anisomeshApp.state.workerRestartMs);
+  console.log(`RESULT worker restart after cancel (precompiled wasm module): median ${median(restarts)} ms of ${restarts.length}`);
+  if (errors.length) console.log('page errors:', errors);
+  await page.close();
+
+  // --- 2. orbit a ~200k-triangle mesh -------------------------------------------------
+  const { page: p2, errors: e2 } = await openPage(env.browser, env.url);
+  await settle(p2, () => window.anisomeshApp.loadPreset('point-source-fine'));
+  await settle(p2, () => {
+    const a = window.anisomeshApp;
+    a.state.case.sources[0].h0 = 0.0003;
+    a.state.case.controlSpace.hmin = 0.0003;
+    a.state.case.controlSpace.hmax = 0.0048;
+    a.state.view.lift = 0.5;
+    a.edited(0);
+  });
+  const planar = await p2.evaluate(async () => {
+    const a = window.anisomeshApp;
+    a.views.setStyle({ colorBy: 'quality', edges: 'length', lift: 0.5 });
+    a.views.setMode('3d');
+    a.views.fit3D();
+    return { tris: a.state.lastStats.triangles, job: a.state.lastJob, fps: await a.benchOrbit(4000) };
+  });
+  console.log(`RESULT orbit planar mesh lifted in 3D, ${planar.tris} triangles (faces + ${'edges'}): ${planar.fps.toFixed(1)} fps (meshing ${planar.job.meshMs} ms)`);
+  const planarNoEdges = await p2.evaluate(async () => {
+    const a = window.anisomeshApp;
+    a.views.setStyle({ colorBy: 'quality', edges: 'off', lift: 0.5 });
+    return a.benchOrbit(3000);
+  });
+  console.log(`RESULT same without edge lines: ${planarNoEdges.toFixed(1)} fps`);
+  const sphereTris = await p2.evaluate(sphereMesh, 200000);
+  const sphereFps = await p2.evaluate(async () => { window.anisomeshApp.views.setMode('3d'); window.anisomeshApp.views.fit3D(); return window.anisomeshApp.benchOrbit(4000); });
+  console.log(`RESULT orbit synthetic sphere (dimension 3), ${sphereTris} triangles with edges: ${sphereFps.toFixed(1)} fps`);
+  if (e2.length) console.log('page errors:', e2);
+  await p2.close();
+
+  // --- 3. screenshots -----------------------------------------------------------------
+  if (shots) {
+    const { page: p3 } = await openPage(env.browser, env.url);
+    await settle(p3, () => window.anisomeshApp.loadPreset('holes-dr2'));
+    await p3.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    await p3.screenshot({ path: `${out}app-holes-dr2.png` });
+    await settle(p3, () => window.anisomeshApp.loadPreset('shear-layer'));
+    await p3.evaluate(() => {
+      const a = window.anisomeshApp;
+      a.setView({ controlSpace: true, edges: 'plain', lift: 0.6 });
+      a.views.fit3D();
+    });
+    await p3.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    await p3.screenshot({ path: `${out}app-shear-layer-control-space.png` });
+    await settle(p3, () => window.anisomeshApp.loadPreset('boundary-layer'));
+    await p3.evaluate(() => {
+      const a = window.anisomeshApp;
+      a.setView({ controlSpace: false, edges: 'length', lift: 0 });
+      a.state.case.options.quads = true;
+      a.edited(0);
+    });
+    await settle(p3);
+    await p3.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    await p3.screenshot({ path: `${out}app-boundary-layer-quads.png` });
+    for (const f of ['app-holes-dr2.png', 'app-shear-layer-control-space.png', 'app-boundary-layer-quads.png']) {
+      console.log(`screenshot web/screenshots/${f}: ${((await stat(out + f)).size / 1024).toFixed(0)} KB`);
+    }
+    await p3.close();
+  }
+} finally {
+  await env.close();
+}

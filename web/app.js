@@ -1,0 +1,705 @@
+// The anisomesh browser app: presets, metric sources edited on the canvas and in the
+// panel, live remeshing in a worker, quality numbers and histograms, export/import and
+// the state in the URL.
+import GUI from 'lil-gui';
+import { JobRunner, CancelledError } from './jobs.js';
+import { presets, presetById, defaultPresetId } from './presets.js';
+import { defaultView, encodeState, decodeState, checkCase, errorTarget, InputError } from './state.js';
+import { Views, softwareWebGL } from './views.js';
+import { moveHandle } from './overlays.js';
+import { drawHistogram } from './histogram.js';
+import { qualityColor, lengthColor, sizeColor, css } from './colors.js';
+import { uniqueEdges } from './measure.js';
+
+const $ = (id) => document.getElementById(id);
+const DRAG_DEBOUNCE_MS = 40;   // remesh while dragging: stale jobs get cancelled anyway
+const EDIT_DEBOUNCE_MS = 120;
+
+// --- state ------------------------------------------------------------------------------
+
+const state = {
+  ready: false,
+  presetId: null,
+  case: null,
+  view: defaultView(),
+  selected: -1,
+  caseVersion: 0,       // bumped on every edit; a result older than the current version is stale
+  meshedVersion: -1,
+  jobsStarted: 0,
+  jobsDone: 0,
+  jobsFailed: 0,
+  cancelled: 0,
+  lastStats: null,
+  lastError: null,      // { code, message, target }
+  lastJob: null,        // { meshMs, workerMs, totalMs, drawMs }
+  dragToMeshMs: null,   // pointer up -> new mesh drawn
+  workerStartMs: null,  // worker creation -> core ready (precompiled module)
+  workerRestartMs: [],  // the same for replacement workers after a cancellation
+  version: null,
+  surface: false,
+};
+
+// --- workers ----------------------------------------------------------------------------
+
+const status = $('status'), statusText = $('status-text'), spinner = status.querySelector('.spinner');
+let progress = { stage: 'meshing', started: 0 };
+let busyTimer = null;
+function setBusy(busy) {
+  spinner.hidden = !busy;
+  status.classList.toggle('busy', busy);
+  clearInterval(busyTimer);
+  if (busy) {
+    progress.started = performance.now();
+    const tick = () => { statusText.textContent = `${progress.stage}… ${((performance.now() - progress.started) / 1000).toFixed(1)} s`; };
+    tick();
+    busyTimer = setInterval(tick, 100);
+  }
+}
+const meshRunner = new JobRunner({
+  supersede: true,
+  onBusy: setBusy,
+  onProgress: ({ stage }) => { progress.stage = stage; },
+});
+const utilRunner = new JobRunner();  // exports and checks: never cancelled by meshing
+
+// --- views ------------------------------------------------------------------------------
+
+let dragFrom = null;
+const query = new URLSearchParams(location.search);
+const views = new Views($('view'), {
+  onSelect(i) { selectSource(i); },
+  onDrag(i, key, p, phase) {
+    const s = state.case.sources[i];
+    if (phase === 'start') {
+      dragFrom = { p, p1: s.p1 && [...s.p1], p2: s.p2 && [...s.p2] };
+      return;
+    }
+    moveHandle(s, key, p, dragFrom);
+    views.setSources(state.case.sources, state.selected, state.view.sources);
+    sourceGui.controllersRecursive().forEach((c) => c.updateDisplay());
+    if (phase === 'move') edited(DRAG_DEBOUNCE_MS);
+    else {
+      state.dragEndAt = performance.now();
+      state.dragEndVersion = state.caseVersion;
+      edited(0);
+    }
+  },
+}, {
+  // ?aa=1 / ?aa=0 forces antialiasing; by default it is off on software WebGL (4x slower there).
+  antialias: query.has('aa') ? query.get('aa') !== '0' : !softwareWebGL(),
+});
+
+// --- GUI --------------------------------------------------------------------------------
+
+const gui = new GUI({ container: $('gui'), title: 'Case', width: 320 });
+const controllers = new Map();  // target name (as in errors) -> lil-gui controller
+
+const csProxy = {};
+function defineProxy(obj, key, get, set) {
+  Object.defineProperty(obj, key, { get, set, enumerable: true, configurable: true });
+}
+// Getters run before a case exists (updateDisplay at start): fall back to empty objects.
+const cs = () => state.case?.controlSpace ?? {};
+const opts = () => (state.case ? (state.case.options ??= {}) : {});
+defineProxy(csProxy, 'kind', () => cs().kind ?? 'quadtree', (v) => { cs().kind = v; });
+defineProxy(csProxy, 'interpolation', () => cs().interpolation ?? 'bilinear', (v) => { cs().interpolation = v; });
+defineProxy(csProxy, 'hmin', () => cs().hmin ?? 0, (v) => { cs().hmin = v; });
+defineProxy(csProxy, 'hmax', () => cs().hmax ?? 0.1, (v) => { cs().hmax = v; });
+defineProxy(csProxy, 'smoothing', () => cs().gradation != null, (v) => {
+  cs().gradation = v ? (state.lastDr ?? 2) : null;
+  controllers.get('gradation').disable(!v);
+});
+defineProxy(csProxy, 'dr', () => cs().gradation ?? state.lastDr ?? 2, (v) => { state.lastDr = v; if (cs().gradation != null) cs().gradation = v; });
+defineProxy(csProxy, 'quads', () => Boolean(opts().quads), (v) => { opts().quads = v; });
+defineProxy(csProxy, 'allQuads', () => Boolean(opts().allQuads), (v) => { opts().allQuads = v; });
+defineProxy(csProxy, 'maxElements', () => opts().maxElements ?? 2000000, (v) => { opts().maxElements = Math.round(v); });
+
+const fCs = gui.addFolder('Control space');
+controllers.set('kind', fCs.add(csProxy, 'kind', ['quadtree', 'background']).name('structure').onChange(() => edited()));
+controllers.set('interpolation', fCs.add(csProxy, 'interpolation', ['bilinear', 'serendipity']).name('interpolation').onChange(() => edited()));
+controllers.set('hmin', fCs.add(csProxy, 'hmin').min(0).name('hmin').onFinishChange(() => edited()));
+controllers.set('hmax', fCs.add(csProxy, 'hmax').min(0).name('hmax').onFinishChange(() => edited()));
+controllers.set('smoothing', fCs.add(csProxy, 'smoothing').name('gradation on').onChange(() => edited()));
+controllers.set('gradation', fCs.add(csProxy, 'dr', 1, 16, 0.5).name('gradation dr').onFinishChange(() => edited()));
+const fOpt = gui.addFolder('Mesh options');
+controllers.set('quads', fOpt.add(csProxy, 'quads').name('quad-dominant').onChange(() => edited()));
+controllers.set('allQuads', fOpt.add(csProxy, 'allQuads').name('all quads').onChange(() => edited()));
+controllers.set('maxElements', fOpt.add(csProxy, 'maxElements').min(1).step(1).name('max elements').onFinishChange(() => edited()));
+
+// Sources: a selector, add/remove, and the selected source's fields.
+const fSrc = gui.addFolder('Metric sources');
+const srcPick = { source: -1 };
+const srcActions = {
+  addRadial() { addSource('radial'); },
+  addSegment() { addSource('segment'); },
+  remove() { removeSource(state.selected); },
+};
+let srcSelector = null;
+fSrc.add(srcActions, 'addRadial').name('+ radial source');
+fSrc.add(srcActions, 'addSegment').name('+ segment source');
+const removeCtrl = fSrc.add(srcActions, 'remove').name('− remove selected');
+let sourceGui = fSrc.addFolder('Selected source');
+
+const fDisp = gui.addFolder('Display');
+fDisp.add(state.view, 'view', { '2D': '2d', '2D | 3D': 'split', '3D': '3d' }).name('view').onChange(applyViewMode);
+fDisp.add(state.view, 'colorBy', { 'element quality': 'quality', none: 'none' }).name('faces').onChange(restyle);
+fDisp.add(state.view, 'edges', { 'metric length': 'length', plain: 'plain', off: 'off' }).name('edges').onChange(restyle);
+fDisp.add(state.view, 'controlSpace').name('control space').onChange(restyle);
+fDisp.add(state.view, 'sources').name('sources').onChange(restyle);
+fDisp.add(state.view, 'lift', 0, 1, 0.05).name('3D lift by log h').onChange(restyle);
+
+const fmtNum = (x) => (Math.abs(x) >= 100 || x === Math.round(x) ? String(Math.round(x * 1e6) / 1e6) : Number(x.toPrecision(4)).toString());
+
+function rebuildSourceGui() {
+  sourceGui.destroy();
+  srcSelector?.destroy();
+  for (const k of [...controllers.keys()]) if (k.startsWith('src:')) controllers.delete(k);
+  const sources = state.case.sources ?? [];
+  const labels = {};
+  sources.forEach((s, i) => { labels[`${i + 1}: ${s.type === 'analytic' ? s.field : s.type}`] = i; });
+  if (!sources.length) labels['(none)'] = -1;
+  srcPick.source = state.selected;
+  srcSelector = fSrc.add(srcPick, 'source', labels).name('selected').onChange((i) => selectSource(i));
+  // Keep the selector first in the folder.
+  fSrc.$children.prepend(srcSelector.domElement);
+  controllers.set('src:', srcSelector);
+  removeCtrl.disable(state.selected < 0);
+  sourceGui = fSrc.addFolder(state.selected >= 0 ? `Source ${state.selected + 1}` : 'Selected source');
+  const s = sources[state.selected];
+  if (!s) return;
+  const o = {};
+  const num = (path, label, { deg = false, min = 0 } = {}) => {
+    const keys = path.split('.');
+    const parent = () => keys.slice(0, -1).reduce((a, k) => a[k], s);
+    const last = keys[keys.length - 1];
+    defineProxy(o, path, () => {
+      const v = parent()[last] ?? 0;
+      return deg ? Math.round(v * 180 / Math.PI * 1e4) / 1e4 : v;
+    }, (v) => { parent()[last] = deg ? v * Math.PI / 180 : v; });
+    const c = sourceGui.add(o, path).name(label).onFinishChange(() => edited());
+    if (min !== null) c.min(min);
+    controllers.set(`src:${path}`, c);
+  };
+  const point = (key, label) => {
+    for (const [j, axis] of [[0, 'x'], [1, 'y']]) {
+      defineProxy(o, `${key}.${axis}`, () => s[key][j], (v) => { s[key] = j ? [s[key][0], v] : [v, s[key][1]]; });
+      const c = sourceGui.add(o, `${key}.${axis}`).name(`${label} ${axis}`).onFinishChange(() => edited());
+      controllers.set(`src:${key}`, c);
+    }
+  };
+  if (s.type === 'radial' || s.type === 'segment') {
+    if (s.type === 'radial') point('center', 'center');
+    else { point('p1', 'p1'); point('p2', 'p2'); }
+    s.metric.h2 ??= s.metric.h1;
+    s.metric.alpha ??= 0;
+    num('metric.h1', 'h1 (along alpha)');
+    num('metric.h2', 'h2 (normal)');
+    num('metric.alpha', 'alpha (deg)', { deg: true, min: null });
+    num('radius', 'radius');
+  } else if (s.field === 'point') {
+    point('center', 'center'); num('h0', 'h0'); num('growth', 'growth');
+  } else if (s.field === 'shear_layer_circle') {
+    point('center', 'center'); num('radius', 'radius'); num('h0', 'h0 (across)'); num('hTangent', 'h tangent'); num('thickness', 'thickness');
+  } else if (s.field === 'boundary_layer') {
+    point('p1', 'wall p1'); point('p2', 'wall p2'); num('h0', 'h0 (at wall)'); num('hTangent', 'h tangent'); num('thickness', 'thickness');
+  }
+}
+
+function selectSource(i) {
+  if (i === state.selected) return;
+  state.selected = i;
+  rebuildSourceGui();
+  views.setSources(state.case.sources, state.selected, state.view.sources);
+  saveUrlSoon();
+}
+
+function domainBounds() {
+  return views.meshBounds2() ?? [0, 0, 1, 1];
+}
+
+function addSource(type) {
+  const [x0, y0, x1, y1] = domainBounds();
+  const size = Math.max(x1 - x0, y1 - y0);
+  const cx = Math.min(Math.max(views.view2.cx, x0), x1), cy = Math.min(Math.max(views.view2.cy, y0), y1);
+  const hmax = cs().hmax;
+  const r = (x) => Number(x.toPrecision(3));
+  const metric = { alpha: 0, h1: r(hmax / 10), h2: r(hmax / 3) };
+  const s = type === 'radial'
+    ? { type, center: [r(cx), r(cy)], metric, radius: r(size / 8) }
+    : { type, p1: [r(cx - size / 6), r(cy)], p2: [r(cx + size / 6), r(cy)], metric: { alpha: 0, h1: r(hmax / 2), h2: r(hmax / 12) }, radius: r(size / 25) };
+  (state.case.sources ??= []).push(s);
+  state.selected = state.case.sources.length - 1;
+  rebuildSourceGui();
+  edited(0);
+}
+
+function removeSource(i) {
+  if (i < 0) return;
+  state.case.sources.splice(i, 1);
+  state.selected = Math.min(i, state.case.sources.length - 1);
+  rebuildSourceGui();
+  edited(0);
+}
+
+// --- inline errors ----------------------------------------------------------------------
+
+const inlineErrors = [];
+function clearErrors() {
+  for (const e of inlineErrors.splice(0)) {
+    e.el.remove?.();
+    e.ctrl?.domElement.classList.remove('has-error');
+    if (e.fixed) e.fixed.hidden = true;
+  }
+}
+
+/** Shows message next to the control named by target (see state.errorTarget). */
+function showError(target, message) {
+  const fixedBoxes = { domain: $('error-domain'), case: $('error-case') };
+  if (fixedBoxes[target]) {
+    const box = fixedBoxes[target];
+    box.textContent = message;
+    box.hidden = false;
+    if (target === 'domain') $('domain-box').open = true;
+    inlineErrors.push({ el: {}, fixed: box });
+    return box;
+  }
+  let ctrl = controllers.get(target);
+  const src = /^sources\[(\d+)\](?:\.(.*))?$/.exec(target);
+  if (src) {
+    const i = Number(src[1]);
+    fSrc.open();
+    if (i !== state.selected && i < (state.case.sources?.length ?? 0)) {
+      state.selected = i;
+      rebuildSourceGui();
+      views.setSources(state.case.sources, state.selected, state.view.sources);
+    }
+    const field = src[2] ?? '';
+    ctrl = controllers.get(`src:${field}`) ?? controllers.get(`src:${field.split('.')[0]}`) ?? controllers.get('src:');
+  }
+  if (!ctrl) return showError('case', message);
+  ctrl.parent.open();
+  const el = document.createElement('div');
+  el.className = 'inline-error';
+  el.setAttribute('role', 'alert');
+  el.dataset.target = target;
+  el.textContent = message;
+  ctrl.domElement.after(el);
+  ctrl.domElement.classList.add('has-error');
+  inlineErrors.push({ el, ctrl });
+  return el;
+}
+
+// --- meshing ----------------------------------------------------------------------------
+
+let editTimer = null;
+let needsFit = true;
+
+/** The case changed: remesh after delay ms (a newer edit restarts the wait; a running job is superseded). */
+function edited(delay = EDIT_DEBOUNCE_MS) {
+  state.caseVersion++;
+  views.setSources(state.case.sources, state.selected, state.view.sources);
+  $('domain-json').value = JSON.stringify(state.case.domain, null, 1);
+  clearTimeout(editTimer);
+  editTimer = setTimeout(() => { editTimer = null; remesh(); }, delay);
+  saveUrlSoon();
+}
+
+let completionWaiters = [];
+async function remesh() {
+  const version = state.caseVersion;
+  try {
+    checkCase(state.case);
+  } catch (e) {
+    if (!(e instanceof InputError)) throw e;
+    fail({ code: e.code, message: e.message, target: e.target }, version);
+    return;
+  }
+  state.jobsStarted++;
+  const before = meshRunner.restarts;
+  const job = meshRunner.run('mesh', { case: state.case, surface: state.surface });
+  state.cancelled += meshRunner.restarts - before;
+  if (meshRunner.restarts > before) {
+    const t0 = performance.now();
+    meshRunner.ready.then(() => state.workerRestartMs.push(Math.round(performance.now() - t0)));
+  }
+  try {
+    const { result, workerMs, totalMs } = await job;
+    const t0 = performance.now();
+    state.lastJob = { meshMs: Math.round(result.meshMs), workerMs: Math.round(workerMs), totalMs: Math.round(totalMs), drawMs: null };
+    showResult(result);
+    views.render();  // draw now so the time below includes the draw
+    state.lastJob.drawMs = Math.round(performance.now() - t0);
+    state.meshedVersion = version;
+    if (state.dragEndAt && version >= state.dragEndVersion) {
+      state.dragToMeshMs = Math.round(performance.now() - state.dragEndAt);
+      state.dragEndAt = null;
+    }
+    state.jobsDone++;
+    state.lastError = null;
+    clearErrors();
+    statusText.textContent = `meshed in ${(totalMs / 1000).toFixed(2)} s`;
+    status.classList.remove('err');
+    settle();
+  } catch (e) {
+    if (e instanceof CancelledError) return;
+    fail({ code: e.code ?? 'INTERNAL', message: e.message, target: errorTarget(e.code, e.message) }, version);
+  }
+}
+
+function fail(error, version) {
+  state.jobsFailed++;
+  state.lastError = error;
+  clearErrors();
+  showError(error.target, `${error.code}: ${error.message}`);
+  // The previous mesh stays on screen; the status says it is not the current input.
+  statusText.textContent = state.lastStats ? 'input error — showing the previous mesh' : 'input error';
+  status.classList.add('err');
+  state.meshedVersion = version;
+  settle();
+}
+
+function settle() {
+  if (!idle()) return;
+  for (const w of completionWaiters.splice(0)) w();
+}
+
+function idle() {
+  return editTimer === null && !meshRunner.busy;
+}
+
+function showResult(result) {
+  if (result.mesh.dimension === 3 || state.surface) state.view.view === '2d' && applyViewMode('split');
+  views.setMesh(result, styleOf());
+  views.setControlSpace(result.overlay, state.view.controlSpace);
+  state.overlay = result.overlay;
+  state.lastStats = result.stats;
+  state.lastMeasures = result.measures;
+  if (needsFit) {
+    needsFit = false;
+    views.fit2D(views.meshBounds2());
+    views.fit3D();
+  }
+  views.setSources(state.case.sources, state.selected, state.view.sources);
+  renderStats(result.stats);
+  renderHistograms(result.measures, result.stats);
+  renderLegend();
+}
+
+function styleOf() {
+  return { colorBy: state.view.colorBy, edges: state.view.edges, lift: state.view.lift };
+}
+
+function restyle() {
+  views.setStyle(styleOf());
+  views.setControlSpace(state.overlay, state.view.controlSpace);
+  views.setSources(state.case?.sources, state.selected, state.view.sources);
+  renderLegend();
+  saveUrlSoon();
+}
+
+function applyViewMode(mode) {
+  state.view.view = mode;
+  views.setMode(mode);
+  $('view').classList.toggle('split', mode === 'split');
+  $('label-2d').hidden = mode === '3d';
+  $('label-3d').hidden = mode === '2d';
+  for (const b of document.querySelectorAll('#view-mode button')) b.classList.toggle('on', b.dataset.mode === mode);
+  gui.controllersRecursive().forEach((c) => c.updateDisplay());
+  if (views.mesh) {
+    views.fit2D(views.meshBounds2());
+    views.fit3D();
+  }
+  saveUrlSoon();
+}
+
+// --- numbers and plots ------------------------------------------------------------------
+
+function renderStats(s) {
+  const pct = (x) => (x == null ? '–' : `${(100 * x).toFixed(1)} %`);
+  const f3 = (x) => (x == null ? '–' : Number(x).toFixed(3));
+  const el = s.edgeLength ?? {}, q = s.quality ?? {};
+  const ms = (x) => `${(1000 * (x ?? 0)).toFixed(0)} ms`;
+  const rows = [
+    ['vertices', s.vertices], ['triangles', s.triangles],
+    ['quads', s.quads], ['edges', s.edges],
+    ['len in [1/√2, √2]', pct(el.fractionWithinSqrt2)], ['len in [0.6, 1.3]', pct(el['fractionWithin0.6_1.3'])],
+    ['len min / mean', `${f3(el.min)} / ${f3(el.mean)}`], ['len max', f3(el.max)],
+    ['Q min / mean', `${f3(q.min)} / ${f3(q.mean)}`], ['inverted, degen.', `${s.inverted ?? '–'}, ${s.degenerate ?? '–'}`],
+    ['core geometry', ms(s.secondsGeometry)], ['core meshing', ms(s.secondsMeshing)],
+    ['job round trip', state.lastJob ? `${state.lastJob.totalMs} ms` : '…'], ['cancelled jobs', state.cancelled],
+  ];
+  if (s.notes?.length) rows.push(['notes', s.notes.join('; ')]);
+  const dl = $('stats');
+  dl.replaceChildren();
+  for (const [k, v] of rows) {
+    const dt = document.createElement('dt'), dd = document.createElement('dd');
+    dt.textContent = k;
+    dd.textContent = v;
+    dd.dataset.key = k;
+    if ((k.startsWith('inverted') && (s.inverted || s.degenerate))) dd.className = 'bad';
+    dl.append(dt, dd);
+  }
+}
+
+function renderHistograms(m, stats) {
+  drawHistogram($('hist-length'), m?.edgeLength, {
+    lo: 0, hi: 2, bins: 48, title: 'metric edge length',
+    color: (x) => css(lengthColor(x)), band: [Math.SQRT1_2, Math.SQRT2], ticks: [0, 0.5, 1, 1.5, 2], marker: stats.edgeLength?.mean,
+  });
+  drawHistogram($('hist-quality'), m?.quality, {
+    lo: 0, hi: 1, bins: 40, title: 'element quality Q (metric)',
+    color: (x) => css(qualityColor(x)), ticks: [0, 0.25, 0.5, 0.75, 1], marker: stats.quality?.mean,
+  });
+}
+
+function ramp(fn, lo, hi) {
+  const stops = Array.from({ length: 9 }, (_, i) => css(fn(lo + ((hi - lo) * i) / 8)));
+  return `<span class="ramp" style="background: linear-gradient(90deg, ${stops.join(',')})"></span>`;
+}
+
+function renderLegend() {
+  const parts = [];
+  if (state.view.colorBy === 'quality') parts.push(`quality 0${ramp(qualityColor, 0, 1)}1`);
+  if (state.view.edges === 'length') parts.push(`edge length ½${ramp(lengthColor, 0.5, 2)}2`);
+  const cl = views.controlLegend;
+  if (state.view.controlSpace && cl) parts.push(`control space h ${cl.hmin.toPrecision(2)}${ramp(sizeColor, 0, 1)}${cl.hmax.toPrecision(2)} (${cl.count} ${state.overlay?.sampled ? 'samples' : 'nodes'})`);
+  $('legend').innerHTML = parts.join(' &nbsp; ');
+}
+
+// --- presets, case, URL -----------------------------------------------------------------
+
+function fillPresetSelect() {
+  const sel = $('preset');
+  sel.replaceChildren();
+  for (const group of ['planar', 'surface']) {
+    const list = presets.filter((p) => p.group === group);
+    if (!list.length) continue;
+    const og = document.createElement('optgroup');
+    og.label = group === 'planar' ? 'Planar' : 'Surfaces';
+    for (const p of list) og.append(new Option(p.label, p.id));
+    sel.append(og);
+  }
+  sel.append(new Option('(custom case)', 'custom'));
+  sel.addEventListener('change', () => { if (sel.value !== 'custom') loadPreset(sel.value); });
+}
+
+function firstEditableSource(c) {
+  return (c.sources ?? []).findIndex((s) => s.type === 'radial' || s.type === 'segment');
+}
+
+/** Replaces the case (preset, file or URL) and remeshes. */
+function setCase(c, { presetId = 'custom', selected = null, surface = null } = {}) {
+  state.case = structuredClone(c);
+  state.case.controlSpace ??= { hmax: 0.1 };
+  state.presetId = presetId;
+  state.surface = surface ?? Boolean(presetById(presetId)?.surface);
+  const first = firstEditableSource(state.case);
+  state.selected = selected ?? (first >= 0 ? first : (state.case.sources?.length ? 0 : -1));
+  if (state.case.controlSpace.gradation != null) state.lastDr = state.case.controlSpace.gradation;
+  $('preset').value = presetId;
+  $('domain-json').value = JSON.stringify(state.case.domain, null, 1);
+  rebuildSourceGui();
+  gui.controllersRecursive().forEach((ctrl) => ctrl.updateDisplay());
+  controllers.get('gradation').disable(state.case.controlSpace.gradation == null);
+  needsFit = true;
+  clearErrors();
+  edited(0);
+}
+
+async function loadPreset(id) {
+  const p = presetById(id) ?? presetById(defaultPresetId);
+  try {
+    setCase(await p.load(), { presetId: p.id, surface: p.surface });
+  } catch (e) {
+    showError('case', `cannot load preset: ${e.message}`);
+  }
+}
+
+let urlTimer = null;
+function saveUrlSoon() {
+  clearTimeout(urlTimer);
+  urlTimer = setTimeout(async () => {
+    if (!state.case) return;
+    const hash = await encodeState({ p: state.presetId, c: state.case, v: state.view, s: state.selected });
+    history.replaceState(null, '', hash);
+  }, 250);
+}
+
+async function restoreFromUrl() {
+  try {
+    const s = await decodeState(location.hash);
+    if (!s) return false;
+    Object.assign(state.view, defaultView(), s.v ?? {});
+    setCase(s.c, { presetId: s.p ?? 'custom', selected: s.s ?? null });
+    return true;
+  } catch (e) {
+    showError('case', `could not read the state in the link (${e.message}); loaded the default preset`);
+    return false;
+  }
+}
+
+// --- downloads and file input -----------------------------------------------------------
+
+function download(text, filename, type = 'text/plain') {
+  const url = URL.createObjectURL(new Blob([text], { type }));
+  const a = Object.assign(document.createElement('a'), { href: url, download: filename });
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10000);
+}
+
+const baseName = () => (state.case?.name ?? state.presetId ?? 'anisomesh').replace(/[^\w.-]+/g, '_');
+
+async function onDownload(kind) {
+  const box = $('error-io');
+  box.hidden = true;
+  try {
+    if (kind === 'case') return download(JSON.stringify(state.case, null, 2), `${baseName()}.json`, 'application/json');
+    if (kind === 'cs-vtk' || kind === 'cs-json') {
+      const format = kind === 'cs-vtk' ? 'vtk' : 'json';
+      const { result } = await utilRunner.run('exportControlSpace', { case: state.case, format });
+      return download(result, `${baseName()}_control_space.${format}`);
+    }
+    if (!views.mesh) throw new Error('no mesh yet');
+    const { result } = await utilRunner.run('writeMesh', { mesh: views.mesh, format: kind });
+    download(result, `${baseName()}.${kind}`);
+  } catch (e) {
+    box.textContent = `${e.code ?? 'ERROR'}: ${e.message}`;
+    box.hidden = false;
+  }
+}
+
+for (const b of document.querySelectorAll('#downloads button')) b.addEventListener('click', () => onDownload(b.dataset.dl));
+
+$('case-file').addEventListener('change', async (ev) => {
+  const file = ev.target.files[0];
+  ev.target.value = '';
+  if (!file) return;
+  const box = $('error-io');
+  box.hidden = true;
+  try {
+    const c = JSON.parse(await file.text());
+    if (!c || typeof c !== 'object' || !c.domain) throw new Error('not a case: no "domain" (see examples/CASE_FORMAT.md)');
+    setCase(c, { presetId: 'custom' });
+  } catch (e) {
+    box.textContent = `${file.name}: ${e.message}`;
+    box.hidden = false;
+  }
+});
+
+$('copy-link').addEventListener('click', async () => {
+  const box = $('error-io');
+  try {
+    await navigator.clipboard.writeText(location.href);
+    box.textContent = 'link copied';
+  } catch {
+    box.textContent = 'copy the address bar: it holds the whole state';
+  }
+  box.classList.remove('error');
+  box.hidden = false;
+  setTimeout(() => { box.hidden = true; box.classList.add('error'); }, 2500);
+});
+
+// Domain as editable JSON (a self-intersecting contour etc. is reported below the box).
+$('domain-apply').addEventListener('click', () => {
+  let d;
+  try {
+    d = JSON.parse($('domain-json').value);
+  } catch (e) {
+    clearErrors();
+    showError('domain', `JSON: ${e.message}`);
+    return;
+  }
+  state.case.domain = d;
+  needsFit = true;
+  edited(0);
+});
+$('domain-reset').addEventListener('click', () => { $('domain-json').value = JSON.stringify(state.case.domain, null, 1); });
+
+// Analytic expression (placeholder until the case format has an expression source).
+let exprSeq = 0;
+async function checkExpression(text) {
+  state.view.expression = text;
+  const msg = $('expr-msg');
+  const seq = ++exprSeq;
+  if (!text.trim()) { msg.hidden = true; state.expressionError = null; saveUrlSoon(); return; }
+  const [x0, y0, x1, y1] = domainBounds();
+  const u = (x0 + x1) / 2, v = (y0 + y1) / 2;
+  try {
+    const { result } = await utilRunner.run('checkExpression', { text, u, v });
+    if (seq !== exprSeq) return;
+    msg.textContent = `ok: h(${fmtNum(u)}, ${fmtNum(v)}) = ${fmtNum(result)}`;
+    msg.classList.toggle('error', !(result > 0));
+    if (!(result > 0)) msg.textContent += ' — a size must be positive';
+    state.expressionError = result > 0 ? null : { code: 'INVALID_ARGUMENT', message: msg.textContent };
+  } catch (e) {
+    if (seq !== exprSeq) return;
+    msg.textContent = `${e.code}: ${e.message}`;
+    msg.classList.add('error');
+    state.expressionError = { code: e.code, message: e.message };
+  }
+  msg.hidden = false;
+  saveUrlSoon();
+}
+$('expr').addEventListener('input', (e) => checkExpression(e.target.value));
+
+for (const b of document.querySelectorAll('#view-mode button')) b.addEventListener('click', () => applyViewMode(b.dataset.mode));
+
+// --- test hooks -------------------------------------------------------------------------
+
+const app = {
+  state,
+  views,
+  meshRunner,
+  utilRunner,
+  presets: presets.map((p) => p.id),
+  loadPreset,
+  setCase,
+  edited,
+  idle,
+  /** Resolves when no edit is waiting and no job runs. */
+  whenIdle() { return idle() ? Promise.resolve() : new Promise((r) => completionWaiters.push(r)); },
+  /** Client (page) coordinates of a source handle in the 2D view. */
+  handleClientPosition(source, key) {
+    const h = views.handles.find((x) => x.source === source && x.key === key);
+    return h ? views.worldToClient2(h.x, h.y) : null;
+  },
+  selectSource,
+  /** Changes display settings (keys of state.view) as the panel would. */
+  setView(patch) {
+    const mode = patch.view;
+    Object.assign(state.view, patch);
+    if (mode) applyViewMode(mode);
+    restyle();
+    gui.controllersRecursive().forEach((c) => c.updateDisplay());
+  },
+  coverage: (which) => views.coverage(which),
+  benchOrbit: (ms) => views.benchOrbit(ms),
+  /** Shows a mesh that did not come from a case (e.g. a synthetic surface for a measurement). */
+  showMesh(mesh) {
+    const measures = { edges: uniqueEdges(mesh.triangles, mesh.quads ?? new Uint32Array(0)), edgeLength: null, quality: null, vertexH: null };
+    needsFit = true;
+    showResult({ mesh: { quads: new Uint32Array(0), edges: new Uint32Array(0), ...mesh }, measures, overlay: null, stats: { vertices: mesh.params.length / 2, triangles: mesh.triangles.length / 3, quads: 0, edges: measures.edges.length / 2 } });
+  },
+  checkExpression,
+};
+window.anisomeshApp = app;
+window.anisomeshDemo = app;  // the old name, for existing scripts
+
+// --- start ------------------------------------------------------------------------------
+
+fillPresetSelect();
+meshRunner.ready.then((v) => {
+  state.version = v;
+  state.workerStartMs = Math.round(meshRunner.lastStartMs);
+  $('core-version').textContent = `core ${v}`;
+});
+applyViewMode(state.view.view);
+if (!(await restoreFromUrl())) await loadPreset(defaultPresetId);
+gui.controllersRecursive().forEach((c) => c.updateDisplay());
+$('expr').value = state.view.expression ?? '';
+if (state.view.expression) checkExpression(state.view.expression);
+applyViewMode(state.view.view);
+await app.whenIdle();
+state.ready = true;

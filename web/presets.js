@@ -1,0 +1,52 @@
+// Presets: named cases the app can start from.
+//
+// A preset is { id, label, group, surface, load() -> case object }.
+//   surface: false -> the case is meshed with meshCase (planar, mesh.dimension 2)
+//   surface: true  -> meshed with meshSurfaceCase (to come in the core; returns the same
+//                     mesh shape with dimension 3, shown in the 3D view and in the
+//                     parameter (u, v) plane of the 2D view).
+// To add a surface preset (p2 with holes, two-patch C, sphere, torus), append an entry
+// with group 'surface' and surface: true; nothing else in the app needs to change.
+
+const example = (file) => async () => {
+  const r = await fetch(new URL(`../examples/${file}`, import.meta.url));
+  if (!r.ok) throw new Error(`cannot load examples/${file}: HTTP ${r.status}`);
+  const c = await r.json();
+  return c;
+};
+
+// Derived preset: a copy of an example with some fields changed.
+const derived = (file, edit) => async () => {
+  const c = await example(file)();
+  edit(c);
+  return c;
+};
+
+export const presets = [
+  { id: 'holes-off', label: 'Rectangle with holes, dr off (fig. 6)', group: 'planar', surface: false, load: example('fig6_rect_holes_nosmooth.json') },
+  { id: 'holes-dr8', label: 'Rectangle with holes, dr = 8 (fig. 7)', group: 'planar', surface: false, load: example('fig7_rect_holes_dr8.json') },
+  { id: 'holes-dr2', label: 'Rectangle with holes, dr = 2 (fig. 7)', group: 'planar', surface: false, load: example('fig7_rect_holes_dr2.json') },
+  { id: 'boundary-layer', label: 'Boundary-layer channel', group: 'planar', surface: false, load: example('boundary_layer.json') },
+  { id: 'shear-layer', label: 'Circular shear layer', group: 'planar', surface: false, load: example('shear_layer.json') },
+  { id: 'point-source', label: 'Point source', group: 'planar', surface: false, load: example('point_source.json') },
+  {
+    id: 'point-source-fine',
+    label: 'Point source, fine (~40k triangles)',
+    group: 'planar',
+    surface: false,
+    load: derived('point_source.json', (c) => {
+      c.name = 'point_source_fine';
+      c.sources[0].h0 = 0.0007;
+      c.controlSpace.hmin = 0.0007;
+      c.controlSpace.hmax = 0.012;
+    }),
+  },
+  // Surface presets go here (surface: true), e.g.
+  // { id: 'sphere', label: 'Sphere', group: 'surface', surface: true, load: example('sphere.json') },
+];
+
+export const defaultPresetId = 'holes-dr2';
+
+export function presetById(id) {
+  return presets.find((p) => p.id === id) ?? null;
+}

@@ -1,0 +1,629 @@
+// The two views sharing one WebGL canvas:
+//   2D: the parameter plane (u, v) with an orthographic camera (pan: drag, zoom: wheel),
+//       the mesh, the control-space overlay and the metric sources with draggable handles;
+//   3D: the mesh positions (surfaces, or a planar mesh optionally lifted by its size field)
+//       with a perspective camera and OrbitControls.
+// Mode '2d', '3d' or 'split' (side by side, scissored viewports of the same canvas).
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { qualityColor, lengthColor, sizeColor } from './colors.js';
+import { sourceOverlay } from './overlays.js';
+
+const BG = 0xf7f7f5;
+const FACE_PLAIN = [0.80, 0.85, 0.92];
+const HANDLE_PICK_PX = 12;
+const EDGES_HIDDEN_WHILE_ORBITING = 60000;
+
+export class Views {
+  /**
+   * container: element the canvas fills.
+   * hooks: { onSelect(sourceIndex), onDrag(sourceIndex, key, [x, y], phase: 'start'|'move'|'end') }
+   */
+  constructor(container, hooks = {}, { antialias = true, preserveDrawingBuffer = true } = {}) {
+    this.container = container;
+    this.hooks = hooks;
+    this.mode = 'split';
+    // preserveDrawingBuffer: the canvas can be read back (tests, screenshots) at any time.
+    this.renderer = new THREE.WebGLRenderer({ antialias, preserveDrawingBuffer });
+    this.preserveDrawingBuffer = preserveDrawingBuffer;
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+    this.renderer.setClearColor(BG);
+    this.renderer.setScissorTest(true);
+    this.canvas = this.renderer.domElement;
+    this.canvas.tabIndex = 0;
+    container.appendChild(this.canvas);
+    this.framesRendered = 0;
+
+    // --- 2D scene ---
+    this.scene2 = new THREE.Scene();
+    this.cam2 = new THREE.OrthographicCamera(-1, 1, 1, -1, -100, 100);
+    this.cam2.position.set(0, 0, 10);
+    this.view2 = { cx: 0, cy: 0, halfH: 1 };  // centre and half height in world units
+    this.layers2 = {
+      faces: new THREE.Group(), edges: new THREE.Group(), boundary: new THREE.Group(),
+      control: new THREE.Group(), sources: new THREE.Group(),
+    };
+    Object.values(this.layers2).forEach((g, i) => { g.renderOrder = i; this.scene2.add(g); });
+
+    // --- 3D scene ---
+    this.scene3 = new THREE.Scene();
+    this.cam3 = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+    this.cam3.up.set(0, 0, 1);
+    this.scene3.add(new THREE.HemisphereLight(0xffffff, 0x8890a0, 1.6));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.4);
+    sun.position.set(1, -2, 3);
+    this.cam3.add(sun);  // light follows the camera so every side reads
+    this.scene3.add(this.cam3);
+    this.group3 = new THREE.Group();
+    this.scene3.add(this.group3);
+
+    // Materials are created once and shared: disposing the last user of a shader program
+    // makes three.js delete it, and recompiling costs ~100 ms per program on software WebGL.
+    const line = (o) => new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, transparent: true, ...o });
+    this.mats = {
+      face2: new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, depthTest: false }),
+      face3: new THREE.MeshLambertMaterial({
+        vertexColors: true, side: THREE.DoubleSide, flatShading: true, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+      }),
+      edgeLength2: line({ opacity: 0.95 }),
+      edgePlain2: line({ opacity: 0.55 }),
+      edgeLength3: new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: 0.9 }),
+      edgePlain3: new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: 0.45 }),
+      boundary2: line({ transparent: false }),
+      boundary3: new THREE.LineBasicMaterial({ vertexColors: true }),
+      csLines: new THREE.LineBasicMaterial({ color: 0x6a5acd, transparent: true, opacity: 0.35, depthTest: false }),
+      csEllipses: line({ transparent: false }),
+      srcShape: new THREE.LineBasicMaterial({ color: 0x2c3e50, depthTest: false, transparent: true, opacity: 0.85 }),
+      srcShapeSel: new THREE.LineBasicMaterial({ color: 0xd35400, depthTest: false }),
+      srcEllipse: new THREE.LineBasicMaterial({ color: 0xc0392b, depthTest: false, transparent: true, opacity: 0.85 }),
+      srcEllipseSel: new THREE.LineBasicMaterial({ color: 0xd35400, depthTest: false }),
+      srcGuide: new THREE.LineDashedMaterial({ color: 0x2c3e50, depthTest: false, transparent: true, opacity: 0.8 }),
+      srcGuideSel: new THREE.LineDashedMaterial({ color: 0xd35400, depthTest: false, transparent: true, opacity: 0.8 }),
+      handles: new THREE.PointsMaterial({ size: 11, sizeAttenuation: false, vertexColors: true, depthTest: false }),
+    };
+
+    this.#installPointer();
+    // OrbitControls after our own listeners: ours run first and enable it only over the 3D viewport.
+    this.controls = new OrbitControls(this.cam3, this.canvas);
+    this.controls.enableDamping = false;
+    this.controls.addEventListener('change', () => this.requestRender('3d'));
+    // Large meshes: the edge lines cost more than the faces on software WebGL, so they
+    // are hidden while the camera moves and come back when it stops.
+    this.controls.addEventListener('start', () => this.#interacting(true));
+    this.controls.addEventListener('end', () => this.#interacting(false));
+
+    this.sources = [];
+    this.selected = -1;
+    this.handles = [];  // { source, key, x, y }
+    this.showSources = true;
+    this.mesh = null;
+    new ResizeObserver(() => this.resize()).observe(container);
+    this.resize();
+  }
+
+  // --- layout ---------------------------------------------------------------------------
+
+  setMode(mode) {
+    this.mode = mode;
+    this.resize();
+  }
+
+  /** Viewport rectangles in CSS pixels relative to the canvas: { '2d'?: rect, '3d'?: rect }. */
+  viewports() {
+    const w = this.container.clientWidth, h = this.container.clientHeight;
+    if (this.mode === '2d') return { '2d': { x: 0, y: 0, w, h } };
+    if (this.mode === '3d') return { '3d': { x: 0, y: 0, w, h } };
+    const half = Math.floor(w / 2);
+    return { '2d': { x: 0, y: 0, w: half, h }, '3d': { x: half + 1, y: 0, w: w - half - 1, h } };
+  }
+
+  resize() {
+    const w = this.container.clientWidth, h = this.container.clientHeight;
+    if (!w || !h) return;
+    this.renderer.setSize(w, h, false);
+    this.#updateCam2();
+    const v3 = this.viewports()['3d'];
+    if (v3) {
+      this.cam3.aspect = v3.w / Math.max(v3.h, 1);
+      this.cam3.updateProjectionMatrix();
+    }
+    this.requestRender();
+  }
+
+  #updateCam2() {
+    const v = this.viewports()['2d'];
+    if (!v) return;
+    const aspect = v.w / Math.max(v.h, 1);
+    const { cx, cy, halfH } = this.view2;
+    Object.assign(this.cam2, { left: cx - halfH * aspect, right: cx + halfH * aspect, top: cy + halfH, bottom: cy - halfH });
+    this.cam2.updateProjectionMatrix();
+  }
+
+  /** World units per CSS pixel in the 2D view. */
+  pixelSize2() {
+    const v = this.viewports()['2d'];
+    return v ? (2 * this.view2.halfH) / v.h : 1;
+  }
+
+  fit2D(bounds) {
+    if (!bounds) return;
+    const [x0, y0, x1, y1] = bounds;
+    const v = this.viewports()['2d'] ?? { w: 1, h: 1 };
+    const aspect = v.w / Math.max(v.h, 1);
+    this.view2.cx = (x0 + x1) / 2;
+    this.view2.cy = (y0 + y1) / 2;
+    this.view2.halfH = 0.54 * Math.max(y1 - y0, (x1 - x0) / aspect, 1e-9);
+    this.#updateCam2();
+    this.#refreshSources();
+    this.requestRender('2d');
+  }
+
+  fit3D() {
+    const box = new THREE.Box3().setFromObject(this.group3);
+    if (box.isEmpty()) return;
+    const c = box.getCenter(new THREE.Vector3());
+    const r = box.getSize(new THREE.Vector3()).length() / 2;
+    const dist = r / Math.sin((this.cam3.fov * Math.PI) / 360) * 1.2;
+    this.controls.target.copy(c);
+    const dir = this.mesh?.dimension === 3 ? new THREE.Vector3(1, -1.4, 0.9) : new THREE.Vector3(0.15, -1.1, 1.0);
+    this.cam3.position.copy(c).addScaledVector(dir.normalize(), dist);
+    this.cam3.near = dist / 100;
+    this.cam3.far = dist * 100;
+    this.cam3.updateProjectionMatrix();
+    this.controls.update();
+    this.requestRender('3d');
+  }
+
+  // --- rendering ------------------------------------------------------------------------
+
+  /** Schedules a draw of one viewport ('2d', '3d') or of all (default) on the next frame. */
+  requestRender(which = 'all') {
+    (this.dirty ??= new Set()).add(which);
+    if (this.renderPending) return;
+    this.renderPending = true;
+    requestAnimationFrame(() => { this.renderPending = false; this.render(); });
+  }
+
+  /**
+   * Draws the dirty viewports now (all when called directly). With preserveDrawingBuffer
+   * the other viewport keeps its pixels, so dragging a source redraws only the 2D half:
+   * with software WebGL the fill rate is what limits the frame rate.
+   */
+  render() {
+    const dirty = this.dirty ?? new Set(['all']);
+    this.dirty = new Set();
+    const all = dirty.has('all') || !this.preserveDrawingBuffer;
+    const W = this.container.clientWidth, H = this.container.clientHeight;
+    if (all) {
+      this.renderer.setScissor(0, 0, W, H);
+      this.renderer.setViewport(0, 0, W, H);
+      this.renderer.clear();
+    }
+    for (const [kind, v] of Object.entries(this.viewports())) {
+      if (!all && !dirty.has(kind)) continue;
+      // WebGL's y axis points up; autoClear clears inside the scissor only.
+      this.renderer.setViewport(v.x, H - v.y - v.h, v.w, v.h);
+      this.renderer.setScissor(v.x, H - v.y - v.h, v.w, v.h);
+      if (kind === '2d') this.renderer.render(this.scene2, this.cam2);
+      else this.renderer.render(this.scene3, this.cam3);
+    }
+    this.framesRendered++;
+  }
+
+  #interacting(on) {
+    const hide = on && (this.edgeCount ?? 0) > EDGES_HIDDEN_WHILE_ORBITING;
+    for (const o of this.group3.children) if (o.isLineSegments && o.userData.edges) o.visible = !hide;
+    if (!on) this.requestRender('3d');
+  }
+
+  // --- mesh -----------------------------------------------------------------------------
+
+  /**
+   * Shows a mesh result from the worker: { mesh, measures: { edges, edgeLength, quality, vertexH } }.
+   * style: { colorBy: 'quality'|'none', edges: 'length'|'plain'|'off', lift, hmax }
+   */
+  setMesh(result, style) {
+    this.mesh = result.mesh;
+    this.result = result;
+    this.#buildMesh(style);
+  }
+
+  setStyle(style) {
+    if (this.result) this.#buildMesh(style);
+  }
+
+  #buildMesh(style) {
+    const { mesh, measures } = this.result;
+    const clear = (g) => {
+      for (const o of [...g.children]) { g.remove(o); o.geometry?.dispose(); }
+    };
+    for (const g of [this.layers2.faces, this.layers2.edges, this.layers2.boundary, this.group3]) clear(g);
+
+    const nv = mesh.params.length / 2;
+    const uvPos = new Float32Array(3 * nv);
+    for (let i = 0; i < nv; i++) { uvPos[3 * i] = mesh.params[2 * i]; uvPos[3 * i + 1] = mesh.params[2 * i + 1]; }
+    let pos3 = mesh.positions;
+    if (mesh.dimension === 2 && style.lift > 0 && measures.vertexH) {
+      // Lift the plane by the log of the requested size: refinement shows as valleys/peaks.
+      pos3 = new Float32Array(mesh.positions);
+      const hs = measures.vertexH;
+      let hmin = Infinity, hmax = 0;
+      for (const h of hs) { hmin = Math.min(hmin, h); hmax = Math.max(hmax, h); }
+      const span = Math.log(hmax / hmin) || 1;
+      const size = this.#extent(uvPos);
+      for (let i = 0; i < nv; i++) pos3[3 * i + 2] = style.lift * 0.35 * size * (Math.log(hmax / hs[i]) / span);
+    }
+
+    this.edgeCount = style.edges === 'off' ? 0 : measures.edges.length / 2;
+    const quality = style.colorBy === 'quality' ? measures.quality : null;
+    const faceColors = elementColors(mesh, quality);
+    const faces2 = faceGeometry(mesh, uvPos, faceColors);
+    const faces3 = faceGeometry(mesh, pos3, faceColors);
+    faces3.computeVertexNormals();
+    this.layers2.faces.add(new THREE.Mesh(faces2, this.mats.face2));
+    this.group3.add(new THREE.Mesh(faces3, this.mats.face3));
+
+    if (style.edges !== 'off') {
+      const lengths = style.edges === 'length' ? measures.edgeLength : null;
+      const colors = edgeColors(measures.edges, lengths);
+      this.layers2.edges.add(new THREE.LineSegments(segmentGeometry(measures.edges, uvPos, colors), lengths ? this.mats.edgeLength2 : this.mats.edgePlain2));
+      const lines3 = new THREE.LineSegments(segmentGeometry(measures.edges, pos3, colors), lengths ? this.mats.edgeLength3 : this.mats.edgePlain3);
+      lines3.userData.edges = true;
+      this.group3.add(lines3);
+    }
+    if (mesh.edges?.length) {
+      const black = new Float32Array(mesh.edges.length * 3).fill(0.1);
+      this.layers2.boundary.add(new THREE.LineSegments(segmentGeometry(mesh.edges, uvPos, black), this.mats.boundary2));
+      this.group3.add(new THREE.LineSegments(segmentGeometry(mesh.edges, pos3, black), this.mats.boundary3));
+    }
+    this.requestRender();
+  }
+
+  #extent(xyz) {
+    let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+    for (let i = 0; i < xyz.length; i += 3) {
+      x0 = Math.min(x0, xyz[i]); x1 = Math.max(x1, xyz[i]); y0 = Math.min(y0, xyz[i + 1]); y1 = Math.max(y1, xyz[i + 1]);
+    }
+    return Math.max(x1 - x0, y1 - y0);
+  }
+
+  /** Bounds [x0, y0, x1, y1] of the current mesh in the parameter plane. */
+  meshBounds2() {
+    if (!this.mesh) return null;
+    const p = this.mesh.params;
+    let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+    for (let i = 0; i < p.length; i += 2) {
+      x0 = Math.min(x0, p[i]); x1 = Math.max(x1, p[i]); y0 = Math.min(y0, p[i + 1]); y1 = Math.max(y1, p[i + 1]);
+    }
+    return [x0, y0, x1, y1];
+  }
+
+  // --- control-space overlay ------------------------------------------------------------
+
+  /** overlay: { nodes: Float32Array (x, y, h1, h2, alpha), lines: Float32Array (x0, y0, x1, y1) } or null. */
+  setControlSpace(overlay, visible) {
+    const g = this.layers2.control;
+    for (const o of [...g.children]) { g.remove(o); o.geometry.dispose(); }
+    this.controlLegend = null;
+    // Fade the mesh under the overlay so the ellipses read.
+    const dim = Boolean(overlay && visible);
+    const m = this.mats;
+    m.face2.transparent = dim;
+    m.face2.opacity = dim ? 0.35 : 1;
+    m.face2.needsUpdate = true;
+    m.edgeLength2.opacity = dim ? 0.3 : 0.95;
+    m.edgePlain2.opacity = dim ? 0.2 : 0.55;
+    if (!dim) { this.requestRender('2d'); return; }
+    if (overlay.lines.length) {
+      const n = overlay.lines.length / 2;
+      const pos = new Float32Array(3 * n);
+      for (let i = 0; i < n; i++) { pos[3 * i] = overlay.lines[2 * i]; pos[3 * i + 1] = overlay.lines[2 * i + 1]; }
+      const geom = new THREE.BufferGeometry();
+      geom.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+      g.add(new THREE.LineSegments(geom, this.mats.csLines));
+    }
+    // Ellipses at nodes: the shape and orientation of each metric, scaled to the node
+    // spacing so all are readable; the colour gives the size (log scale).
+    const nodes = overlay.nodes, count = nodes.length / 5;
+    if (count) {
+      let hmin = Infinity, hmax = 0;
+      for (let i = 0; i < count; i++) { hmin = Math.min(hmin, nodes[5 * i + 2]); hmax = Math.max(hmax, nodes[5 * i + 3]); }
+      const b = overlay.bounds;
+      const spacing = b ? Math.sqrt(((b.hi[0] - b.lo[0]) * (b.hi[1] - b.lo[1])) / count) : 1;
+      const seg = 20;
+      const pos = new Float32Array(count * seg * 6), col = new Float32Array(count * seg * 6);
+      const span = Math.log(hmax / hmin) || 1;
+      for (let i = 0; i < count; i++) {
+        const [x, y, h1, h2, a] = nodes.subarray(5 * i, 5 * i + 5);
+        const s = (0.42 * spacing) / Math.max(h1, h2);
+        const c = sizeColor(Math.log(h1 / hmin) / span);
+        const ca = Math.cos(a), sa = Math.sin(a);
+        for (let k = 0; k < seg; k++) {
+          for (let e = 0; e < 2; e++) {
+            const t = ((k + e) / seg) * 2 * Math.PI;
+            const u = s * h1 * Math.cos(t), v = s * h2 * Math.sin(t);
+            const o = 6 * (i * seg + k) + 3 * e;
+            pos[o] = x + u * ca - v * sa; pos[o + 1] = y + u * sa + v * ca;
+            col.set(c, o);
+          }
+        }
+      }
+      const geom = new THREE.BufferGeometry();
+      geom.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+      geom.setAttribute('color', new THREE.BufferAttribute(col, 3));
+      g.add(new THREE.LineSegments(geom, this.mats.csEllipses));
+      this.controlLegend = { hmin, hmax, count };
+    }
+    this.requestRender('2d');
+  }
+
+  // --- sources and handles --------------------------------------------------------------
+
+  /** sources: the case's sources array (read only here); selected: index or -1. */
+  setSources(sources, selected, visible = true) {
+    this.sources = sources ?? [];
+    this.selected = selected;
+    this.showSources = visible;
+    this.#refreshSources();
+  }
+
+  #refreshSources() {
+    const g = this.layers2.sources;
+    for (const o of [...g.children]) { g.remove(o); o.geometry.dispose(); }
+    this.handles = [];
+    if (!this.showSources) { this.requestRender('2d'); return; }
+    const px = this.pixelSize2();
+    for (const m of [this.mats.srcGuide, this.mats.srcGuideSel]) { m.dashSize = 6 * px; m.gapSize = 4 * px; }
+    const handlePos = [], handleCol = [];
+    this.sources.forEach((s, i) => {
+      const sel = i === this.selected;
+      const { lines, handles } = sourceOverlay(s);
+      for (const { points, kind } of lines) {
+        const geom = new THREE.BufferGeometry();
+        geom.setAttribute('position', new THREE.BufferAttribute(Float32Array.from(points.flatMap(([x, y]) => [x, y, 0])), 3));
+        const name = { ellipse: 'srcEllipse', guide: 'srcGuide', shape: 'srcShape' }[kind] + (sel ? 'Sel' : '');
+        const mat = this.mats[name];
+        const line = new THREE.Line(geom, mat);
+        if (kind === 'guide') line.computeLineDistances();
+        g.add(line);
+      }
+      for (const h of handles) {
+        this.handles.push({ source: i, key: h.key, x: h.p[0], y: h.p[1] });
+        handlePos.push(h.p[0], h.p[1], 0);
+        handleCol.push(...(sel ? [0.83, 0.33, 0.0] : [0.17, 0.24, 0.31]));
+      }
+    });
+    if (handlePos.length) {
+      const geom = new THREE.BufferGeometry();
+      geom.setAttribute('position', new THREE.Float32BufferAttribute(handlePos, 3));
+      geom.setAttribute('color', new THREE.Float32BufferAttribute(handleCol, 3));
+      g.add(new THREE.Points(geom, this.mats.handles));
+    }
+    this.requestRender('2d');
+  }
+
+  /** Page (client) coordinates of a world point of the 2D view, or null if the 2D view is hidden. */
+  worldToClient2(x, y) {
+    const v = this.viewports()['2d'];
+    if (!v) return null;
+    const r = this.canvas.getBoundingClientRect();
+    const p = new THREE.Vector3(x, y, 0).project(this.cam2);
+    return { x: r.left + v.x + ((p.x + 1) / 2) * v.w, y: r.top + v.y + ((1 - p.y) / 2) * v.h };
+  }
+
+  /** The point of the z = 0 plane under a client position in the 2D view (raycast). */
+  clientToWorld2(clientX, clientY) {
+    const v = this.viewports()['2d'];
+    const r = this.canvas.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((clientX - r.left - v.x) / v.w) * 2 - 1, -((clientY - r.top - v.y) / v.h) * 2 + 1);
+    const ray = new THREE.Raycaster();
+    ray.setFromCamera(ndc, this.cam2);
+    const hit = new THREE.Vector3();
+    ray.ray.intersectPlane(new THREE.Plane(new THREE.Vector3(0, 0, 1), 0), hit);
+    return [hit.x, hit.y];
+  }
+
+  #viewportAt(clientX, clientY) {
+    const r = this.canvas.getBoundingClientRect();
+    const x = clientX - r.left, y = clientY - r.top;
+    for (const [kind, v] of Object.entries(this.viewports())) {
+      if (x >= v.x && x < v.x + v.w && y >= v.y && y < v.y + v.h) return kind;
+    }
+    return null;
+  }
+
+  #pickHandle(clientX, clientY) {
+    let best = null, bestD = HANDLE_PICK_PX;
+    for (const h of this.handles) {
+      const c = this.worldToClient2(h.x, h.y);
+      const d = Math.hypot(c.x - clientX, c.y - clientY);
+      if (d <= bestD) { bestD = d; best = h; }
+    }
+    return best;
+  }
+
+  #installPointer() {
+    const el = this.canvas;
+    let drag = null;  // { kind: 'handle'|'pan', ... }
+    // Decide who gets the event before OrbitControls sees it (registered earlier = runs first).
+    const route = (e) => { this.controls && (this.controls.enabled = this.#viewportAt(e.clientX, e.clientY) === '3d' && !drag); };
+    el.addEventListener('pointerdown', (e) => {
+      route(e);
+      if (this.#viewportAt(e.clientX, e.clientY) !== '2d' || e.button !== 0) return;
+      const h = this.showSources ? this.#pickHandle(e.clientX, e.clientY) : null;
+      el.setPointerCapture(e.pointerId);
+      if (h) {
+        drag = { kind: 'handle', h };
+        this.hooks.onSelect?.(h.source);
+        this.hooks.onDrag?.(h.source, h.key, [h.x, h.y], 'start');
+      } else {
+        drag = { kind: 'pan', x: e.clientX, y: e.clientY, cx: this.view2.cx, cy: this.view2.cy };
+      }
+      if (this.controls) this.controls.enabled = false;
+    });
+    el.addEventListener('pointermove', (e) => {
+      if (!drag) {
+        const over = this.#viewportAt(e.clientX, e.clientY) === '2d' && this.showSources && this.#pickHandle(e.clientX, e.clientY);
+        el.style.cursor = over ? 'grab' : '';
+        return;
+      }
+      if (drag.kind === 'handle') {
+        el.style.cursor = 'grabbing';
+        this.hooks.onDrag?.(drag.h.source, drag.h.key, this.clientToWorld2(e.clientX, e.clientY), 'move');
+      } else {
+        const px = this.pixelSize2();
+        this.view2.cx = drag.cx - (e.clientX - drag.x) * px;
+        this.view2.cy = drag.cy + (e.clientY - drag.y) * px;
+        this.#updateCam2();
+        this.requestRender('2d');
+      }
+    });
+    const end = (e) => {
+      if (!drag) return;
+      if (drag.kind === 'handle') this.hooks.onDrag?.(drag.h.source, drag.h.key, this.clientToWorld2(e.clientX, e.clientY), 'end');
+      else this.#refreshSources();  // dashed guides depend on the zoom
+      drag = null;
+      el.style.cursor = '';
+    };
+    el.addEventListener('pointerup', end);
+    el.addEventListener('pointercancel', end);
+    el.addEventListener('wheel', (e) => {
+      route(e);
+      if (this.#viewportAt(e.clientX, e.clientY) !== '2d') return;
+      e.preventDefault();
+      // Zoom about the cursor: the world point under it stays put.
+      const [wx, wy] = this.clientToWorld2(e.clientX, e.clientY);
+      const f = Math.exp(Math.sign(e.deltaY) * Math.min(Math.abs(e.deltaY), 200) * 0.0015);
+      this.view2.halfH *= f;
+      this.view2.cx = wx + (this.view2.cx - wx) * f;
+      this.view2.cy = wy + (this.view2.cy - wy) * f;
+      this.#updateCam2();
+      this.#refreshSources();
+    }, { passive: false });
+    el.addEventListener('dblclick', (e) => {
+      if (this.#viewportAt(e.clientX, e.clientY) === '2d') this.fit2D(this.meshBounds2());
+      else this.fit3D();
+    });
+  }
+
+  // --- test and measurement helpers ----------------------------------------------------
+
+  /** Fraction of pixels of a viewport ('2d', '3d' or all) that differ from the background. */
+  coverage(which = null) {
+    this.requestRender();
+    this.render();
+    const src = this.canvas;
+    const c = document.createElement('canvas');
+    c.width = src.width; c.height = src.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(src, 0, 0);
+    const ratio = src.width / this.container.clientWidth;
+    const v = which ? this.viewports()[which] : { x: 0, y: 0, w: this.container.clientWidth, h: this.container.clientHeight };
+    if (!v) return 0;
+    const data = ctx.getImageData(Math.round(v.x * ratio), Math.round(v.y * ratio), Math.max(1, Math.round(v.w * ratio)), Math.max(1, Math.round(v.h * ratio))).data;
+    let differing = 0;
+    for (let i = 0; i < data.length; i += 4) {
+      if (Math.abs(data[i] - 0xf7) + Math.abs(data[i + 1] - 0xf7) + Math.abs(data[i + 2] - 0xf5) > 24) differing++;
+    }
+    return differing / (data.length / 4);
+  }
+
+  /** Orbits the 3D camera for ms milliseconds, rendering every animation frame; resolves to frames per second. */
+  benchOrbit(ms = 3000) {
+    return new Promise((resolve) => {
+      const t0 = performance.now();
+      let frames = 0;
+      this.controls.autoRotate = true;
+      this.controls.autoRotateSpeed = 30;
+      this.#interacting(true);  // as while dragging with the mouse
+      const tick = () => {
+        this.controls.update(1 / 60);
+        this.dirty = new Set(['3d']);
+        this.render();
+        frames++;
+        const dt = performance.now() - t0;
+        if (dt < ms) requestAnimationFrame(tick);
+        else {
+          this.controls.autoRotate = false;
+          this.#interacting(false);
+          resolve((frames * 1000) / dt);
+        }
+      };
+      requestAnimationFrame(tick);
+    });
+  }
+}
+
+// --- geometry builders ------------------------------------------------------------------
+
+// Colour per element (triangles, then quads) as rgb triples.
+function elementColors(mesh, quality) {
+  const ne = mesh.triangles.length / 3 + mesh.quads.length / 4;
+  const out = new Float32Array(3 * ne);
+  for (let e = 0; e < ne; e++) out.set(quality ? qualityColor(quality[e]) : FACE_PLAIN, 3 * e);
+  return out;
+}
+
+// Non-indexed triangles (quads split in two) so each element carries its own flat colour.
+function faceGeometry(mesh, xyz, colors) {
+  const tris = mesh.triangles, quads = mesh.quads;
+  const nt = tris.length / 3, nq = quads.length / 4;
+  const n = 3 * (nt + 2 * nq);
+  const pos = new Float32Array(3 * n), col = new Float32Array(3 * n);
+  let o = 0;
+  const put = (v, e) => {
+    pos[o] = xyz[3 * v]; pos[o + 1] = xyz[3 * v + 1]; pos[o + 2] = xyz[3 * v + 2];
+    col[o] = colors[3 * e]; col[o + 1] = colors[3 * e + 1]; col[o + 2] = colors[3 * e + 2];
+    o += 3;
+  };
+  for (let t = 0; t < nt; t++) { put(tris[3 * t], t); put(tris[3 * t + 1], t); put(tris[3 * t + 2], t); }
+  for (let q = 0; q < nq; q++) {
+    const b = 4 * q, e = nt + q;
+    put(quads[b], e); put(quads[b + 1], e); put(quads[b + 2], e);
+    put(quads[b], e); put(quads[b + 2], e); put(quads[b + 3], e);
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+  g.setAttribute('color', new THREE.BufferAttribute(col, 3));
+  return g;
+}
+
+// Colour per edge: metric length colours, or a plain dark grey.
+function edgeColors(edges, lengths) {
+  const ne = edges.length / 2;
+  const out = new Float32Array(6 * ne);
+  for (let e = 0; e < ne; e++) {
+    const c = lengths ? lengthColor(lengths[e]) : [0.25, 0.3, 0.38];
+    out.set(c, 6 * e);
+    out.set(c, 6 * e + 3);
+  }
+  return out;
+}
+
+// Line segments (pairs of vertex ids) as a non-indexed geometry; colors: rgb per segment end.
+function segmentGeometry(pairs, xyz, colors) {
+  const n = pairs.length;
+  const pos = new Float32Array(3 * n);
+  for (let i = 0; i < n; i++) {
+    const v = pairs[i];
+    pos[3 * i] = xyz[3 * v]; pos[3 * i + 1] = xyz[3 * v + 1]; pos[3 * i + 2] = xyz[3 * v + 2];
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+  g.setAttribute('color', new THREE.BufferAttribute(colors.length === 3 * n ? colors : colors.subarray(0, 3 * n), 3));
+  return g;
+}
+
+/** True when WebGL runs on a software rasterizer (SwiftShader, llvmpipe): MSAA is then too costly. */
+export function softwareWebGL() {
+  try {
+    const gl = document.createElement('canvas').getContext('webgl2') ?? document.createElement('canvas').getContext('webgl');
+    if (!gl) return false;
+    const ext = gl.getExtension('WEBGL_debug_renderer_info');
+    const name = ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
+    gl.getExtension('WEBGL_lose_context')?.loseContext();
+    return /swiftshader|llvmpipe|softpipe|software/i.test(String(name));
+  } catch {
+    return false;
+  }
+}
