@@ -162,11 +162,22 @@ export function wrapCore(core) {
       return unwrap(core.metricEllipse(checkMetricSpec(m, 'metric'), center[0], center[1], segments)).points;
     },
     /**
-     * Meshes a JSON case (object or text, see examples/CASE_FORMAT.md).
-     * Returns { mesh, stats, controlSpace } with typed arrays in mesh.
+     * Meshes a JSON case, planar (examples/CASE_FORMAT.md) or surface (SURFACE_FORMAT.md),
+     * given as an object or JSON text. Returns { mesh, stats, controlSpace } with typed
+     * arrays in mesh. onProgress(fraction) is called while meshing; returning false
+     * cancels the run (AnisomeshError CANCELLED).
      */
-    meshCase(c, { inspectControlSpace = false } = {}) {
-      const r = unwrap(core.meshCase(caseText(c), Boolean(inspectControlSpace)));
+    meshCase(c, options = {}) {
+      if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+      const { onProgress, maxElements } = options;
+      if (onProgress !== undefined && typeof onProgress !== 'function') throw argError('options.onProgress: expected a function');
+      if (maxElements !== undefined && !(Number.isInteger(maxElements) && maxElements > 0)) {
+        throw argError('options.maxElements: expected a positive integer');
+      }
+      for (const key of ['inspectControlSpace', 'quads', 'allQuads', 'controlSpaceUpdates']) {
+        if (options[key] !== undefined && typeof options[key] !== 'boolean') throw argError(`options.${key}: expected a boolean`);
+      }
+      const r = unwrap(core.meshCase(caseText(c), options));
       return { mesh: r.mesh, stats: JSON.parse(r.stats), controlSpace: r.controlSpace ? JSON.parse(r.controlSpace) : null };
     },
     /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22). */

@@ -235,16 +235,25 @@ MeshFormat formatFromName(const std::string& name) {
   throw Error(ErrorCode::InvalidArgument, "unknown mesh format '" + name + "' (expected mesh, vtk or obj)");
 }
 
-// A whole JSON case: { mesh, stats (JSON text), controlSpace (JSON text or null) }.
-val meshCaseJson(std::string jsonText, bool inspectControlSpace) {
+// A whole JSON case (planar or surface): { mesh, stats (JSON text), controlSpace (JSON
+// text or null) }. options: { inspectControlSpace, quads, allQuads, maxElements,
+// controlSpaceUpdates, onProgress(fraction) -> false to cancel }.
+val meshCaseJson(std::string jsonText, val options) {
   return guarded([&] {
     RunCaseOptions o;
-    o.inspectControlSpace = inspectControlSpace;
+    o.inspectControlSpace = options["inspectControlSpace"].isTrue();
+    if (options["quads"].isTrue() || options["quads"].isFalse()) o.quads = options["quads"].isTrue();
+    if (options["allQuads"].isTrue() || options["allQuads"].isFalse()) o.allQuads = options["allQuads"].isTrue();
+    if (options["maxElements"].isNumber()) o.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
+    if (options["controlSpaceUpdates"].isFalse()) o.controlSpaceUpdates = false;
+    const val onProgress = options["onProgress"];
+    if (onProgress.typeOf().as<std::string>() == "function")
+      o.progress = [onProgress](double fraction) { return !onProgress(fraction).isFalse(); };
     const CaseRun run = runCase(jsonText, o);
     val out = val::object();
     out.set("mesh", meshToJs(run.mesh));
-    out.set("stats", caseRunStatsJson(run).dump());
-    out.set("controlSpace", inspectControlSpace ? val(run.controlSpace.dump()) : val::null());
+    out.set("stats", run.stats.dump());
+    out.set("controlSpace", o.inspectControlSpace && !run.controlSpace.is_null() ? val(run.controlSpace.dump()) : val::null());
     return out;
   });
 }

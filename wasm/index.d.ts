@@ -103,6 +103,20 @@ export interface ControlSpace {
 
 export type MeshFormat = 'mesh' | 'vtk' | 'obj';
 
+export interface MeshCaseOptions {
+  /** Also return the final control space's nodes and cells (planar cases). */
+  inspectControlSpace?: boolean;
+  /** Override the case's options.quads / options.allQuads. */
+  quads?: boolean;
+  allQuads?: boolean;
+  /** Element budget (ELEMENT_BUDGET_EXCEEDED above it); overrides options.maxElements. */
+  maxElements?: number;
+  /** Planar cases: run the paper's section 3.2 control-space update loop (default true). */
+  controlSpaceUpdates?: boolean;
+  /** Progress in [0, 1]; return false to cancel. */
+  onProgress?: (fraction: number) => boolean | void;
+}
+
 export interface Anisomesh {
   /** Version of the WebAssembly core. */
   readonly version: string;
@@ -120,8 +134,12 @@ export interface Anisomesh {
   metricDifference(a: MetricSpec, b: MetricSpec): number;
   /** The unit ellipse of a metric around center: a closed polyline as xy pairs. */
   metricEllipse(metric: MetricSpec, center?: Vec2, segments?: number): Float64Array;
-  /** Meshes a JSON case (object or text). */
-  meshCase(c: Case | string, options?: { inspectControlSpace?: boolean }): CaseResult;
+  /**
+   * Meshes a JSON case, planar (examples/CASE_FORMAT.md) or surface (examples/SURFACE_FORMAT.md),
+   * given as an object or JSON text. onProgress(fraction) is called while meshing; returning
+   * false cancels the run with AnisomeshError CANCELLED.
+   */
+  meshCase(c: Case | string, options?: MeshCaseOptions): CaseResult;
   /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22 each). */
   remesh(
     mesh: MeshArrays,

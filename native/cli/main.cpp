@@ -14,6 +14,7 @@
 #include "anisomesh/io/svg.h"
 #include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
+#include "anisomesh/pipeline/run_case.h"
 
 namespace {
 
@@ -23,7 +24,7 @@ int usage(std::ostream& os, int code) {
   os << "usage: anisomesh <command> [options]\n"
         "commands:\n"
         "  mesh CASE.json -o OUT [--quads] [--all-quads] [--stats] [--max-elements N] [--no-updates]\n"
-        "                            mesh a JSON case (OUT: .mesh, .vtk, .obj or .svg)\n"
+        "                            mesh a JSON case, planar or surface (OUT: .mesh, .vtk, .obj or .svg)\n"
         "  remesh IN.mesh -sol IN.sol -o OUT [-hgrad R] [-hmin H] [-hmax H] [--stats] [--max-elements N]\n"
         "                            remesh the domain of IN.mesh under the metric IN.sol, used as\n"
         "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1)\n"
@@ -82,13 +83,14 @@ void requireOutput(const std::string& out) {
   }
 }
 
-// Writes the mesh by extension; .svg pictures colour elements by metric quality.
-void writeOutput(const std::string& path, const Mesh& mesh, const ControlSpace& cs) {
+// Writes the mesh by extension; .svg pictures colour elements by metric quality when the
+// control space is known (planar runs).
+void writeOutput(const std::string& path, const Mesh& mesh, const ControlSpace* cs) {
   if (!isSvg(path)) return writeMeshFile(path, mesh);
   SvgOptions o;
   o.width = 900;
   o.strokeWidth = 0.3;
-  o.elementValues = elementQualities(mesh, cs);
+  if (cs) o.elementValues = elementQualities(mesh, *cs);
   writeTextFileAtomic(path, writeSvg(mesh, o));
 }
 
@@ -112,17 +114,15 @@ int runMesh(int argc, char** argv) {
   if (input.empty()) throw UsageError{"missing CASE.json"};
   requireOutput(output);
 
-  CaseSpec spec = readCaseFile(input);
-  if (quads) spec.options.quads = true;
-  if (allQuads) spec.options.allQuads = true;
-  if (maxElements > 0) spec.options.maxElements = maxElements;
-  PipelineReport report;
-  BoundaryUpdateOptions u;
-  u.enabled = updates;
-  std::unique_ptr<AdaptiveControlSpace> cs;
-  const Mesh mesh = meshCase(spec, &report, u, &cs);
-  writeOutput(output, mesh, *cs);
-  if (stats) std::cout << pipelineStatsJson(mesh, *cs, report).dump() << "\n";
+  // The same entry point as the wasm package: planar and surface cases, same report.
+  RunCaseOptions o;
+  if (quads) o.quads = true;
+  if (allQuads) o.allQuads = true;
+  o.maxElements = maxElements;
+  o.controlSpaceUpdates = updates;
+  const CaseRun run = runCase(readTextFile(input), o);
+  writeOutput(output, run.mesh, run.finalSpace.get());
+  if (stats) std::cout << run.stats.dump() << "\n";
   return 0;
 }
 
@@ -156,7 +156,7 @@ int runRemesh(int argc, char** argv) {
   PipelineReport report;
   std::unique_ptr<AdaptiveControlSpace> cs;
   const Mesh mesh = remesh(in, metrics, options, &report, &cs);
-  writeOutput(output, mesh, *cs);
+  writeOutput(output, mesh, cs.get());
   if (stats) std::cout << pipelineStatsJson(mesh, *cs, report).dump() << "\n";
   return 0;
 }

@@ -220,7 +220,7 @@ PlanarMesherOptions mesherOptionsFromCase(const CaseSpec& spec) {
 }
 
 Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdateOptions& updates,
-              std::unique_ptr<AdaptiveControlSpace>* controlSpace) {
+              std::unique_ptr<AdaptiveControlSpace>* controlSpace, const std::function<bool(double)>& progress) {
   PipelineReport local;
   PipelineReport& r = report ? *report : local;
   auto t = Clock::now();
@@ -231,7 +231,8 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   std::unique_ptr<AdaptiveControlSpace> cs = buildCaseControlSpace(spec);
   r.secondsControlSpace = secondsSince(t);
   const MetricFunction analytic = caseAnalyticMetric(spec);
-  const PlanarMesherOptions mesher = mesherOptionsFromCase(spec);
+  PlanarMesherOptions mesher = mesherOptionsFromCase(spec);
+  mesher.progress = progress;
   DiscretizeOptions d;
   d.maxSegments = std::max<std::int64_t>(1, mesher.maxElements);
 
@@ -268,6 +269,8 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
     b.boundaryOnly = true;
     b.quads = b.allQuads = false;
     b.timings = nullptr;
+    // The update rounds report no progress of their own but can still be cancelled.
+    if (progress) b.progress = [&progress](double) { return progress(0.0); };
     const Mesh boundaryMesh = meshPlanarBoundary(loops, *cs, b);
     const int gaps = proximitySources(loops, boundaryMesh, *cs, updates, &sources);
     r.chordSources += chords;

@@ -1,37 +1,37 @@
 #include "anisomesh/pipeline/run_case.h"
 
-#include "anisomesh/controlspace/adaptive_control_space.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/control_space_export.h"
-#include "anisomesh/pipeline/case_control_space.h"
+#include "anisomesh/pipeline/mesh_statistics.h"
+#include "anisomesh/pipeline/pipeline.h"
+#include "anisomesh/surface/surface_case_json.h"
 
 namespace anisomesh {
 
-CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
-  const CaseSpec spec = parseCaseJson(jsonText);
-  CaseRun run;
-  run.mesh = meshCase(spec, &run.pipeline);
-  // The mesher's own control space is internal to meshCase: rebuild it (deterministic)
-  // to measure the mesh and to export it.
-  const std::unique_ptr<ControlSpace> cs = buildCaseControlSpace(spec);
-  run.quality = measureQuality(run.mesh, *cs);
-  if (options.inspectControlSpace) {
-    if (const auto* adaptive = dynamic_cast<const AdaptiveControlSpace*>(cs.get()))
-      run.controlSpace = controlSpaceToJson(*adaptive);
-    else
-      run.controlSpace = sampledControlSpaceToJson(*cs, options.sampleGrid, options.sampleGrid);
-  }
-  return run;
-}
+bool isSurfaceCase(const std::string& jsonText) { return isSurfaceCaseJson(jsonText); }
 
-nlohmann::json caseRunStatsJson(const CaseRun& run) {
-  nlohmann::json j = qualityReportToJson(run.quality);
-  j["boundaryLoops"] = run.pipeline.boundaryLoops;
-  j["boundaryPoints"] = run.pipeline.boundaryPoints;
-  j["secondsGeometry"] = run.pipeline.secondsGeometry;
-  j["secondsMeshing"] = run.pipeline.secondsMeshing;
-  j["notes"] = run.pipeline.notes;
-  return j;
+CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
+  CaseRun run;
+  if (isSurfaceCaseJson(jsonText)) {
+    SurfaceCaseSpec spec = parseSurfaceCaseJson(jsonText);
+    if (options.maxElements > 0) spec.options.mesher.maxElements = options.maxElements;
+    if (options.progress) spec.options.mesher.progress = options.progress;
+    SurfaceMeshReport report;
+    run.mesh = meshSurfaceCase(spec, &report);
+    run.stats = surfaceMeshReportToJson(report);
+    return run;
+  }
+  CaseSpec spec = parseCaseJson(jsonText);
+  if (options.quads) spec.options.quads = *options.quads;
+  if (options.allQuads) spec.options.allQuads = *options.allQuads;
+  if (options.maxElements > 0) spec.options.maxElements = options.maxElements;
+  BoundaryUpdateOptions updates;
+  updates.enabled = options.controlSpaceUpdates;
+  PipelineReport report;
+  run.mesh = meshCase(spec, &report, updates, &run.finalSpace, options.progress);
+  run.stats = pipelineStatsJson(run.mesh, *run.finalSpace, report);
+  if (options.inspectControlSpace) run.controlSpace = controlSpaceToJson(*run.finalSpace);
+  return run;
 }
 
 }  // namespace anisomesh

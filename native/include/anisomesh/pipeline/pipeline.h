@@ -2,6 +2,7 @@
 // End-to-end runs: a JSON case (validate domain -> control space -> contour
 // discretization -> section 3.2 control-space updates -> planar mesher) and remeshing of
 // a Medit mesh under a .sol metric (background-mesh control space).
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,9 +59,11 @@ PlanarMesherOptions mesherOptionsFromCase(const CaseSpec& spec);
 // Meshes a case: validateDomain, buildCaseControlSpace, then rounds of discretizeDomain
 // + boundary-only triangulation + section 3.2 updates until nothing is invalid, then
 // meshPlanarBoundary. When controlSpace is given it receives the final control space
-// (for quality measurement).
+// (for quality measurement). progress (optional) follows the final meshing; returning
+// false cancels the run (ErrorCode::Cancelled).
 Mesh meshCase(const CaseSpec& spec, PipelineReport* report = nullptr, const BoundaryUpdateOptions& updates = {},
-              std::unique_ptr<AdaptiveControlSpace>* controlSpace = nullptr);
+              std::unique_ptr<AdaptiveControlSpace>* controlSpace = nullptr,
+              const std::function<bool(double)>& progress = {});
 
 // How the input's per-vertex metrics enter the background-mesh control space.
 enum class RemeshMetricInsertion {

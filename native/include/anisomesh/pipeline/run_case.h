@@ -1,34 +1,43 @@
 #pragma once
 // One entry point for a whole JSON case run (parse -> mesh -> measure), shared by the
 // CLI and the WebAssembly bindings so both give the same mesh and the same report.
+// Planar cases (examples/CASE_FORMAT.md) and surface cases (examples/SURFACE_FORMAT.md,
+// recognised by their "patches") go through the same call.
+#include <cstdint>
 #include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "anisomesh/controlspace/adaptive_control_space.h"
 #include "anisomesh/mesh/mesh.h"
-#include "anisomesh/mesh/quality.h"
-#include "anisomesh/pipeline/pipeline.h"
 
 namespace anisomesh {
 
 struct RunCaseOptions {
-  bool inspectControlSpace = false;  // also export the control space (nodes, cells) as JSON
-  int sampleGrid = 32;               // grid used to sample a control space without nodes
+  std::optional<bool> quads;         // overrides the case's options.quads
+  std::optional<bool> allQuads;      // overrides options.allQuads
+  std::int64_t maxElements = -1;     // > 0: overrides options.maxElements
+  bool controlSpaceUpdates = true;   // planar: the section 3.2 update loop
+  bool inspectControlSpace = false;  // also export the final control space (nodes, cells) as JSON
+  // Called with a fraction in [0, 1] while meshing; returning false cancels (ErrorCode::Cancelled).
+  std::function<bool(double)> progress;
 };
 
 // Everything a case run produces.
 struct CaseRun {
   Mesh mesh;
-  QualityReport quality;
-  PipelineReport pipeline;
-  nlohmann::json controlSpace;  // null unless RunCaseOptions::inspectControlSpace
+  nlohmann::json stats;                              // the --stats object
+  nlohmann::json controlSpace;                       // null unless inspectControlSpace
+  std::unique_ptr<AdaptiveControlSpace> finalSpace;  // planar: the control space meshed with
 };
+
+// True when the JSON text is a surface case (it has "patches").
+bool isSurfaceCase(const std::string& jsonText);
 
 // Parses the JSON case text, meshes it and measures the mesh in the case's metric.
 CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options = {});
-
-// The --stats object of a run: the quality report plus the pipeline's counts and times.
-nlohmann::json caseRunStatsJson(const CaseRun& run);
 
 }  // namespace anisomesh
