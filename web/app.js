@@ -298,7 +298,6 @@ let needsFit = true;
 function edited(delay = EDIT_DEBOUNCE_MS) {
   state.caseVersion++;
   views.setSources(state.case.sources, state.selected, state.view.sources);
-  $('domain-json').value = JSON.stringify(state.case.domain, null, 1);
   clearTimeout(editTimer);
   editTimer = setTimeout(() => { editTimer = null; remesh(); }, delay);
   saveUrlSoon();
@@ -428,13 +427,14 @@ function renderStats(s) {
     ['core geometry', ms(s.secondsGeometry)], ['core meshing', ms(s.secondsMeshing)],
     ['job round trip', state.lastJob ? `${state.lastJob.totalMs} ms` : '…'], ['cancelled jobs', state.cancelled],
   ];
-  if (s.notes?.length) rows.push(['notes', s.notes.join('; ')]);
+  if (s.notes?.length) rows.push(['core notes', s.notes.join('; ')]);
   const dl = $('stats');
   dl.replaceChildren();
   for (const [k, v] of rows) {
     const dt = document.createElement('dt'), dd = document.createElement('dd');
     dt.textContent = k;
     dd.textContent = v;
+    dd.title = String(v);  // long notes are cut with an ellipsis
     dd.dataset.key = k;
     if ((k.startsWith('inverted') && (s.inverted || s.degenerate))) dd.className = 'bad';
     dl.append(dt, dd);
@@ -645,6 +645,13 @@ async function checkExpression(text) {
 $('expr').addEventListener('input', (e) => checkExpression(e.target.value));
 
 for (const b of document.querySelectorAll('#view-mode button')) b.addEventListener('click', () => applyViewMode(b.dataset.mode));
+// Delete / Backspace on the canvas removes the selected source.
+views.canvas.addEventListener('keydown', (e) => {
+  if ((e.key === 'Delete' || e.key === 'Backspace') && state.selected >= 0) {
+    e.preventDefault();
+    removeSource(state.selected);
+  }
+});
 
 // --- test hooks -------------------------------------------------------------------------
 
