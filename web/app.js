@@ -57,6 +57,7 @@ function setBusy(busy) {
 }
 const meshRunner = new JobRunner({
   supersede: true,
+  precompiled: new URLSearchParams(location.search).get('precompile') !== '0',  // ?precompile=0 to measure the difference
   onBusy: setBusy,
   onProgress: ({ stage }) => { progress.stage = stage; },
 });
@@ -74,14 +75,23 @@ const views = new Views($('view'), {
       dragFrom = { p, p1: s.p1 && [...s.p1], p2: s.p2 && [...s.p2] };
       return;
     }
+    const before = JSON.stringify(s);
     moveHandle(s, key, p, dragFrom);
+    const changed = JSON.stringify(s) !== before;
     views.setSources(state.case.sources, state.selected, state.view.sources);
     sourceGui.controllersRecursive().forEach((c) => c.updateDisplay());
-    if (phase === 'move') edited(DRAG_DEBOUNCE_MS);
-    else {
-      state.dragEndAt = performance.now();
-      state.dragEndVersion = state.caseVersion;
-      edited(0);
+    if (phase === 'move') {
+      if (changed) edited(DRAG_DEBOUNCE_MS);
+      return;
+    }
+    state.dragEndAt = performance.now();
+    // Released where the last move left it: the job already queued or running for this
+    // input is the right one, so it is not restarted.
+    if (changed) edited(0);
+    state.dragEndVersion = state.caseVersion;
+    if (!changed && state.meshedVersion === state.caseVersion) {
+      state.dragToMeshMs = 0;
+      state.dragEndAt = null;
     }
   },
 }, {
@@ -645,6 +655,8 @@ async function checkExpression(text) {
 $('expr').addEventListener('input', (e) => checkExpression(e.target.value));
 
 for (const b of document.querySelectorAll('#view-mode button')) b.addEventListener('click', () => applyViewMode(b.dataset.mode));
+// A link pasted into this tab (replaceState does not fire hashchange, so our own writes don't).
+window.addEventListener('hashchange', () => restoreFromUrl());
 // Delete / Backspace on the canvas removes the selected source.
 views.canvas.addEventListener('keydown', (e) => {
   if ((e.key === 'Delete' || e.key === 'Backspace') && state.selected >= 0) {

@@ -45,6 +45,26 @@ try {
   if (errors.length) console.log('page errors:', errors);
   await page.close();
 
+  // --- 1b. worker replacement cost with and without the precompiled module ------------
+  for (const q of ['', '?precompile=0']) {
+    const { page: pc } = await openPage(env.browser, env.url.replace(/\/web\/$/, '/web/index.html') + q);
+    await settle(pc, () => window.anisomeshApp.loadPreset('holes-off'));
+    const ms = await pc.evaluate(async () => {
+      const a = window.anisomeshApp;
+      for (let k = 0; k < 5; k++) {
+        a.state.case.sources[0].metric.h1 = 0.05 + 0.001 * k;
+        a.edited(0);
+        await new Promise((r) => setTimeout(r, 30));
+        a.state.case.sources[0].metric.h1 = 0.06 + 0.001 * k;
+        a.edited(0);
+        await a.whenIdle();
+      }
+      return a.state.workerRestartMs;
+    });
+    console.log(`RESULT worker restart ${q ? 'without' : 'with'} the precompiled module: median ${median(ms)} ms of ${ms.join(', ')}`);
+    await pc.close();
+  }
+
   // --- 2. orbit a ~200k-triangle mesh -------------------------------------------------
   const { page: p2, errors: e2 } = await openPage(env.browser, env.url);
   await settle(p2, () => window.anisomeshApp.loadPreset('point-source-fine'));
