@@ -361,7 +361,7 @@ function fail(error, version) {
   clearErrors();
   showError(error.target, `${error.code}: ${error.message}`);
   // The previous mesh stays on screen; the status says it is not the current input.
-  statusText.textContent = state.lastStats ? 'input error — showing the previous mesh' : 'input error';
+  statusText.textContent = state.lastStats ? 'input error · previous mesh shown' : 'input error';
   status.classList.add('err');
   state.meshedVersion = version;
   settle();
@@ -507,7 +507,7 @@ function setCase(c, { presetId = 'custom', selected = null, surface = null } = {
   state.selected = selected ?? (first >= 0 ? first : (state.case.sources?.length ? 0 : -1));
   if (state.case.controlSpace.gradation != null) state.lastDr = state.case.controlSpace.gradation;
   $('preset').value = presetId;
-  $('domain-json').value = JSON.stringify(state.case.domain, null, 1);
+  $('domain-json').value = domainText(state.case.domain);
   rebuildSourceGui();
   gui.controllersRecursive().forEach((ctrl) => ctrl.updateDisplay());
   controllers.get('gradation').disable(state.case.controlSpace.gradation == null);
@@ -611,6 +611,13 @@ $('copy-link').addEventListener('click', async () => {
   setTimeout(() => { box.hidden = true; box.classList.add('error'); }, 2500);
 });
 
+// JSON with the number arrays (points) kept on one line: short enough to edit by hand.
+function domainText(d) {
+  return JSON.stringify(d, null, 1)
+    .replace(/\[\s+([-+\d.eE,\s]+?)\s+\]/g, (m, inner) => `[${inner.replace(/\s+/g, '')}]`)
+    .replace(/\[\s+((?:\[[^[\]]*\],?\s*)+)\]/g, (m, inner) => `[${inner.replace(/\s+/g, '')}]`);
+}
+
 // Domain as editable JSON (a self-intersecting contour etc. is reported below the box).
 $('domain-apply').addEventListener('click', () => {
   let d;
@@ -625,7 +632,7 @@ $('domain-apply').addEventListener('click', () => {
   needsFit = true;
   edited(0);
 });
-$('domain-reset').addEventListener('click', () => { $('domain-json').value = JSON.stringify(state.case.domain, null, 1); });
+$('domain-reset').addEventListener('click', () => { $('domain-json').value = domainText(state.case.domain); });
 
 // Analytic expression (placeholder until the case format has an expression source).
 let exprSeq = 0;
