@@ -12,7 +12,6 @@ import { sourceOverlay } from './overlays.js';
 const BG = 0xf7f7f5;
 const FACE_PLAIN = [0.80, 0.85, 0.92];
 const HANDLE_PICK_PX = 12;
-const EDGES_HIDDEN_WHILE_ORBITING = 60000;
 
 export class Views {
   /**
@@ -91,6 +90,7 @@ export class Views {
     this.controls.addEventListener('change', () => this.requestRender('3d'));
     // Large meshes: the edge lines cost more than the faces on software WebGL, so they
     // are hidden while the camera moves and come back when it stops.
+    this.hideEdgesAbove = 60000;  // edge count
     this.controls.addEventListener('start', () => this.#interacting(true));
     this.controls.addEventListener('end', () => this.#interacting(false));
 
@@ -213,7 +213,7 @@ export class Views {
   }
 
   #interacting(on) {
-    const hide = on && (this.edgeCount ?? 0) > EDGES_HIDDEN_WHILE_ORBITING;
+    const hide = on && (this.edgeCount ?? 0) > this.hideEdgesAbove;
     for (const o of this.group3.children) if (o.isLineSegments && o.userData.edges) o.visible = !hide;
     if (!on) this.requestRender('3d');
   }
