@@ -57,6 +57,7 @@ function setBusy(busy) {
 }
 const meshRunner = new JobRunner({
   supersede: true,
+  precompiled: new URLSearchParams(location.search).get('precompile') !== '0',  // ?precompile=0 to measure the difference
   onBusy: setBusy,
   onProgress: ({ stage }) => { progress.stage = stage; },
 });
@@ -74,14 +75,23 @@ const views = new Views($('view'), {
       dragFrom = { p, p1: s.p1 && [...s.p1], p2: s.p2 && [...s.p2] };
       return;
     }
+    const before = JSON.stringify(s);
     moveHandle(s, key, p, dragFrom);
+    const changed = JSON.stringify(s) !== before;
     views.setSources(state.case.sources, state.selected, state.view.sources);
     sourceGui.controllersRecursive().forEach((c) => c.updateDisplay());
-    if (phase === 'move') edited(DRAG_DEBOUNCE_MS);
-    else {
-      state.dragEndAt = performance.now();
-      state.dragEndVersion = state.caseVersion;
-      edited(0);
+    if (phase === 'move') {
+      if (changed) edited(DRAG_DEBOUNCE_MS);
+      return;
+    }
+    state.dragEndAt = performance.now();
+    // Released where the last move left it: the job already queued or running for this
+    // input is the right one, so it is not restarted.
+    if (changed) edited(0);
+    state.dragEndVersion = state.caseVersion;
+    if (!changed && state.meshedVersion === state.caseVersion) {
+      state.dragToMeshMs = 0;
+      state.dragEndAt = null;
     }
   },
 }, {
@@ -298,7 +308,6 @@ let needsFit = true;
 function edited(delay = EDIT_DEBOUNCE_MS) {
   state.caseVersion++;
   views.setSources(state.case.sources, state.selected, state.view.sources);
-  $('domain-json').value = JSON.stringify(state.case.domain, null, 1);
   clearTimeout(editTimer);
   editTimer = setTimeout(() => { editTimer = null; remesh(); }, delay);
   saveUrlSoon();
@@ -352,7 +361,7 @@ function fail(error, version) {
   clearErrors();
   showError(error.target, `${error.code}: ${error.message}`);
   // The previous mesh stays on screen; the status says it is not the current input.
-  statusText.textContent = state.lastStats ? 'input error — showing the previous mesh' : 'input error';
+  statusText.textContent = state.lastStats ? 'input error · previous mesh shown' : 'input error';
   status.classList.add('err');
   state.meshedVersion = version;
   settle();
@@ -428,13 +437,14 @@ function renderStats(s) {
     ['core geometry', ms(s.secondsGeometry)], ['core meshing', ms(s.secondsMeshing)],
     ['job round trip', state.lastJob ? `${state.lastJob.totalMs} ms` : '…'], ['cancelled jobs', state.cancelled],
   ];
-  if (s.notes?.length) rows.push(['notes', s.notes.join('; ')]);
+  if (s.notes?.length) rows.push(['core notes', s.notes.join('; ')]);
   const dl = $('stats');
   dl.replaceChildren();
   for (const [k, v] of rows) {
     const dt = document.createElement('dt'), dd = document.createElement('dd');
     dt.textContent = k;
     dd.textContent = v;
+    dd.title = String(v);  // long notes are cut with an ellipsis
     dd.dataset.key = k;
     if ((k.startsWith('inverted') && (s.inverted || s.degenerate))) dd.className = 'bad';
     dl.append(dt, dd);
@@ -497,7 +507,7 @@ function setCase(c, { presetId = 'custom', selected = null, surface = null } = {
   state.selected = selected ?? (first >= 0 ? first : (state.case.sources?.length ? 0 : -1));
   if (state.case.controlSpace.gradation != null) state.lastDr = state.case.controlSpace.gradation;
   $('preset').value = presetId;
-  $('domain-json').value = JSON.stringify(state.case.domain, null, 1);
+  $('domain-json').value = domainText(state.case.domain);
   rebuildSourceGui();
   gui.controllersRecursive().forEach((ctrl) => ctrl.updateDisplay());
   controllers.get('gradation').disable(state.case.controlSpace.gradation == null);
@@ -601,6 +611,13 @@ $('copy-link').addEventListener('click', async () => {
   setTimeout(() => { box.hidden = true; box.classList.add('error'); }, 2500);
 });
 
+// JSON with the number arrays (points) kept on one line: short enough to edit by hand.
+function domainText(d) {
+  return JSON.stringify(d, null, 1)
+    .replace(/\[\s+([-+\d.eE,\s]+?)\s+\]/g, (m, inner) => `[${inner.replace(/\s+/g, '')}]`)
+    .replace(/\[\s+((?:\[[^[\]]*\],?\s*)+)\]/g, (m, inner) => `[${inner.replace(/\s+/g, '')}]`);
+}
+
 // Domain as editable JSON (a self-intersecting contour etc. is reported below the box).
 $('domain-apply').addEventListener('click', () => {
   let d;
@@ -615,7 +632,7 @@ $('domain-apply').addEventListener('click', () => {
   needsFit = true;
   edited(0);
 });
-$('domain-reset').addEventListener('click', () => { $('domain-json').value = JSON.stringify(state.case.domain, null, 1); });
+$('domain-reset').addEventListener('click', () => { $('domain-json').value = domainText(state.case.domain); });
 
 // Analytic expression (placeholder until the case format has an expression source).
 let exprSeq = 0;
@@ -645,6 +662,15 @@ async function checkExpression(text) {
 $('expr').addEventListener('input', (e) => checkExpression(e.target.value));
 
 for (const b of document.querySelectorAll('#view-mode button')) b.addEventListener('click', () => applyViewMode(b.dataset.mode));
+// A link pasted into this tab (replaceState does not fire hashchange, so our own writes don't).
+window.addEventListener('hashchange', () => restoreFromUrl());
+// Delete / Backspace on the canvas removes the selected source.
+views.canvas.addEventListener('keydown', (e) => {
+  if ((e.key === 'Delete' || e.key === 'Backspace') && state.selected >= 0) {
+    e.preventDefault();
+    removeSource(state.selected);
+  }
+});
 
 // --- test hooks -------------------------------------------------------------------------
 

@@ -22,8 +22,9 @@ export function lengthColor(l) {
   return lerpStops(lengthStops, 0.5 + 0.5 * Math.log2(Math.max(l, 1e-6)));
 }
 
-// Requested size (control-space ellipses): dark blue (fine) .. yellow (coarse), t in [0, 1].
-const sizeStops = [[0.27, 0.00, 0.33], [0.23, 0.32, 0.55], [0.13, 0.57, 0.55], [0.37, 0.79, 0.38], [0.99, 0.91, 0.14]];
+// Requested size (control-space ellipses): purple (fine) .. red .. orange .. green .. blue (coarse),
+// t in [0, 1]; every stop is dark enough to read on the light background.
+const sizeStops = [[0.50, 0.05, 0.50], [0.80, 0.15, 0.15], [0.85, 0.50, 0.05], [0.15, 0.55, 0.25], [0.12, 0.32, 0.70]];
 export function sizeColor(t) {
   return lerpStops(sizeStops, t);
 }

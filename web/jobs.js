@@ -32,8 +32,9 @@ export class CancelledError extends Error {
  * supersede: a new job cancels the queued and running ones (meshing); otherwise jobs queue (exports).
  */
 export class JobRunner {
-  constructor({ supersede = false, onBusy = () => {}, onProgress = () => {} } = {}) {
+  constructor({ supersede = false, precompiled = true, onBusy = () => {}, onProgress = () => {} } = {}) {
     this.supersede = supersede;
+    this.precompiled = precompiled;  // false: each worker fetches and compiles the wasm itself (for comparison)
     this.onBusy = onBusy;
     this.onProgress = onProgress;
     this.pending = new Map();  // id -> { resolve, reject, op, started }
@@ -71,10 +72,13 @@ export class JobRunner {
       };
       worker.onerror = (e) => reject(new Error(e.message || 'worker failed to start'));
     });
-    compileCore().then(
-      (module) => worker.postMessage({ type: 'init', module }),
-      () => worker.postMessage({ type: 'init' }),  // no precompiled module: the worker fetches itself
-    );
+    if (!this.precompiled) worker.postMessage({ type: 'init' });
+    else {
+      compileCore().then(
+        (module) => worker.postMessage({ type: 'init', module }),
+        () => worker.postMessage({ type: 'init' }),  // no precompiled module: the worker fetches itself
+      );
+    }
   }
 
   #busyChanged() { this.onBusy(this.pending.size > 0); }

@@ -12,7 +12,6 @@ import { sourceOverlay } from './overlays.js';
 const BG = 0xf7f7f5;
 const FACE_PLAIN = [0.80, 0.85, 0.92];
 const HANDLE_PICK_PX = 12;
-const EDGES_HIDDEN_WHILE_ORBITING = 60000;
 
 export class Views {
   /**
@@ -61,7 +60,9 @@ export class Views {
     // makes three.js delete it, and recompiling costs ~100 ms per program on software WebGL.
     const line = (o) => new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, transparent: true, ...o });
     this.mats = {
-      face2: new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, depthTest: false }),
+      // All 2D materials are 'transparent' so that three.js draws them in one list ordered
+      // by the layers' renderOrder (opaque objects would otherwise go first, under the faces).
+      face2: new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, depthTest: false, transparent: true }),
       face3: new THREE.MeshLambertMaterial({
         vertexColors: true, side: THREE.DoubleSide, flatShading: true, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
       }),
@@ -69,10 +70,10 @@ export class Views {
       edgePlain2: line({ opacity: 0.55 }),
       edgeLength3: new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: 0.9 }),
       edgePlain3: new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: 0.45 }),
-      boundary2: line({ transparent: false }),
+      boundary2: line({}),
       boundary3: new THREE.LineBasicMaterial({ vertexColors: true }),
       csLines: new THREE.LineBasicMaterial({ color: 0x6a5acd, transparent: true, opacity: 0.35, depthTest: false }),
-      csEllipses: line({ transparent: false }),
+      csEllipses: line({}),
       srcShape: new THREE.LineBasicMaterial({ color: 0x2c3e50, depthTest: false, transparent: true, opacity: 0.85 }),
       srcShapeSel: new THREE.LineBasicMaterial({ color: 0xd35400, depthTest: false }),
       srcEllipse: new THREE.LineBasicMaterial({ color: 0xc0392b, depthTest: false, transparent: true, opacity: 0.85 }),
@@ -89,6 +90,7 @@ export class Views {
     this.controls.addEventListener('change', () => this.requestRender('3d'));
     // Large meshes: the edge lines cost more than the faces on software WebGL, so they
     // are hidden while the camera moves and come back when it stops.
+    this.hideEdgesAbove = 60000;  // edge count
     this.controls.addEventListener('start', () => this.#interacting(true));
     this.controls.addEventListener('end', () => this.#interacting(false));
 
@@ -211,7 +213,7 @@ export class Views {
   }
 
   #interacting(on) {
-    const hide = on && (this.edgeCount ?? 0) > EDGES_HIDDEN_WHILE_ORBITING;
+    const hide = on && (this.edgeCount ?? 0) > this.hideEdgesAbove;
     for (const o of this.group3.children) if (o.isLineSegments && o.userData.edges) o.visible = !hide;
     if (!on) this.requestRender('3d');
   }
@@ -308,9 +310,7 @@ export class Views {
     // Fade the mesh under the overlay so the ellipses read.
     const dim = Boolean(overlay && visible);
     const m = this.mats;
-    m.face2.transparent = dim;
     m.face2.opacity = dim ? 0.35 : 1;
-    m.face2.needsUpdate = true;
     m.edgeLength2.opacity = dim ? 0.3 : 0.95;
     m.edgePlain2.opacity = dim ? 0.2 : 0.55;
     if (!dim) { this.requestRender('2d'); return; }
@@ -449,6 +449,7 @@ export class Views {
     const route = (e) => { this.controls && (this.controls.enabled = this.#viewportAt(e.clientX, e.clientY) === '3d' && !drag); };
     el.addEventListener('pointerdown', (e) => {
       route(e);
+      el.focus({ preventScroll: true });  // for the Delete key
       if (this.#viewportAt(e.clientX, e.clientY) !== '2d' || e.button !== 0) return;
       const h = this.showSources ? this.#pickHandle(e.clientX, e.clientY) : null;
       el.setPointerCapture(e.pointerId);

@@ -204,3 +204,37 @@ test('a dimension-3 mesh (surface) renders in the 3D view, its (u, v) in the 2D 
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('the page keeps animating while the core meshes, and the toolbar shows the running job', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('point-source'));
+  const r = await page.evaluate(async () => {
+    const a = window.anisomeshApp;
+    // A finer case so that the job lasts long enough to watch.
+    a.state.case.sources[0].h0 = 0.0007;
+    a.state.case.controlSpace.hmin = 0.0007;
+    a.state.case.controlSpace.hmax = 0.012;
+    a.edited(0);
+    let frames = 0, busySeen = false, text = '';
+    const t0 = performance.now();
+    await new Promise((res) => {
+      const f = () => {
+        frames++;
+        if (!busySeen && !document.querySelector('#status .spinner').hidden) {
+          busySeen = true;
+          text = document.getElementById('status-text').textContent;
+        }
+        if (a.idle() && frames > 2) res(); else requestAnimationFrame(f);
+      };
+      requestAnimationFrame(f);
+    });
+    return { frames, ms: performance.now() - t0, busySeen, text, tris: a.state.lastStats.triangles };
+  });
+  assert.ok(r.busySeen, 'busy indicator shown');
+  assert.match(r.text, /(meshing|measuring)… \d+\.\d s/);
+  assert.ok(r.tris > 20000, `${r.tris} triangles`);
+  // The main thread is free during the job: frames keep coming (≥ 5 per second even on software WebGL).
+  assert.ok(r.frames >= Math.max(3, (r.ms / 1000) * 5), `${r.frames} frames in ${Math.round(r.ms)} ms`);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
