@@ -174,11 +174,16 @@ export function wrapCore(core) {
       if (maxElements !== undefined && !(Number.isInteger(maxElements) && maxElements > 0)) {
         throw argError('options.maxElements: expected a positive integer');
       }
-      for (const key of ['inspectControlSpace', 'quads', 'allQuads', 'controlSpaceUpdates']) {
+      for (const key of ['inspectControlSpace', 'vertexMetrics', 'quads', 'allQuads', 'controlSpaceUpdates']) {
         if (options[key] !== undefined && typeof options[key] !== 'boolean') throw argError(`options.${key}: expected a boolean`);
       }
       const r = unwrap(core.meshCase(caseText(c), options));
-      return { mesh: r.mesh, stats: JSON.parse(r.stats), controlSpace: r.controlSpace ? JSON.parse(r.controlSpace) : null };
+      return {
+        mesh: r.mesh,
+        stats: JSON.parse(r.stats),
+        controlSpace: r.controlSpace ? JSON.parse(r.controlSpace) : null,
+        vertexMetrics: r.vertexMetrics,
+      };
     },
     /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22). */
     remesh(mesh, metrics, options = {}) {

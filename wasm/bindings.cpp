@@ -242,6 +242,7 @@ val meshCaseJson(std::string jsonText, val options) {
   return guarded([&] {
     RunCaseOptions o;
     o.inspectControlSpace = options["inspectControlSpace"].isTrue();
+    o.vertexMetrics = options["vertexMetrics"].isTrue();
     if (options["quads"].isTrue() || options["quads"].isFalse()) o.quads = options["quads"].isTrue();
     if (options["allQuads"].isTrue() || options["allQuads"].isFalse()) o.allQuads = options["allQuads"].isTrue();
     if (options["maxElements"].isNumber()) o.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
@@ -254,6 +255,7 @@ val meshCaseJson(std::string jsonText, val options) {
     out.set("mesh", meshToJs(run.mesh));
     out.set("stats", run.stats.dump());
     out.set("controlSpace", o.inspectControlSpace && !run.controlSpace.is_null() ? val(run.controlSpace.dump()) : val::null());
+    out.set("vertexMetrics", run.vertexMetrics.empty() ? val::null() : typedCopy(run.vertexMetrics.data(), run.vertexMetrics.size()));
     return out;
   });
 }

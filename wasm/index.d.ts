@@ -87,6 +87,8 @@ export interface CaseResult {
   stats: MeshStats;
   /** The control space's nodes and cells (with inspectControlSpace), else null. */
   controlSpace: Record<string, unknown> | null;
+  /** Planar cases with vertexMetrics: the final control space's m11, m12, m22 at every vertex, else null. */
+  vertexMetrics: Float64Array | null;
 }
 
 /** A control space kept alive in the core: free it with dispose() (a FinalizationRegistry is only a safety net). */
@@ -106,6 +108,8 @@ export type MeshFormat = 'mesh' | 'vtk' | 'obj';
 export interface MeshCaseOptions {
   /** Also return the final control space's nodes and cells (planar cases). */
   inspectControlSpace?: boolean;
+  /** Also return the final control space's metric at every vertex (planar cases). */
+  vertexMetrics?: boolean;
   /** Override the case's options.quads / options.allQuads. */
   quads?: boolean;
   allQuads?: boolean;

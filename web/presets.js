@@ -2,11 +2,9 @@
 //
 // A preset is { id, label, group, surface, load() -> case object }.
 //   surface: false -> the case is meshed with meshCase (planar, mesh.dimension 2)
-//   surface: true  -> meshed with meshSurfaceCase (to come in the core; returns the same
-//                     mesh shape with dimension 3, shown in the 3D view and in the
-//                     parameter (u, v) plane of the 2D view).
-// To add a surface preset (p2 with holes, two-patch C, sphere, torus), append an entry
-// with group 'surface' and surface: true; nothing else in the app needs to change.
+//   surface: true  -> a surface case (examples/SURFACE_FORMAT.md), also meshed with
+//                     meshCase; the mesh has dimension 3 and is shown in the 3D view and
+//                     in the parameter (u, v) plane of the 2D view.
 
 const example = (file) => async () => {
   const r = await fetch(new URL(`../examples/${file}`, import.meta.url));
@@ -41,8 +39,11 @@ export const presets = [
       c.controlSpace.hmax = 0.012;
     }),
   },
-  // Surface presets go here (surface: true), e.g.
-  // { id: 'sphere', label: 'Sphere', group: 'surface', surface: true, load: example('sphere.json') },
+  { id: 'p2-holes', label: 'Surface p2 with holes (fig. 10)', group: 'surface', surface: true, load: example('surface/surface_p2_holes.json') },
+  { id: 'two-patch-c', label: 'Two patches, C contour, adapted (figs. 11-13)', group: 'surface', surface: true, load: example('surface/surface_two_patch_c.json') },
+  { id: 'two-patch-c-noadapt', label: 'Two patches, C contour, not adapted', group: 'surface', surface: true, load: example('surface/surface_two_patch_c_noadapt.json') },
+  { id: 'sphere', label: 'Sphere band', group: 'surface', surface: true, load: example('surface/surface_sphere.json') },
+  { id: 'torus', label: 'Torus', group: 'surface', surface: true, load: example('surface/surface_torus.json') },
 ];
 
 export const defaultPresetId = 'holes-dr2';

@@ -74,13 +74,10 @@ function sampledVtk(cs) {
   return out.join('\n') + '\n';
 }
 
-// Surface cases (dimension 3) come later through am.meshSurfaceCase with the same result shape.
+// meshCase takes planar and surface cases alike (a surface case has "patches"); only
+// planar runs export their control space.
 function runCase(c, surface) {
-  if (!surface) return am.meshCase(c, { inspectControlSpace: true });
-  if (typeof am.meshSurfaceCase !== 'function') {
-    throw Object.assign(new Error('this build of the core has no meshSurfaceCase (surface presets need it)'), { code: 'INVALID_ARGUMENT' });
-  }
-  return am.meshSurfaceCase(c, { inspectControlSpace: true });
+  return am.meshCase(c, { inspectControlSpace: !surface, vertexMetrics: !surface });
 }
 
 const ops = {
@@ -88,19 +85,15 @@ const ops = {
   mesh({ case: c, surface = false }, progress) {
     progress('meshing');
     const t0 = performance.now();
-    const { mesh, stats, controlSpace } = runCase(c, surface);
+    const { mesh, stats, controlSpace, vertexMetrics } = runCase(c, surface);
     const meshMs = performance.now() - t0;
     progress('measuring');
     let measures;
     if (!surface) {
-      const cs = am.createControlSpace(c);
-      try {
-        const tensors = cs.metricsAt(mesh.params);
-        measures = measure(mesh, mtFromTensors(tensors));
-        measures.vertexH = smallestSizes(tensors);
-      } finally {
-        cs.dispose();
-      }
+      // The final control space's metric at the vertices (after the section 3.2 updates),
+      // so the colours measure exactly what the report measures.
+      measures = measure(mesh, mtFromTensors(vertexMetrics));
+      measures.vertexH = smallestSizes(vertexMetrics);
     } else {
       // Surface metrics live on the surface: colours wait for the core to report them.
       measures = { edges: uniqueEdges(mesh.triangles, mesh.quads), edgeLength: null, quality: null, vertexH: null };

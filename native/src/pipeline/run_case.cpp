@@ -19,6 +19,13 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
     SurfaceMeshReport report;
     run.mesh = meshSurfaceCase(spec, &report);
     run.stats = surfaceMeshReportToJson(report);
+    // The keys every report has (planar reports carry the same), measured in 3D here.
+    const nlohmann::json& q = run.stats["quality3d"];
+    run.stats["quads"] = run.mesh.quads.size();
+    run.stats["inverted"] = q["inverted"];
+    run.stats["edgeLength"] = {{"min", q["edgeLengthMin"]}, {"mean", q["edgeLengthMean"]}, {"max", q["edgeLengthMax"]},
+                               {"fractionWithinSqrt2", q["edgesWithinSqrt2"]}};
+    run.stats["quality"] = {{"mean", q["qualityMean"]}, {"min", q["qualityMin"]}};
     return run;
   }
   CaseSpec spec = parseCaseJson(jsonText);
@@ -31,6 +38,15 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
   run.mesh = meshCase(spec, &report, updates, &run.finalSpace, options.progress);
   run.stats = pipelineStatsJson(run.mesh, *run.finalSpace, report);
   if (options.inspectControlSpace) run.controlSpace = controlSpaceToJson(*run.finalSpace);
+  if (options.vertexMetrics) {
+    // The metric the mesh was built for, so colourings match the report exactly.
+    run.vertexMetrics.reserve(3 * run.mesh.points.size());
+    for (size_t i = 0; i < run.mesh.points.size(); ++i) {
+      const Vec2 p = run.mesh.params.size() == run.mesh.points.size() ? run.mesh.params[i] : Vec2(run.mesh.points[i].head<2>());
+      const Mat2 m = run.finalSpace->metricAt(p).tensor();
+      run.vertexMetrics.insert(run.vertexMetrics.end(), {m(0, 0), m(0, 1), m(1, 1)});
+    }
+  }
   return run;
 }
 

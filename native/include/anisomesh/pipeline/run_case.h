@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -22,6 +23,7 @@ struct RunCaseOptions {
   std::int64_t maxElements = -1;     // > 0: overrides options.maxElements
   bool controlSpaceUpdates = true;   // planar: the section 3.2 update loop
   bool inspectControlSpace = false;  // also export the final control space (nodes, cells) as JSON
+  bool vertexMetrics = false;        // planar: also the final control space's metric at every vertex
   // Called with a fraction in [0, 1] while meshing; returning false cancels (ErrorCode::Cancelled).
   std::function<bool(double)> progress;
 };
@@ -31,6 +33,7 @@ struct CaseRun {
   Mesh mesh;
   nlohmann::json stats;                              // the --stats object
   nlohmann::json controlSpace;                       // null unless inspectControlSpace
+  std::vector<double> vertexMetrics;                 // m11, m12, m22 per vertex (RunCaseOptions::vertexMetrics)
   std::unique_ptr<AdaptiveControlSpace> finalSpace;  // planar: the control space meshed with
 };
 
