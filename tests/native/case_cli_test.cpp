@@ -15,7 +15,10 @@ struct CliRun {
   std::string out, err;
 };
 
-std::string tmp(const std::string& name) { return ::testing::TempDir() + "anisomesh_cli_" + name; }
+// Per-test file names: ctest runs tests of one file in parallel processes.
+std::string tmp(const std::string& name) {
+  return ::testing::TempDir() + "anisomesh_cli_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + name;
+}
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path);

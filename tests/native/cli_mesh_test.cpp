@@ -24,7 +24,10 @@ struct CliRun {
   std::string out, err;
 };
 
-std::string tmp(const std::string& name) { return ::testing::TempDir() + "anisomesh_climesh_" + name; }
+// Per-test file names: ctest runs tests of one file in parallel processes.
+std::string tmp(const std::string& name) {
+  return ::testing::TempDir() + "anisomesh_climesh_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + name;
+}
 std::string example(const std::string& name) { return std::string(ANISOMESH_SOURCE_DIR) + "/examples/" + name; }
 
 std::string slurp(const std::string& path) {
