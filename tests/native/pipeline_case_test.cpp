@@ -212,6 +212,20 @@ TEST(PipelineCase, CoarseCircleChordsWithinTolerance) {
   EXPECT_TRUE(report.updatesConverged);
 }
 
+TEST(PipelineCase, ShortSegmentsRefineTheStructureNearThem) {
+  // The bottom side has metric length 1.5: two segments of 0.75 < eps1.
+  const CaseSpec spec = parseCaseJson(R"({
+    "domain": {"outer": [{"type": "polyline", "points": [[0, 0], [0.15, 0], [0.15, 1], [0, 1], [0, 0]]}]},
+    "controlSpace": {"hmax": 0.1}})");
+  PipelineReport report;
+  const Mesh mesh = meshCase(spec, &report);
+  EXPECT_GT(report.shortSegments, 0);
+  EXPECT_GT(report.refinedElements, 0);
+  EXPECT_TRUE(report.updatesConverged);
+  EXPECT_EQ(report.updateRounds, 2);  // the refinement does not change the (uniform) metric
+  EXPECT_GT(mesh.triangles.size(), 10u);
+}
+
 TEST(PipelineCase, UpdateLoopTerminatesAndIsDeterministic) {
   PipelineReport a, b;
   const Mesh m1 = meshCase(narrowChannel(), &a);

@@ -2,6 +2,7 @@
 #include "anisomesh/pipeline/pipeline.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
