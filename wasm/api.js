@@ -213,10 +213,16 @@ export function wrapCore(core) {
       if (!(metrics instanceof Float64Array) || metrics.length % 3 !== 0) throw argError('metrics: expected a Float64Array of m11, m12, m22 per vertex');
       return unwrap(core.writeSol(metrics)).text;
     },
-    /** Parses an expression in u, v; returns its value at (u, v) or throws PARSE_ERROR with the column. */
-    evaluateExpression(text, u = 0, v = 0) {
+    /**
+     * Parses an expression in two variables (u, v, or the names in options.variables, e.g.
+     * ['x', 'y'] for planar size fields); returns its value there or throws PARSE_ERROR with the column.
+     */
+    evaluateExpression(text, u = 0, v = 0, { variables = ['u', 'v'] } = {}) {
       if (typeof text !== 'string') throw argError('text: expected a string');
-      return unwrap(core.checkExpression(text, u, v)).value;
+      if (!Array.isArray(variables) || variables.length !== 2 || !variables.every((n) => typeof n === 'string')) {
+        throw argError('options.variables: expected two names, e.g. ["x", "y"]');
+      }
+      return unwrap(core.checkExpression(text, u, v, variables[0], variables[1])).value;
     },
     /** Builds the control space of a case (its controlSpace, sources and domain); call dispose() when done. */
     createControlSpace(c) {

@@ -334,11 +334,14 @@ val remeshJs(val mesh, val metrics, val options) {
   });
 }
 
-// Checks an expression in u, v; returns its value at (u, v) or the parse error.
-val checkExpression(std::string text, double u, double v) {
+// Checks an expression in two variables (u, v unless renamed, e.g. x, y); returns its
+// value at (u, v) or the parse error.
+val checkExpression(std::string text, double u, double v, std::string uName, std::string vName) {
   return guarded([&] {
     ExpressionOptions o;
     o.name = "expression";
+    o.uName = uName;
+    o.vName = vName;
     const Expression e = Expression::parse(text, o);
     val out = val::object();
     out.set("value", e.value(u, v));

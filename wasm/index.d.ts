@@ -158,8 +158,8 @@ export interface Anisomesh {
   readSol(text: string, vertexCount: number): Float64Array;
   /** Writes per-vertex tensors (m11, m12, m22 each) as a Medit .sol. */
   writeSol(metrics: Float64Array): string;
-  /** Evaluates an expression in u, v (throws PARSE_ERROR naming the column on bad input). */
-  evaluateExpression(text: string, u?: number, v?: number): number;
+  /** Evaluates an expression in u, v or in options.variables (throws PARSE_ERROR naming the column on bad input). */
+  evaluateExpression(text: string, u?: number, v?: number, options?: { variables?: [string, string] }): number;
   /** Builds a case's control space (its controlSpace, sources and domain). */
   createControlSpace(c: Case | string): ControlSpace;
 }

@@ -434,7 +434,9 @@ function renderStats(s) {
     ['len in [1/√2, √2]', pct(el.fractionWithinSqrt2)], ['len in [0.6, 1.3]', pct(el['fractionWithin0.6_1.3'])],
     ['len min / mean', `${f3(el.min)} / ${f3(el.mean)}`], ['len max', f3(el.max)],
     ['Q min / mean', `${f3(q.min)} / ${f3(q.mean)}`], ['inverted, degen.', `${s.inverted ?? '–'}, ${s.degenerate ?? '–'}`],
-    ['core geometry', ms(s.secondsGeometry)], ['core meshing', ms(s.secondsMeshing)],
+    ...(s.pipelineSeconds
+      ? [['core control space', ms(s.pipelineSeconds.controlSpace + s.pipelineSeconds.boundaryUpdates)], ['core meshing', ms(s.pipelineSeconds.meshing)]]
+      : [['core total', ms(s.secondsTotal)], ['patches, rounds', `${s.patches ?? '–'}, ${s.rounds ?? '–'}`]]),
     ['job round trip', state.lastJob ? `${state.lastJob.totalMs} ms` : '…'], ['cancelled jobs', state.cancelled],
   ];
   if (s.notes?.length) rows.push(['core notes', s.notes.join('; ')]);
@@ -500,17 +502,20 @@ function firstEditableSource(c) {
 /** Replaces the case (preset, file or URL) and remeshes. */
 function setCase(c, { presetId = 'custom', selected = null, surface = null } = {}) {
   state.case = structuredClone(c);
-  state.case.controlSpace ??= { hmax: 0.1 };
   state.presetId = presetId;
-  state.surface = surface ?? Boolean(presetById(presetId)?.surface);
+  state.surface = surface ?? (Boolean(presetById(presetId)?.surface) || Array.isArray(c.patches));
+  // Planar cases carry a control space section; surface cases have their own "metric" options.
+  if (!state.surface) state.case.controlSpace ??= { hmax: 0.1 };
   const first = firstEditableSource(state.case);
   state.selected = selected ?? (first >= 0 ? first : (state.case.sources?.length ? 0 : -1));
-  if (state.case.controlSpace.gradation != null) state.lastDr = state.case.controlSpace.gradation;
+  if (!state.surface && state.case.controlSpace.gradation != null) state.lastDr = state.case.controlSpace.gradation;
   $('preset').value = presetId;
-  $('domain-json').value = domainText(state.case.domain);
+  showEditable();
+  // The planar controls edit fields that surface cases do not have.
+  for (const folder of [fCs, fOpt, fSrc]) folder.show(!state.surface);
   rebuildSourceGui();
   gui.controllersRecursive().forEach((ctrl) => ctrl.updateDisplay());
-  controllers.get('gradation').disable(state.case.controlSpace.gradation == null);
+  controllers.get('gradation').disable(state.surface || state.case.controlSpace.gradation == null);
   needsFit = true;
   clearErrors();
   edited(0);
@@ -618,6 +623,14 @@ function domainText(d) {
     .replace(/\[\s+((?:\[[^[\]]*\],?\s*)+)\]/g, (m, inner) => `[${inner.replace(/\s+/g, '')}]`);
 }
 
+// The editable JSON part of the case: the planar domain (contour and holes), or a surface
+// case's patches (surfaces with their expressions, trimming contours, sources).
+const editableKey = () => (state.surface ? 'patches' : 'domain');
+function showEditable() {
+  $('domain-box').querySelector('summary').textContent = state.surface ? 'Surface patches (JSON)' : 'Domain (JSON)';
+  $('domain-json').value = domainText(state.case[editableKey()]);
+}
+
 // Domain as editable JSON (a self-intersecting contour etc. is reported below the box).
 $('domain-apply').addEventListener('click', () => {
   let d;
@@ -628,19 +641,36 @@ $('domain-apply').addEventListener('click', () => {
     showError('domain', `JSON: ${e.message}`);
     return;
   }
-  state.case.domain = d;
+  state.case[editableKey()] = d;
   needsFit = true;
   edited(0);
 });
-$('domain-reset').addEventListener('click', () => { $('domain-json').value = domainText(state.case.domain); });
+$('domain-reset').addEventListener('click', showEditable);
 
-// Analytic expression (placeholder until the case format has an expression source).
+// Analytic size field: an "expression" source of the case, kept in sync with the box.
+// The box's source is the isotropic expression source holding the text last applied from it.
+const isExprSource = (s) => s.type === 'analytic' && s.field === 'expression' && s.h2 === undefined &&
+  s.alpha === undefined && s.h1 === state.exprApplied;
+function setExpressionSource(text) {
+  const sources = (state.case.sources ??= []);
+  const i = state.exprApplied ? sources.findIndex(isExprSource) : -1;
+  if (i >= 0 && !text) sources.splice(i, 1);
+  else if (i >= 0) sources[i].h1 = text;
+  else if (text) sources.push({ type: 'analytic', field: 'expression', h1: text });
+  state.exprApplied = text || null;
+}
 let exprSeq = 0;
 async function checkExpression(text) {
   state.view.expression = text;
   const msg = $('expr-msg');
   const seq = ++exprSeq;
-  if (!text.trim()) { msg.hidden = true; state.expressionError = null; saveUrlSoon(); return; }
+  if (!text.trim()) {
+    msg.hidden = true;
+    state.expressionError = null;
+    if (state.case && !state.surface && (state.case.sources ?? []).some(isExprSource)) { setExpressionSource(''); edited(0); }
+    saveUrlSoon();
+    return;
+  }
   const [x0, y0, x1, y1] = domainBounds();
   const u = (x0 + x1) / 2, v = (y0 + y1) / 2;
   try {
@@ -650,6 +680,7 @@ async function checkExpression(text) {
     msg.classList.toggle('error', !(result > 0));
     if (!(result > 0)) msg.textContent += ' — a size must be positive';
     state.expressionError = result > 0 ? null : { code: 'INVALID_ARGUMENT', message: msg.textContent };
+    if (result > 0 && !state.surface) { setExpressionSource(text.trim()); edited(); }
   } catch (e) {
     if (seq !== exprSeq) return;
     msg.textContent = `${e.code}: ${e.message}`;

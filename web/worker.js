@@ -117,7 +117,7 @@ const ops = {
   },
   // Value of an expression at (u, v) or a PARSE_ERROR naming the column.
   checkExpression({ text, u = 0, v = 0 }) {
-    return am.evaluateExpression(text, u, v);
+    return am.evaluateExpression(text, u, v, { variables: ['x', 'y'] });
   },
   readMesh({ text, format }) {
     return am.readMesh(text, format);
