@@ -23,6 +23,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 namespace anisomesh::pm {
 
@@ -31,6 +32,61 @@ namespace detail {
 struct DD {
   double hi, lo;
 };
+
+// Exact helpers on the binary representation (same results as std::frexp /
+// std::ldexp, which are exact, but inlined: the libm calls cost more than the
+// arithmetic they wrap).
+inline std::uint64_t toBits(double x) {
+  std::uint64_t u;
+  std::memcpy(&u, &x, sizeof u);
+  return u;
+}
+inline double fromBits(std::uint64_t u) {
+  double x;
+  std::memcpy(&x, &u, sizeof x);
+  return x;
+}
+// 2^k for k in [-1022, 1023].
+inline double pow2i(int k) { return fromBits(static_cast<std::uint64_t>(k + 1023) << 52); }
+// x * 2^k with a single rounding (like std::ldexp).
+inline double scale(double x, int k) {
+  if (k > 1023) {
+    x *= 0x1p1023;
+    k -= 1023;
+    if (k > 1023) {
+      x *= 0x1p1023;
+      k -= 1023;
+      if (k > 1023) k = 1023;
+    }
+  } else if (k < -1022) {
+    // Scale in steps of 2^-969 = 2^-1022 * 2^53 so that only the last step can round.
+    x *= 0x1p-969;
+    k += 969;
+    if (k < -1022) {
+      x *= 0x1p-969;
+      k += 969;
+      if (k < -1022) k = -1022;
+    }
+  }
+  return x * pow2i(k);
+}
+// Like std::frexp: x = m * 2^e, |m| in [0.5, 1); 0, inf, NaN returned as is (e = 0).
+inline double frexpBits(double x, int* e) {
+  std::uint64_t u = toBits(x);
+  int ex = static_cast<int>((u >> 52) & 0x7ff);
+  if (ex == 0x7ff || x == 0.0) {
+    *e = 0;
+    return x;
+  }
+  int adj = 0;
+  if (ex == 0) {  // subnormal
+    u = toBits(x * 0x1p54);
+    ex = static_cast<int>((u >> 52) & 0x7ff);
+    adj = 54;
+  }
+  *e = ex - 1022 - adj;
+  return fromBits((u & ~(0x7ffULL << 52)) | (0x3feULL << 52));
+}
 
 // s + e == a + b exactly.
 inline DD twoSum(double a, double b) {
@@ -132,7 +188,7 @@ inline double expKernel(double xh, double xl) {
   double rh, rl;
   const double k = expReduce(xh, xl, rh, rl);
   const double p = 1.0 + (rh + (expTail(rh) + rl * (1.0 + rh)));
-  return std::ldexp(p, static_cast<int>(k));
+  return scale(p, static_cast<int>(k));
 }
 
 // expm1(x) as double-double for |x| < ~50 (internal helper for sinh/cosh/tanh).
@@ -144,16 +200,28 @@ inline DD expm1DD(double x) {
   DD one = twoSum(1.0, e.hi);
   one.lo += e.lo;
   const int ki = static_cast<int>(k);
-  DD s = twoSum(std::ldexp(one.hi, ki), -1.0);
-  s.lo += std::ldexp(one.lo, ki);
+  DD s = twoSum(scale(one.hi, ki), -1.0);
+  s.lo += scale(one.lo, ki);
   return fastTwoSum(s.hi, s.lo);
 }
 
 // sin(r + rl) / cos(r + rl) as double-double, |r| <= ~pi/4.
+// sum_{n>=1} 2 z^n / (2n+1) for z = s^2 <= 0.0295 (log(1+f) = 2s + s * series).
+inline double logSeries(double z) {
+  return z * (2.0 / 3 +
+              z * (2.0 / 5 +
+                   z * (2.0 / 7 +
+                        z * (2.0 / 9 +
+                             z * (2.0 / 11 +
+                                  z * (2.0 / 13 +
+                                       z * (2.0 / 15 +
+                                            z * (2.0 / 17 + z * (2.0 / 19 + z * (2.0 / 21 + z * (2.0 / 23)))))))))));
+}
+
 // log(x) as double-double for finite x > 0 (internal; ~2^-62 relative).
 inline DD logDD(double x) {
   int e;
-  double m = std::frexp(x, &e);  // m in [0.5,1)
+  double m = frexpBits(x, &e);  // m in [0.5,1)
   if (m < 0.70710678118654752) {
     m *= 2.0;
     --e;
@@ -267,14 +335,19 @@ inline DD atanDD(double u, double ul) {
 
 // Quotient a / b (a, b > 0 finite) as double-double, safe for any range.
 inline DD divDD(double a, double b) {
+  if (a > 0x1p-400 && a < 0x1p400 && b > 0x1p-400 && b < 0x1p400) {
+    const double q = a / b;
+    const DD p = twoProd(q, b);
+    return {q, ((a - p.hi) - p.lo) / b};
+  }
   int ea, eb;
-  const double ma = std::frexp(a, &ea);
-  const double mb = std::frexp(b, &eb);
+  const double ma = frexpBits(a, &ea);
+  const double mb = frexpBits(b, &eb);
   const double q = ma / mb;
   const DD p = twoProd(q, mb);
   const double ql = ((ma - p.hi) - p.lo) / mb;
   const int s = ea - eb;
-  return {std::ldexp(q, s), std::ldexp(ql, s)};
+  return {scale(q, s), scale(ql, s)};
 }
 
 // sqrt(1 - x*x) for |x| < 1 as double-double.
@@ -357,7 +430,7 @@ inline bool isOddInteger(double y) {
 // |x|^n for integer n in [1, 64], x finite nonzero, via double-double squaring.
 inline double powInt(double x, int n, bool negative) {
   int e;
-  const double m = std::frexp(std::fabs(x), &e);  // [0.5, 1)
+  const double m = frexpBits(std::fabs(x), &e);  // [0.5, 1)
   DD acc{1.0, 0.0};
   DD b{m, 0.0};
   int k = n;
@@ -379,7 +452,7 @@ inline double powInt(double x, int n, bool negative) {
   const double v = acc.hi + acc.lo;
   if (sc > 4000) sc = 4000;
   if (sc < -4000) sc = -4000;
-  return std::ldexp(v, static_cast<int>(sc));
+  return scale(v, static_cast<int>(sc));
 }
 
 }  // namespace detail
@@ -393,7 +466,7 @@ inline double log(double x) {
   }
   if (std::isinf(x)) return x;
   int e;
-  double m = std::frexp(x, &e);
+  double m = detail::frexpBits(x, &e);
   if (m < 0.70710678118654752) {
     m *= 2.0;
     --e;
@@ -401,16 +474,7 @@ inline double log(double x) {
   const double f = m - 1.0;
   const double s = f / (2.0 + f);
   const double z = s * s;
-  const double r =
-      z * (2.0 / 3 +
-           z * (2.0 / 5 +
-                z * (2.0 / 7 +
-                     z * (2.0 / 9 +
-                          z * (2.0 / 11 +
-                               z * (2.0 / 13 +
-                                    z * (2.0 / 15 +
-                                         z * (2.0 / 17 +
-                                              z * (2.0 / 19 + z * (2.0 / 21 + z * (2.0 / 23)))))))))));
+  const double r = detail::logSeries(z);
   const double hfsq = 0.5 * f * f;
   const double ed = static_cast<double>(e);
   return ed * detail::kLn2Hi + (f - (hfsq - (s * (hfsq + r) + ed * detail::kLn2Lo)));
@@ -423,16 +487,25 @@ inline double log2(double x) {
   }
   if (std::isinf(x)) return x;
   int e;
-  double m = std::frexp(x, &e);
+  double m = detail::frexpBits(x, &e);
   if (m < 0.70710678118654752) {
     m *= 2.0;
     --e;
   }
-  const detail::DD l = detail::logDD(m);
-  detail::DD p = detail::twoProd(l.hi, detail::kInvLn2);
-  p.lo += l.hi * detail::kInvLn2Lo + l.lo * detail::kInvLn2;
-  detail::DD s = detail::twoSum(static_cast<double>(e), p.hi);
-  return s.hi + (s.lo + p.lo);
+  // log(1+f) = hi + lo with hi truncated to 21 bits so that hi * kIvHi (33 bits) is exact.
+  const double f = m - 1.0;
+  const double s = f / (2.0 + f);
+  const double z = s * s;
+  const double r = detail::logSeries(z);
+  const double hfsq = 0.5 * f * f;
+  const double hi = detail::fromBits(detail::toBits(f - hfsq) & 0xffffffff00000000ULL);
+  const double lo = ((f - hi) - hfsq) + s * (hfsq + r);
+  constexpr double kIvHi = 0x1.7154765200000p+0, kIvLo = 0x1.705fc2eefa200p-33;
+  const double vhi = hi * kIvHi;
+  const double vlo = (lo + hi) * kIvLo + lo * kIvHi;
+  const double ed = static_cast<double>(e);
+  const double w = ed + vhi;  // |ed| >= 1 > |vhi| unless ed == 0 (then exact)
+  return w + (vlo + ((ed - w) + vhi));
 }
 
 inline double sin(double x) {
@@ -598,12 +671,14 @@ inline double hypot(double x, double y) {
   }
   if (b == 0.0) return a;
   if (a > 0x1p60 * b) return a + b;
-  int e;
-  std::frexp(a, &e);
-  // Scale so that a is in [0.5, 1): products stay far from overflow/underflow
-  // (b >= a * 2^-60).
-  a = std::ldexp(a, -e);
-  b = std::ldexp(b, -e);
+  int e = 0;
+  if (a > 0x1p450 || b < 0x1p-450) {
+    // Scale so that a is in [0.5, 1): products stay far from overflow/underflow
+    // (b >= a * 2^-60).  Exact.
+    detail::frexpBits(a, &e);
+    a = detail::scale(a, -e);
+    b = detail::scale(b, -e);
+  }
   const detail::DD a2 = detail::twoProd(a, a);
   const detail::DD b2 = detail::twoProd(b, b);
   detail::DD s = detail::twoSum(a2.hi, b2.hi);
@@ -612,7 +687,7 @@ inline double hypot(double x, double y) {
   const double r = std::sqrt(s.hi);
   const detail::DD rr = detail::twoProd(r, r);
   const double rl = ((s.hi - rr.hi) - rr.lo + s.lo) / (2.0 * r);
-  return std::ldexp(r + rl, e);
+  return e == 0 ? r + rl : detail::scale(r + rl, e);
 }
 
 inline double pow(double x, double y) {
