@@ -311,3 +311,52 @@ TEST(PortableMath, ExactSmallResults) {
   EXPECT_EQ(pm::pow(4.0, 0.5), 2.0);
   EXPECT_EQ(pm::atan(1.0), std::atan(1.0));
 }
+
+// Golden bit patterns: FNV-1a hash of the results over fixed inputs generated
+// without libm.  The same values were obtained from the wasm (Emscripten/musl)
+// build.  A change here means the results changed bitwise: an edit of
+// portable_math.h, or a compiler contracting a*b+c into FMA (-march=native,
+// -mfma, -ffast-math), which breaks native/wasm reproducibility.
+namespace {
+double lcgUniform(uint64_t& s, double lo, double hi) {
+  s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+  return lo + (hi - lo) * (static_cast<double>(s >> 11) * 0x1p-53);
+}
+uint64_t hash1(double (*f)(double), double lo, double hi, bool positive) {
+  uint64_t s = 12345, h = 1469598103934665603ULL;
+  for (int i = 0; i < 20000; ++i) {
+    double x = (i % 2 == 0) ? lcgUniform(s, lo, hi) : lcgUniform(s, -4, 4);
+    if (positive) x = std::fabs(x);
+    h = (h ^ bits(f(x))) * 1099511628211ULL;
+  }
+  return h;
+}
+uint64_t hash2(double (*f)(double, double), double lo, double hi, double lo2, double hi2) {
+  uint64_t s = 777, h = 1469598103934665603ULL;
+  for (int i = 0; i < 20000; ++i) {
+    const double x = lcgUniform(s, lo, hi);
+    double y = lcgUniform(s, lo2, hi2);
+    if (i % 4 == 0) y = std::floor(y);
+    h = (h ^ bits(f(i % 7 == 0 ? -x : x, y))) * 1099511628211ULL;
+  }
+  return h;
+}
+}  // namespace
+
+TEST(PortableMath, GoldenHashes) {
+  EXPECT_EQ(hash1(pm::exp, -745, 710, false), 0x76bb6c3100f0e91fULL);
+  EXPECT_EQ(hash1(pm::log, 0, 1e300, true), 0xbe73aecccc5bd46dULL);
+  EXPECT_EQ(hash1(pm::log2, 0, 1e300, true), 0xa9a79b5ada756d95ULL);
+  EXPECT_EQ(hash1(pm::sin, -1e6, 1e6, false), 0xfc0249b0cda0952cULL);
+  EXPECT_EQ(hash1(pm::cos, -1e6, 1e6, false), 0xc99eb13c8adca303ULL);
+  EXPECT_EQ(hash1(pm::tan, -1e6, 1e6, false), 0x2af425b336e89558ULL);
+  EXPECT_EQ(hash1(pm::atan, -1e6, 1e6, false), 0x5fef2c791c56fbd2ULL);
+  EXPECT_EQ(hash1(pm::asin, -1, 1, false), 0x3f6421567cdbfa2cULL);
+  EXPECT_EQ(hash1(pm::acos, -1, 1, false), 0x4b7c26acb2ee22ceULL);
+  EXPECT_EQ(hash1(pm::sinh, -720, 720, false), 0xb2514f44662df6f7ULL);
+  EXPECT_EQ(hash1(pm::cosh, -720, 720, false), 0xd909dc5bb79a6a62ULL);
+  EXPECT_EQ(hash1(pm::tanh, -25, 25, false), 0xbdc9ec46e7d3aed1ULL);
+  EXPECT_EQ(hash2(pm::atan2, -1e3, 1e3, -1e3, 1e3), 0x120bf64c1cf6f584ULL);
+  EXPECT_EQ(hash2(pm::hypot, -1e200, 1e200, -1e3, 1e3), 0xd68ecb2d80818085ULL);
+  EXPECT_EQ(hash2(pm::pow, 0, 20, -40, 40), 0x29bfe329cda70720ULL);
+}
