@@ -5,6 +5,7 @@
 #include <string>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/portable_math.h"
 
 namespace anisomesh {
 namespace {
@@ -28,7 +29,7 @@ bool isZeroLength(const Vec2& a, const Vec2& b) {
 double pointBoxDistance(const Vec2& p, const Box2& box) {
   const double dx = std::max({box.lo.x() - p.x(), 0.0, p.x() - box.hi.x()});
   const double dy = std::max({box.lo.y() - p.y(), 0.0, p.y() - box.hi.y()});
-  return std::hypot(dx, dy);
+  return pm::hypot(dx, dy);
 }
 
 // Liang-Barsky: does segment ab meet the box?

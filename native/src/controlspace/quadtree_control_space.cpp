@@ -320,7 +320,7 @@ void QuadtreeControlSpace::rebuildConstraints() const {
     }
   }
   // Coarser sides first: a master may itself hang on an even coarser side (bilinear).
-  std::sort(constraints_.begin(), constraints_.end(), [](const Constraint& a, const Constraint& b) {
+  std::stable_sort(constraints_.begin(), constraints_.end(), [](const Constraint& a, const Constraint& b) {
     return a.level != b.level ? a.level < b.level : a.node < b.node;
   });
   for (const auto& k : constraints_) flags[k.node] |= kDependent;

@@ -6,6 +6,7 @@
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/geometry/quadrature.h"
+#include "anisomesh/core/portable_math.h"
 
 namespace anisomesh {
 namespace {
@@ -53,7 +54,7 @@ ArcCurve ArcCurve::throughPoints(const Vec2& a, const Vec2& b, const Vec2& c, in
                  (ab.x() * ac.squaredNorm() - ac.x() * ab.squaredNorm()) / d);
   const Vec2 center = a + off;
   const double r = off.norm();
-  auto ang = [&](const Vec2& p) { return std::atan2(p.y() - center.y(), p.x() - center.x()); };
+  auto ang = [&](const Vec2& p) { return pm::atan2(p.y() - center.y(), p.x() - center.x()); };
   const double a0 = ang(a);
   // Sweep from a to c counter-clockwise when b lies left of a->c turn order (d > 0).
   double sweepB = ang(b) - a0, sweepC = ang(c) - a0;
@@ -73,17 +74,17 @@ ArcCurve ArcCurve::circle(const Vec2& center, double radius, int ref) {
 
 Vec2 ArcCurve::point(double t) const {
   const double a = a0_ + t * (a1_ - a0_);
-  return center_ + radius_ * Vec2(std::cos(a), std::sin(a));
+  return center_ + radius_ * Vec2(pm::cos(a), pm::sin(a));
 }
 
 Vec2 ArcCurve::derivative(double t) const {
   const double a = a0_ + t * (a1_ - a0_), w = a1_ - a0_;
-  return radius_ * w * Vec2(-std::sin(a), std::cos(a));
+  return radius_ * w * Vec2(-pm::sin(a), pm::cos(a));
 }
 
 Vec2 ArcCurve::secondDerivative(double t) const {
   const double a = a0_ + t * (a1_ - a0_), w = a1_ - a0_;
-  return -radius_ * w * w * Vec2(std::cos(a), std::sin(a));
+  return -radius_ * w * w * Vec2(pm::cos(a), pm::sin(a));
 }
 
 double ArcCurve::length() const { return radius_ * std::abs(a1_ - a0_); }

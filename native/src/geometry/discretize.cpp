@@ -115,6 +115,10 @@ std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const
                                                          const ControlSpace& cs, const DiscretizeOptions& options) {
   // Minimum segment count per curve: a closed contour must have at least 3 segments.
   std::map<const Curve*, int> minimum;
+  // Curves in order of first use: iterating `minimum` would follow heap addresses,
+  // which differ between runs and platforms, and the query cache of the control
+  // space makes metric queries depend on their order.
+  std::vector<const Curve*> curveOrder;
   auto contoursOf = [](const Domain& d) {
     std::vector<const Contour*> cs{&d.outer};
     for (const Contour& h : d.holes) cs.push_back(&h);
@@ -124,7 +128,11 @@ std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const
     for (const Contour* contour : contoursOf(*face)) {
       const int n = int(contour->curves.size());
       const int need = n == 1 ? options.minSegmentsClosedCurve : n == 2 ? 2 : 1;
-      for (const CurveUse& u : contour->curves) minimum[u.curve.get()] = std::max(minimum[u.curve.get()], need);
+      for (const CurveUse& u : contour->curves) {
+        const Curve* c = u.curve.get();
+        if (!minimum.count(c)) curveOrder.push_back(c);
+        minimum[c] = std::max(minimum[c], need);
+      }
     }
 
   std::map<const Curve*, std::vector<Vec2>> points;  // discretized once, shared by every use
@@ -140,7 +148,7 @@ std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const
             "the contour discretization exceeds the budget of " + std::to_string(options.maxSegments) +
                 " boundary segments");
   };
-  for (const auto& entry : minimum) discretizeOne(entry.first);
+  for (const Curve* c : curveOrder) discretizeOne(c);
   checkBudget();
 
   // Chained points of one contour, and the curve of each of its segments.

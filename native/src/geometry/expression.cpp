@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/portable_math.h"
 
 namespace anisomesh {
 
@@ -54,19 +55,19 @@ double applyScalar(Op op, double a, double b) {
     case Op::Sub: return a - b;
     case Op::Mul: return a * b;
     case Op::Div: return a / b;
-    case Op::Pow: case Op::PowConst: return std::pow(a, b);
-    case Op::Sin: return std::sin(a);
-    case Op::Cos: return std::cos(a);
-    case Op::Tan: return std::tan(a);
-    case Op::Asin: return std::asin(a);
-    case Op::Acos: return std::acos(a);
-    case Op::Atan: return std::atan(a);
-    case Op::Atan2: return std::atan2(a, b);
-    case Op::Sinh: return std::sinh(a);
-    case Op::Cosh: return std::cosh(a);
-    case Op::Tanh: return std::tanh(a);
-    case Op::Exp: return std::exp(a);
-    case Op::Log: return std::log(a);
+    case Op::Pow: case Op::PowConst: return pm::pow(a, b);
+    case Op::Sin: return pm::sin(a);
+    case Op::Cos: return pm::cos(a);
+    case Op::Tan: return pm::tan(a);
+    case Op::Asin: return pm::asin(a);
+    case Op::Acos: return pm::acos(a);
+    case Op::Atan: return pm::atan(a);
+    case Op::Atan2: return pm::atan2(a, b);
+    case Op::Sinh: return pm::sinh(a);
+    case Op::Cosh: return pm::cosh(a);
+    case Op::Tanh: return pm::tanh(a);
+    case Op::Exp: return pm::exp(a);
+    case Op::Log: return pm::log(a);
     case Op::Sqrt: return std::sqrt(a);
     case Op::Abs: return std::abs(a);
     case Op::Min: return a <= b ? a : b;
@@ -110,19 +111,19 @@ inline bool isConstantDual(const Dual2& a) {
 // a^c for a constant exponent: defined for negative a when c is an integer.
 inline Dual2 powConst(const Dual2& a, double c) {
   if (c == 2.0) return chain1(a, a.f * a.f, 2.0 * a.f, 2.0);
-  const double g1 = c == 0.0 ? 0.0 : c * std::pow(a.f, c - 1.0);
-  const double g2 = (c == 0.0 || c == 1.0) ? 0.0 : c * (c - 1.0) * std::pow(a.f, c - 2.0);
-  return chain1(a, std::pow(a.f, c), g1, g2);
+  const double g1 = c == 0.0 ? 0.0 : c * pm::pow(a.f, c - 1.0);
+  const double g2 = (c == 0.0 || c == 1.0) ? 0.0 : c * (c - 1.0) * pm::pow(a.f, c - 2.0);
+  return chain1(a, pm::pow(a.f, c), g1, g2);
 }
 
 // a^b in general: through exp(b log a), so it needs a > 0 unless b or a is constant.
 inline Dual2 powDual(const Dual2& a, const Dual2& b) {
   if (isConstantDual(b)) return powConst(a, b.f);
-  const double f = std::pow(a.f, b.f);
-  const double la = std::log(a.f);
+  const double f = pm::pow(a.f, b.f);
+  const double la = pm::log(a.f);
   if (isConstantDual(a)) return chain1(b, f, f * la, f * la * la);
-  const double p1 = std::pow(a.f, b.f - 1.0);
-  return chain2(a, b, f, b.f * p1, f * la, b.f * (b.f - 1.0) * std::pow(a.f, b.f - 2.0),
+  const double p1 = pm::pow(a.f, b.f - 1.0);
+  return chain2(a, b, f, b.f * p1, f * la, b.f * (b.f - 1.0) * pm::pow(a.f, b.f - 2.0),
                 p1 * (1.0 + b.f * la), f * la * la);
 }
 
@@ -130,23 +131,23 @@ inline Dual2 unaryDual(Op op, const Dual2& a) {
   const double x = a.f;
   switch (op) {
     case Op::Neg: return chain1(a, -x, -1.0, 0.0);
-    case Op::Sin: { const double s = std::sin(x), c = std::cos(x); return chain1(a, s, c, -s); }
-    case Op::Cos: { const double s = std::sin(x), c = std::cos(x); return chain1(a, c, -s, -c); }
-    case Op::Tan: { const double t = std::tan(x), g1 = 1.0 + t * t; return chain1(a, t, g1, 2.0 * t * g1); }
+    case Op::Sin: { const double s = pm::sin(x), c = pm::cos(x); return chain1(a, s, c, -s); }
+    case Op::Cos: { const double s = pm::sin(x), c = pm::cos(x); return chain1(a, c, -s, -c); }
+    case Op::Tan: { const double t = pm::tan(x), g1 = 1.0 + t * t; return chain1(a, t, g1, 2.0 * t * g1); }
     case Op::Asin: {
       const double g1 = 1.0 / std::sqrt(1.0 - x * x);
-      return chain1(a, std::asin(x), g1, x * g1 * g1 * g1);
+      return chain1(a, pm::asin(x), g1, x * g1 * g1 * g1);
     }
     case Op::Acos: {
       const double g1 = 1.0 / std::sqrt(1.0 - x * x);
-      return chain1(a, std::acos(x), -g1, -x * g1 * g1 * g1);
+      return chain1(a, pm::acos(x), -g1, -x * g1 * g1 * g1);
     }
-    case Op::Atan: { const double g1 = 1.0 / (1.0 + x * x); return chain1(a, std::atan(x), g1, -2.0 * x * g1 * g1); }
-    case Op::Sinh: return chain1(a, std::sinh(x), std::cosh(x), std::sinh(x));
-    case Op::Cosh: return chain1(a, std::cosh(x), std::sinh(x), std::cosh(x));
-    case Op::Tanh: { const double t = std::tanh(x), g1 = 1.0 - t * t; return chain1(a, t, g1, -2.0 * t * g1); }
-    case Op::Exp: { const double e = std::exp(x); return chain1(a, e, e, e); }
-    case Op::Log: return chain1(a, std::log(x), 1.0 / x, -1.0 / (x * x));
+    case Op::Atan: { const double g1 = 1.0 / (1.0 + x * x); return chain1(a, pm::atan(x), g1, -2.0 * x * g1 * g1); }
+    case Op::Sinh: return chain1(a, pm::sinh(x), pm::cosh(x), pm::sinh(x));
+    case Op::Cosh: return chain1(a, pm::cosh(x), pm::sinh(x), pm::cosh(x));
+    case Op::Tanh: { const double t = pm::tanh(x), g1 = 1.0 - t * t; return chain1(a, t, g1, -2.0 * t * g1); }
+    case Op::Exp: { const double e = pm::exp(x); return chain1(a, e, e, e); }
+    case Op::Log: return chain1(a, pm::log(x), 1.0 / x, -1.0 / (x * x));
     case Op::Sqrt: { const double s = std::sqrt(x); return chain1(a, s, 0.5 / s, -0.25 / (s * x)); }
     case Op::Abs: return chain1(a, std::abs(x), x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0), 0.0);
     default: return a;
@@ -165,7 +166,7 @@ inline Dual2 binaryDual(Op op, const Dual2& a, const Dual2& b) {
     case Op::Pow: return powDual(a, b);
     case Op::Atan2: {
       const double y = a.f, x = b.f, r2 = x * x + y * y, ir4 = 1.0 / (r2 * r2);
-      return chain2(a, b, std::atan2(y, x), x / r2, -y / r2, -2.0 * x * y * ir4, (y * y - x * x) * ir4,
+      return chain2(a, b, pm::atan2(y, x), x / r2, -y / r2, -2.0 * x * y * ir4, (y * y - x * x) * ir4,
                     2.0 * x * y * ir4);
     }
     case Op::Min: return a.f <= b.f ? a : b;
@@ -431,7 +432,7 @@ class ExpressionCompiler {
     if (name == uName_) return push(Op::U);
     if (name == vName_) return push(Op::V);
     if (name == "pi") return pushConst(3.14159265358979323846);
-    if (name == "e") return pushConst(std::exp(1.0));
+    if (name == "e") return pushConst(pm::exp(1.0));
     for (size_t i = 0; i < e_.paramNames_.size(); ++i)
       if (e_.paramNames_[i] == name) return push(Op::Param, static_cast<std::int32_t>(i));
     std::string known = uName_ + ", " + vName_ + ", pi, e";
@@ -495,7 +496,7 @@ double Expression::value(double u, double v) const {
       case Op::Param: stack[++top] = paramValues_[in.arg]; break;
       case Op::PowConst: {
         const double c = constants_[in.arg];
-        stack[top] = c == 2.0 ? stack[top] * stack[top] : std::pow(stack[top], c);
+        stack[top] = c == 2.0 ? stack[top] * stack[top] : pm::pow(stack[top], c);
         break;
       }
       default:

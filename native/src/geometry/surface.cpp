@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/portable_math.h"
 
 namespace anisomesh {
 
@@ -118,11 +119,11 @@ CylinderSurface::CylinderSurface(double radius, const Vec3& center, const Box2& 
 }
 
 Vec3 CylinderSurface::point(const Vec2& uv) const {
-  return c_ + Vec3(r_ * std::cos(uv.x()), r_ * std::sin(uv.x()), uv.y());
+  return c_ + Vec3(r_ * pm::cos(uv.x()), r_ * pm::sin(uv.x()), uv.y());
 }
 
 SurfaceDerivatives CylinderSurface::derivatives(const Vec2& uv) const {
-  const double cu = std::cos(uv.x()), su = std::sin(uv.x());
+  const double cu = pm::cos(uv.x()), su = pm::sin(uv.x());
   SurfaceDerivatives d;
   d.p = c_ + Vec3(r_ * cu, r_ * su, uv.y());
   d.su = Vec3(-r_ * su, r_ * cu, 0);
@@ -142,12 +143,12 @@ SphereSurface::SphereSurface(double radius, const Vec3& center, const Box2& doma
 }
 
 Vec3 SphereSurface::point(const Vec2& uv) const {
-  const double cu = std::cos(uv.x()), su = std::sin(uv.x()), cv = std::cos(uv.y()), sv = std::sin(uv.y());
+  const double cu = pm::cos(uv.x()), su = pm::sin(uv.x()), cv = pm::cos(uv.y()), sv = pm::sin(uv.y());
   return c_ + r_ * Vec3(cv * cu, cv * su, sv);
 }
 
 SurfaceDerivatives SphereSurface::derivatives(const Vec2& uv) const {
-  const double cu = std::cos(uv.x()), su = std::sin(uv.x()), cv = std::cos(uv.y()), sv = std::sin(uv.y());
+  const double cu = pm::cos(uv.x()), su = pm::sin(uv.x()), cv = pm::cos(uv.y()), sv = pm::sin(uv.y());
   SurfaceDerivatives d;
   d.p = c_ + r_ * Vec3(cv * cu, cv * su, sv);
   d.su = r_ * Vec3(-cv * su, cv * cu, 0);
@@ -171,13 +172,13 @@ TorusSurface::TorusSurface(double majorRadius, double minorRadius, const Vec3& c
 }
 
 Vec3 TorusSurface::point(const Vec2& uv) const {
-  const double cu = std::cos(uv.x()), su = std::sin(uv.x()), cv = std::cos(uv.y()), sv = std::sin(uv.y());
+  const double cu = pm::cos(uv.x()), su = pm::sin(uv.x()), cv = pm::cos(uv.y()), sv = pm::sin(uv.y());
   const double w = R_ + r_ * cv;
   return c_ + Vec3(w * cu, w * su, r_ * sv);
 }
 
 SurfaceDerivatives TorusSurface::derivatives(const Vec2& uv) const {
-  const double cu = std::cos(uv.x()), su = std::sin(uv.x()), cv = std::cos(uv.y()), sv = std::sin(uv.y());
+  const double cu = pm::cos(uv.x()), su = pm::sin(uv.x()), cv = pm::cos(uv.y()), sv = pm::sin(uv.y());
   const double w = R_ + r_ * cv;
   SurfaceDerivatives d;
   d.p = c_ + Vec3(w * cu, w * su, r_ * sv);
@@ -447,14 +448,14 @@ SurfaceCurvature curvature(const SurfaceDerivatives& d, const Surface& s, const 
   linv << 1.0 / l11, 0.0, -l21 / (l11 * l22), 1.0 / l22;
   const Mat2 a = linv * h * linv.transpose();
   const double mid = 0.5 * (a(0, 0) + a(1, 1));
-  const double rad = std::hypot(0.5 * (a(0, 0) - a(1, 1)), 0.5 * (a(0, 1) + a(1, 0)));
+  const double rad = pm::hypot(0.5 * (a(0, 0) - a(1, 1)), 0.5 * (a(0, 1) + a(1, 0)));
   c.k1 = mid + rad;
   c.k2 = mid - rad;
   c.gaussian = c.k1 * c.k2;
   c.mean = mid;
   // Eigenvector angle of A for k1; at an umbilic atan2(0, 0) = 0 picks the Su direction.
-  const double theta = 0.5 * std::atan2(a(0, 1) + a(1, 0), a(0, 0) - a(1, 1));
-  const Vec2 y1(std::cos(theta), std::sin(theta)), y2(-std::sin(theta), std::cos(theta));
+  const double theta = 0.5 * pm::atan2(a(0, 1) + a(1, 0), a(0, 0) - a(1, 1));
+  const Vec2 y1(pm::cos(theta), pm::sin(theta)), y2(-pm::sin(theta), pm::cos(theta));
   // det[x y] = det(L^-T) > 0, so dir1 x dir2 = +n.
   const Vec2 x = linv.transpose() * y1, y = linv.transpose() * y2;
   c.uvDir1 = x;

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/portable_math.h"
 
 namespace anisomesh {
 namespace {
@@ -17,12 +18,12 @@ struct SymEigen2 {
 SymEigen2 symEigen(const Mat2& m) {
   const double a = m(0, 0), b = 0.5 * (m(0, 1) + m(1, 0)), c = m(1, 1);
   const double mean = 0.5 * (a + c), half = 0.5 * (a - c);
-  const double r = std::hypot(half, b);
-  return {mean + r, mean - r, 0.5 * std::atan2(2.0 * b, a - c)};
+  const double r = pm::hypot(half, b);
+  return {mean + r, mean - r, 0.5 * pm::atan2(2.0 * b, a - c)};
 }
 
 Mat2 fromEigen(double l1, double l2, double theta) {
-  const double c = std::cos(theta), s = std::sin(theta);
+  const double c = pm::cos(theta), s = pm::sin(theta);
   Mat2 m;
   m(0, 0) = l1 * c * c + l2 * s * s;
   m(1, 1) = l1 * s * s + l2 * c * c;

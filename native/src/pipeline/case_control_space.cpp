@@ -8,6 +8,7 @@
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/geometry/expression.h"
+#include "anisomesh/core/portable_math.h"
 
 namespace anisomesh {
 namespace {
@@ -41,12 +42,12 @@ FieldFunction fieldFunction(const AnalyticFieldSpec& f) {
     return [f](const Vec2& p, Metric* out) {
       const Vec2 t = (f.p2 - f.p1).normalized();
       const Vec2 n(-t.y(), t.x());
-      return layerMetric(f, std::atan2(t.y(), t.x()), std::abs(n.dot(p - f.p1)), out);
+      return layerMetric(f, pm::atan2(t.y(), t.x()), std::abs(n.dot(p - f.p1)), out);
     };
   if (f.field == "shear_layer_circle")
     return [f](const Vec2& p, Metric* out) {
       const Vec2 r = p - f.center;
-      return layerMetric(f, std::atan2(r.y(), r.x()) + kPiValue / 2, std::abs(r.norm() - f.radius), out);
+      return layerMetric(f, pm::atan2(r.y(), r.x()) + kPiValue / 2, std::abs(r.norm() - f.radius), out);
     };
   if (f.field == "expression") {
     ExpressionOptions o;
@@ -134,7 +135,7 @@ ControlSpaceSpec caseControlSpaceSpec(const CaseSpec& spec) {
     // Elements need not get smaller than the smallest size the case allows.
     const double side = std::max(box.size().x(), box.size().y());
     const double h = c.hmin > 0 ? c.hmin : c.hmax / 100.0;
-    s.maxLevel = std::clamp(int(std::ceil(std::log2(side / h))), s.initialLevel, 14);
+    s.maxLevel = std::clamp(int(std::ceil(pm::log2(side / h))), s.initialLevel, 14);
   }
   return s;
 }

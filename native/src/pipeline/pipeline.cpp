@@ -16,6 +16,7 @@
 #include "anisomesh/pipeline/case_control_space.h"
 #include "anisomesh/pipeline/mesh_metric_field.h"
 #include "anisomesh/pipeline/remesh_geometry.h"
+#include "anisomesh/core/portable_math.h"
 
 namespace anisomesh {
 namespace {
@@ -87,7 +88,7 @@ double chordSources(const Domain& domain, const ControlSpace& cs, const Boundary
           const Vec2 t = c.derivative(0.5 * (a + b));
           const Vec2 pa = c.point(a), pb = c.point(b);
           if ((pb - pa).norm() <= 1e-12 * std::max(1.0, pa.norm())) continue;
-          out->emplace_back(std::in_place_type<SegmentSource>, SegmentSource{pa, pb, Metric::fromSizes(std::atan2(t.y(), t.x()), h1, o.dMax * h1),
+          out->emplace_back(std::in_place_type<SegmentSource>, SegmentSource{pa, pb, Metric::fromSizes(pm::atan2(t.y(), t.x()), h1, o.dMax * h1),
                                        chordDeviation(c, a, b)});  // emplace: see case_control_space.cpp
         }
       }

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/portable_math.h"
 
 namespace anisomesh {
 namespace {
@@ -123,7 +124,7 @@ Domain domainFromBoundaryLoops(const std::vector<BoundaryLoop>& loops, const Loo
       const int prev = (k + n - 1) % n;
       if (l.edgeRefs[size_t(prev)] != l.edgeRefs[size_t(k)]) return true;
       const Vec2 u = l.points[size_t(k)] - l.points[size_t(prev)], v = l.points[size_t((k + 1) % n)] - l.points[size_t(k)];
-      const double turn = std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
+      const double turn = pm::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
       return std::abs(turn) > options.cornerAngle;
     };
     std::vector<int> breaks;

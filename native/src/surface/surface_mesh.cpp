@@ -21,6 +21,7 @@
 #include "anisomesh/controlspace/quadtree_control_space.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/geometry/discretize.h"
+#include "anisomesh/core/portable_math.h"
 
 namespace anisomesh {
 namespace {
@@ -747,7 +748,7 @@ void ModelMesher::checkPatchBoundary(int p) {
         if (tol > 0 && dev > tol) {
           const double h = 0.9 * (u1 - u0).norm() * std::sqrt(tol / dev);
           const Vec2 d = u1 - u0;
-          addSource(p, segmentSource(u0, u1, Metric::fromSizes(std::atan2(d.y(), d.x()), h, o_.metric.maxAspectRatio * h),
+          addSource(p, segmentSource(u0, u1, Metric::fromSizes(pm::atan2(d.y(), d.x()), h, o_.metric.maxAspectRatio * h),
                                      0.5 * d.norm()));
           slots_[size_t(owner)].invalid = true;
         }
@@ -759,7 +760,7 @@ void ModelMesher::checkPatchBoundary(int p) {
           const Vec2 d = u1 - u0;
           const Metric here = cs.metricAt(um);
           const double across = here.sizeAlong(Vec2(-d.y(), d.x()));
-          addSource(p, segmentSource(u0, u1, Metric::fromSizes(std::atan2(d.y(), d.x()), d.norm(), std::max(across, d.norm())),
+          addSource(p, segmentSource(u0, u1, Metric::fromSizes(pm::atan2(d.y(), d.x()), d.norm(), std::max(across, d.norm())),
                                      0.25 * d.norm()));
         }
         const double lEff = std::max(l, lOther);
