@@ -86,15 +86,18 @@ test('dragging a radial source with the mouse moves it and remeshes', async () =
 test('bad input shows an inline error next to its control, keeps the mesh, and recovers', async () => {
   const { page, errors } = await openPage(env.browser, env.url);
   await settle(page, () => window.anisomeshApp.loadPreset('holes-off'));
-  const meshBefore = await page.evaluate(() => window.anisomeshApp.state.lastStats.triangles);
+  const plain = await page.evaluate(() => window.anisomeshApp.state.lastStats.triangles);
 
-  // 1. An expression that does not parse, then a valid one.
+  // 1. An expression that does not parse, then a valid one, which meshes again with it.
   await page.locator('#expr-box summary').click();
-  await page.locator('#expr').fill('0.1 + sin(u');
+  await page.locator('#expr').fill('0.1 + sin(x');
   await page.waitForFunction(() => !document.getElementById('expr-msg').hidden && /PARSE_ERROR/.test(document.getElementById('expr-msg').textContent));
   assert.match(await page.locator('#expr-msg').textContent(), /column/);
-  await page.locator('#expr').fill('0.1 + 0.05*sin(u)');
+  await page.locator('#expr').fill('0.15 + 0.05*sin(x)');
   await page.waitForFunction(() => /^ok: h\(/.test(document.getElementById('expr-msg').textContent));
+  await settle(page);
+  const meshBefore = await page.evaluate(() => window.anisomeshApp.state.lastStats.triangles);
+  assert.ok(meshBefore > plain, `the size field refines the mesh: ${plain} -> ${meshBefore} triangles`);
 
   // 2. A source with zero radius: error under the radius field, previous mesh kept.
   await settle(page, () => { const a = window.anisomeshApp; a.state.case.sources[1].radius = 0; a.edited(0); });
