@@ -8,38 +8,9 @@
 #include <sstream>
 #include <string>
 
-namespace {
+#include "cli_test_util.h"
 
-struct CliRun {
-  int code;
-  std::string out, err;
-};
-
-// Per-test file names: ctest runs tests of one file in parallel processes.
-std::string tmp(const std::string& name) {
-  return ::testing::TempDir() + "anisomesh_cli_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + name;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void writeFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
-
-bool exists(const std::string& path) { return std::ifstream(path).good(); }
-
-// Runs the CLI with the given arguments, capturing exit code, stdout and stderr.
-CliRun run(const std::string& args) {
-  const std::string out = tmp("stdout.txt"), err = tmp("stderr.txt");
-  const std::string cmd = std::string("\"") + ANISOMESH_CLI_PATH + "\" " + args + " >\"" + out + "\" 2>\"" + err + "\"";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
-
-}  // namespace
+using namespace clitest;
 
 TEST(CaseCli, VersionAndHelp) {
   const CliRun r = run("--version");

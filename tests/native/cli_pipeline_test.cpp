@@ -10,35 +10,11 @@
 #include <sstream>
 #include <string>
 
+#include "cli_test_util.h"
+
+using namespace clitest;
+
 namespace {
-
-struct CliRun {
-  int code;
-  std::string out, err;
-};
-
-// Per-test file names: ctest runs tests of one file in parallel processes.
-std::string tmp(const std::string& name) {
-  return ::testing::TempDir() + "anisomesh_clipipe_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + name;
-}
-std::string example(const std::string& name) { return std::string(ANISOMESH_SOURCE_DIR) + "/examples/" + name; }
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void writeFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
-bool exists(const std::string& path) { return std::ifstream(path).good(); }
-
-CliRun run(const std::string& args) {
-  const std::string out = tmp("stdout.txt"), err = tmp("stderr.txt");
-  const std::string cmd = std::string("\"") + ANISOMESH_CLI_PATH + "\" " + args + " >\"" + out + "\" 2>\"" + err + "\"";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
 
 // Meshes a case given as JSON text; expects failure with the code and message parts.
 void expectCaseFails(const std::string& json, const std::string& code, const std::string& part,
