@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // Whole-run benchmark: the same JSON cases meshed by the native CLI and by the npm
 // package (WebAssembly in Node). Prints one table with the core's own stage times
-// (geometry + meshing, measured inside C++ in both builds, best of N runs), their
+// (measured inside C++ in both builds, best of N runs), their
 // ratio, the wasm binary size (raw and gzip) and the module start-up time.
 //
 // Usage: node native/bench/wasm_vs_native.mjs [--runs N] [CASE.json ...]
@@ -38,7 +38,8 @@ if (cases.length === 0) {
     join(tmp, 'point_source_fine.json'));
 }
 
-const coreSeconds = (s) => (s.secondsGeometry ?? 0) + (s.secondsMeshing ?? 0);
+// Stage times measured inside C++ (planar: pipelineSeconds; surface: secondsTotal).
+const coreSeconds = (s) => (s.pipelineSeconds ? Object.values(s.pipelineSeconds).reduce((a, b) => a + b, 0) : s.secondsTotal);
 const rows = [];
 for (const file of cases) {
   const text = readFileSync(file, 'utf8');
