@@ -24,6 +24,7 @@
 #include "anisomesh/io/svg.h"
 #include "anisomesh/mesh/quality.h"
 #include "anisomesh/pipeline/case_control_space.h"
+#include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/pipeline/run_case.h"
 
@@ -322,13 +323,12 @@ val remeshJs(val mesh, val metrics, val options) {
     if (options.hasOwnProperty("hgrad")) o.hgrad = options["hgrad"].as<double>();
     if (options.hasOwnProperty("maxElements")) o.mesher.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
     PipelineReport report;
-    const Mesh out = remesh(input, m, o, &report);
+    std::unique_ptr<AdaptiveControlSpace> cs;
+    const Mesh out = remesh(input, m, o, &report, &cs);
     val r = val::object();
     r.set("mesh", meshToJs(out));
-    nlohmann::json stats;
-    stats["vertices"] = out.vertexCount();
-    stats["triangles"] = out.triangles.size();
-    stats["notes"] = report.notes;
+    // The same report as the native CLI's remesh --stats.
+    const nlohmann::json stats = pipelineStatsJson(out, *cs, report);
     r.set("stats", stats.dump());
     return r;
   });

@@ -2,7 +2,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, rmSync, writeFileSync, readdirSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync, readdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -34,6 +34,11 @@ test('npm pack tarball installs into an empty folder and imports', { timeout: 12
     const result = JSON.parse(execFileSync('node', ['main.mjs'], { cwd: app, encoding: 'utf8' }));
     assert.equal(result.code, 'INVALID_METRIC');
     assert.ok(Math.abs(result.h2 - 0.1) < 1e-9);
+    // The package's command line, as `npx anisomesh` runs it, meshes an example case.
+    writeFileSync(join(app, 'case.json'), readFileSync(join(root, 'examples/point_source.json')));
+    const stats = JSON.parse(execFileSync(join(app, 'node_modules/.bin/anisomesh'), ['mesh', 'case.json', '-o', 'out.mesh', '--stats'], { cwd: app, encoding: 'utf8' }));
+    assert.ok(stats.triangles > 100 && stats.inverted === 0, JSON.stringify(stats).slice(0, 200));
+    assert.match(readFileSync(join(app, 'out.mesh'), 'utf8'), /^MeshVersionFormatted/);
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }
