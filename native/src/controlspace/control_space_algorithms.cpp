@@ -83,10 +83,9 @@ Box2 pieceBox(const SourcePiece& s, double r) {
   return b;
 }
 
-// Adjacency (CSR) of the free-node graph.
-void adjacency(const AdaptiveControlSpace& cs, std::vector<int>& start, std::vector<int>& nbr) {
-  const auto edges = cs.controlEdges();
-  start.assign(cs.nodeCount() + 1, 0);
+// CSR adjacency of an edge list over n nodes.
+void edgeAdjacency(const std::vector<std::array<int, 2>>& edges, int n, std::vector<int>& start, std::vector<int>& nbr) {
+  start.assign(n + 1, 0);
   for (const auto& e : edges) {
     ++start[e[0] + 1];
     ++start[e[1] + 1];
@@ -98,6 +97,11 @@ void adjacency(const AdaptiveControlSpace& cs, std::vector<int>& start, std::vec
     nbr[fill[e[0]]++] = e[1];
     nbr[fill[e[1]]++] = e[0];
   }
+}
+
+// Adjacency (CSR) of the free-node graph.
+void adjacency(const AdaptiveControlSpace& cs, std::vector<int>& start, std::vector<int>& nbr) {
+  edgeAdjacency(cs.controlEdges(), cs.nodeCount(), start, nbr);
 }
 
 bool elementNodesDiffer(const AdaptiveControlSpace& cs, const ControlElement& e, double threshold) {
@@ -357,21 +361,6 @@ bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj
 
 namespace {
 
-// CSR adjacency of an edge list over n nodes.
-void edgeAdjacency(const std::vector<std::array<int, 2>>& edges, int n, std::vector<int>& start, std::vector<int>& nbr) {
-  start.assign(n + 1, 0);
-  for (const auto& e : edges) {
-    ++start[e[0] + 1];
-    ++start[e[1] + 1];
-  }
-  for (size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
-  nbr.resize(start.back());
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (const auto& e : edges) {
-    nbr[fill[e[0]]++] = e[1];
-    nbr[fill[e[1]]++] = e[0];
-  }
-}
 
 // One work-set pass over the graph (start, nbr) from `seeds` (see smoothGradation);
 // nodes it changes get changed[i] = 1.

@@ -9,6 +9,14 @@
 
 namespace anisomesh {
 namespace {
+// Leaf sides as (corner a, corner b, mid-edge node) indices in a leaf's node list, and
+// the corners' offsets in units of the leaf's span.
+constexpr int kLeafSides[4][3] = {{0, 1, 4}, {1, 2, 5}, {3, 2, 6}, {0, 3, 7}};
+constexpr int kCornerOffsets[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+// All 8 nodes of a leaf (corners, then mid-edge nodes) in units of half its span.
+constexpr int kNodeHalfOffsets[8][2] = {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 0}, {2, 1}, {1, 2}, {0, 1}};
+}  // namespace
+namespace {
 
 constexpr std::uint64_t kEmptyKey = ~std::uint64_t{0};
 
@@ -83,11 +91,10 @@ QuadtreeControlSpace::QuadtreeControlSpace(const Box2& box, const QuadtreeOption
     }
   }
   leafCount_ = static_cast<int>(child_.size());
-  const int offs[8][2] = {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 0}, {2, 1}, {1, 2}, {0, 1}};
   for (int c = 0; c < leafCount_; ++c) {
     for (int k = 0; k < nodesPerLeaf_; ++k) {
       bool created = false;
-      const int x = ix_[c] + offs[k][0] * span / 2, y = iy_[c] + offs[k][1] * span / 2;
+      const int x = ix_[c] + kNodeHalfOffsets[k][0] * span / 2, y = iy_[c] + kNodeHalfOffsets[k][1] * span / 2;
       int n = findNode(x, y);
       if (n < 0) {
         n = findOrCreateNode(x, y, -1, created);
@@ -272,12 +279,11 @@ void QuadtreeControlSpace::splitLeafImpl(int c) {
     iy_.push_back(iy_[c] + (k >> 1) * h);
     cellNodes_.resize(cellNodes_.size() + nodesPerLeaf_, -1);
   }
-  const int offs[8][2] = {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 0}, {2, 1}, {1, 2}, {0, 1}};
   for (int k = 0; k < 4; ++k) {
     const int cc = first + k;
     for (int j = 0; j < nodesPerLeaf_; ++j) {
       bool created = false;
-      const int n = findOrCreateNode(ix_[cc] + offs[j][0] * h / 2, iy_[cc] + offs[j][1] * h / 2, c, created);
+      const int n = findOrCreateNode(ix_[cc] + kNodeHalfOffsets[j][0] * h / 2, iy_[cc] + kNodeHalfOffsets[j][1] * h / 2, c, created);
       cellNodes_[static_cast<size_t>(cc) * nodesPerLeaf_ + j] = n;
     }
   }
@@ -297,16 +303,13 @@ void QuadtreeControlSpace::rebuildConstraints() const {
   constraints_.clear();
   auto& flags = const_cast<std::vector<std::uint8_t>&>(flags_);
   for (auto& f : flags) f &= static_cast<std::uint8_t>(~kDependent);
-  // Sides as (corner a, corner b, mid) indices in the leaf's node list.
-  const int sides[4][3] = {{0, 1, 4}, {1, 2, 5}, {3, 2, 6}, {0, 3, 7}};
-  const int offs[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   for (int c = 0; c < cellCount(); ++c) {
     if (child_[c] >= 0) continue;
     const int s = cellSpan(level_[c]);
     const int* nd = leafNodes(c);
-    for (const auto& sd : sides) {
-      const int ax = ix_[c] + offs[sd[0]][0] * s, ay = iy_[c] + offs[sd[0]][1] * s;
-      const int bx = ix_[c] + offs[sd[1]][0] * s, by = iy_[c] + offs[sd[1]][1] * s;
+    for (const auto& sd : kLeafSides) {
+      const int ax = ix_[c] + kCornerOffsets[sd[0]][0] * s, ay = iy_[c] + kCornerOffsets[sd[0]][1] * s;
+      const int bx = ix_[c] + kCornerOffsets[sd[1]][0] * s, by = iy_[c] + kCornerOffsets[sd[1]][1] * s;
       if (nodesPerLeaf_ == 4) {
         const int n = findNode((ax + bx) / 2, (ay + by) / 2);
         if (n >= 0) constraints_.push_back({n, level_[c], {nd[sd[0]], nd[sd[1]], nd[sd[1]]}, {0.5, 0.5, 0.0}});
@@ -360,15 +363,13 @@ std::vector<AdaptiveControlSpace::HangingNode> QuadtreeControlSpace::hangingNode
 std::vector<std::array<int, 2>> QuadtreeControlSpace::sideEdges(bool freeOnly) const {
   rebuildConstraints();
   std::vector<std::array<int, 2>> edges;
-  const int sides[4][3] = {{0, 1, 4}, {1, 2, 5}, {3, 2, 6}, {0, 3, 7}};
-  const int offs[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   for (int c = 0; c < cellCount(); ++c) {
     if (child_[c] >= 0) continue;
     const int s = cellSpan(level_[c]);
     const int* nd = leafNodes(c);
-    for (const auto& sd : sides) {
-      const int ax = ix_[c] + offs[sd[0]][0] * s, ay = iy_[c] + offs[sd[0]][1] * s;
-      const int bx = ix_[c] + offs[sd[1]][0] * s, by = iy_[c] + offs[sd[1]][1] * s;
+    for (const auto& sd : kLeafSides) {
+      const int ax = ix_[c] + kCornerOffsets[sd[0]][0] * s, ay = iy_[c] + kCornerOffsets[sd[0]][1] * s;
+      const int bx = ix_[c] + kCornerOffsets[sd[1]][0] * s, by = iy_[c] + kCornerOffsets[sd[1]][1] * s;
       int chain[5];
       int n = 0;
       chain[n++] = nd[sd[0]];
