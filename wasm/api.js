@@ -189,6 +189,16 @@ export function wrapCore(core) {
     remesh(mesh, metrics, options = {}) {
       checkMesh(mesh);
       checkMetrics(metrics, mesh.vertices.length / mesh.dimension);
+      if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+      for (const key of ['hmin', 'hmax', 'hgrad']) {
+        const v = options[key];
+        if (v !== undefined && !(typeof v === 'number' && Number.isFinite(v) && v >= 0)) {
+          throw argError(`options.${key}: expected a finite nonnegative number`);
+        }
+      }
+      if (options.maxElements !== undefined && !(Number.isInteger(options.maxElements) && options.maxElements > 0)) {
+        throw argError('options.maxElements: expected a positive integer');
+      }
       const r = unwrap(core.remesh(mesh, metrics, options));
       return { mesh: r.mesh, stats: JSON.parse(r.stats) };
     },

@@ -54,6 +54,11 @@ test('.sol tensors round trip and drive remesh', () => {
   const r = am.remesh(mesh, back);
   assert.ok(r.mesh.triangles.length > 0);
   assert.throws(() => am.readSol(am.writeSol(metrics), n + 1), AnisomeshError);
+  assert.throws(() => am.remesh(mesh, back, { hmin: '0.1' }), { code: 'INVALID_ARGUMENT', message: /options\.hmin/ });
+  assert.throws(() => am.remesh(mesh, back, { hgrad: NaN }), { code: 'INVALID_ARGUMENT', message: /options\.hgrad/ });
+  assert.throws(() => am.remesh(mesh, back, { maxElements: 1.5 }), { code: 'INVALID_ARGUMENT', message: /options\.maxElements/ });
+  // hgrad in (0, 1) reaches the core's own check.
+  assert.throws(() => am.remesh(mesh, back, { hgrad: 0.5 }), { code: 'INVALID_ARGUMENT' });
 });
 
 test('control space: queries, inspection, dispose', () => {
