@@ -294,8 +294,9 @@ SurfaceCaseSpec parseSurfaceCaseJson(const std::string& text) {
     const json& m = root["metric"];
     object(m, "metric");
     keys(m, "metric", {"chordTolerance", "chordSafety", "angleTolerance", "hmin", "hmax", "maxAspectRatio", "gradation"});
-    o.chordSafety = m.contains("chordSafety") ? num(m["chordSafety"], "metric.chordSafety") : 1.0;
-    require(o.chordSafety >= 1.0, ErrorCode::InvalidArgument, "metric.chordSafety: must be >= 1");
+    o.chordSafety = m.contains("chordSafety") ? num(m["chordSafety"], "metric.chordSafety") : kDefaultChordSafety;
+    require(std::isfinite(o.chordSafety) && o.chordSafety > 0.0, ErrorCode::InvalidArgument,
+            "metric.chordSafety: must be > 0");
     o.metric.chordTolerance = numOr(m, "metric", "chordTolerance", o.metric.chordTolerance);
     o.metric.angleTolerance = numOr(m, "metric", "angleTolerance", o.metric.angleTolerance);
     o.metric.hmin = posOr(m, "metric", "hmin", o.metric.hmin);
@@ -468,6 +469,7 @@ json surfaceMeshReportToJson(const SurfaceMeshReport& r) {
                 {"qualityMin", q.qualityMin},
                 {"chordDeviationMax", q.chordDeviationMax},
                 {"chordDeviationMaxRelative", q.chordDeviationMaxRelative},
+                {"edgeChordDeviationMax", q.edgeChordDeviationMax},
                 {"isoChordDeviationMax", q.isoChordDeviationMax},
                 {"inverted", q.inverted}}},
               {"curvatureEvaluations", r.curvatureEvaluations},

@@ -74,7 +74,7 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
                                                             const SurfaceMeshOptions& o, Counters& counters) {
   const Surface& surf = *patch.surface;
   SurfaceMetricOptions sizing = o.metric;
-  require(std::isfinite(o.chordSafety) && o.chordSafety >= 1.0, ErrorCode::InvalidArgument, "chordSafety must be >= 1");
+  require(std::isfinite(o.chordSafety) && o.chordSafety > 0.0, ErrorCode::InvalidArgument, "chordSafety must be > 0");
   sizing.chordTolerance /= o.chordSafety * o.chordSafety;
   SurfaceCurvatureControlSpace curv(patch.surface, sizing);
   if (!sources3d.empty()) {
@@ -288,6 +288,22 @@ double normalChordDeviation(const Surface& s, const Vec2& u0, const Vec2& u1, co
     if (!(n.norm() > 0)) continue;
     worst = std::max(worst, std::abs(n.normalized().dot(d.p - ((1.0 - t) * x0 + t * x1))));
   }
+  return worst;
+}
+
+// The same gap inside the triangle (u0, u1, u2) -> (x0, x1, x2): at the 10 interior
+// barycentric points (i, j, k) / 6 (centroid included), the distance from the flat
+// triangle's point to the tangent plane at the surface point of the same parameter.
+double normalTriangleDeviation(const Surface& s, const Vec2 u[3], const Vec3 x[3]) {
+  double worst = 0.0;
+  for (int i = 1; i <= 4; ++i)
+    for (int j = 1; i + j <= 5; ++j) {
+      const double a = i / 6.0, b = j / 6.0, c = 1.0 - a - b;
+      const SurfaceDerivatives d = s.derivatives(a * u[0] + b * u[1] + c * u[2]);
+      const Vec3 n = d.su.cross(d.sv);
+      if (!(n.norm() > 0)) continue;
+      worst = std::max(worst, std::abs(n.normalized().dot(d.p - (a * x[0] + b * x[1] + c * x[2]))));
+    }
   return worst;
 }
 
@@ -906,6 +922,11 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
       out.triangles.push_back(g);
       out.triangleRefs.push_back(patch.id);
       ++count;
+      {
+        const Vec2 tu[3] = {a, b, c};
+        const Vec3 tx[3] = {out.points[size_t(g[0])], out.points[size_t(g[1])], out.points[size_t(g[2])]};
+        q.chordDeviationMax = std::max(q.chordDeviationMax, normalTriangleDeviation(surf, tu, tx));
+      }
       const Mat3 mc = metric3((a + b + c) / 3.0);
       const double qq =
           triangleQuality3D(out.points[size_t(g[0])], out.points[size_t(g[1])], out.points[size_t(g[2])], mc);
@@ -928,7 +949,7 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
         ChordDeviationOptions co;
         co.samples = 7;
         q.isoChordDeviationMax = std::max(q.isoChordDeviationMax, chordDeviation(surf, u0, u1, co));
-        q.chordDeviationMax = std::max(q.chordDeviationMax, normalChordDeviation(surf, u0, u1, x0, x1));
+        q.edgeChordDeviationMax = std::max(q.edgeChordDeviationMax, normalChordDeviation(surf, u0, u1, x0, x1));
         ++q.edges;
       }
     }
@@ -939,6 +960,7 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
   q.qualityMean = triCount ? qSum / triCount : 0.0;
   if (!q.edges) q.edgeLengthMin = 0.0;
   if (!triCount) q.qualityMin = 0.0;
+  q.chordDeviationMax = std::max(q.chordDeviationMax, q.edgeChordDeviationMax);
   q.chordDeviationMaxRelative = o_.metric.chordTolerance > 0 ? q.chordDeviationMax / o_.metric.chordTolerance : 0.0;
   if (o_.consistentOrientation) orientPatches(out, patchTriangles, sharedEdges);
   // Drop merged ids left over from earlier discretizations (never placed).

@@ -10,6 +10,9 @@
 // one wins (a chord tolerance relative to the radius of curvature, tol = t / |k|, is
 // the angle criterion with a = sqrt(8 t)). Then h is clamped to [hmin, hmax] and the
 // larger of the two sizes is capped at maxAspectRatio times the smaller (the paper's d_max).
+// The surface mesher divides the tolerance by chordSafety^2 (default 8/3, see
+// kDefaultChordSafety in surface_mesh.h) so edges up to metric length sqrt2 and triangle
+// interiors stay within it.
 //
 // Mapping into (u, v): a 3D tangent metric M3 pulls back through J = [Su Sv] as
 // M_uv = J^T M3 J, so the metric length of a parameter vector du equals the M3 length

@@ -59,12 +59,24 @@ struct SurfaceModel {
   std::vector<Source3D> sources3d;
 };
 
+// Default SurfaceMeshOptions::chordSafety = sqrt(8/3). Near a point, in the tangent plane's
+// principal frame, the surface deviates from it by d(x) = (k1 x1^2 + k2 x2^2) / 2. With sizes
+// h_i = sqrt(8 t / (s^2 |k_i|)) and metric coordinates y_i = x_i / h_i, |d| <= 4 t |y|^2 / s^2.
+// A flat triangle through three surface points deviates from the quadratic most at its
+// circumcentre (acute) or at the midpoint of its longest edge (obtuse): 4 t R^2 / s^2 with R
+// the metric circumradius, and R <= L / sqrt3 for the longest metric edge L. The mesher
+// accepts edges up to L = sqrt2, so R^2 <= 2/3 and the deviation is <= (8/3) t / s^2; s^2 = 8/3
+// keeps it within t (edges alone: L^2 t / s^2 <= 3/4 t). Sizes then are sqrt(3/8) = 0.61 of
+// the paper's sqrt(8 t / |k|), about 8/3 times the elements.
+inline constexpr double kDefaultChordSafety = 1.6329931618554521;
+
 struct SurfaceMeshOptions {
   SurfaceMetricOptions metric;     // chord tolerance, hmin, hmax, d_max (3D)
-  // Sizes come from chordTolerance / chordSafety^2, so edges up to chordSafety in metric
-  // length keep the sagitta within chordTolerance (1: the paper's sizing, where edges of
-  // metric length 1 reach the tolerance and the allowed sqrt2 reaches twice it).
-  double chordSafety = 1.0;
+  // Sizes come from chordTolerance / chordSafety^2: h = sqrt(8 tol / (chordSafety^2 |k|)).
+  // The default sqrt(8/3) gives h = sqrt(3 tol / |k|), which keeps the whole mesh (edges and
+  // triangle interiors) within tol when edges reach metric length sqrt2; 1 is the paper's
+  // sizing (edges of metric length 1 have sagitta tol). Derivation in kDefaultChordSafety.
+  double chordSafety = kDefaultChordSafety;
   double gradation = 2.0;          // dr in the parameter plane; 0 = off
   bool adaptation = true;          // adjust control spaces of adjacent patches (figs. 11-13)
   int maxRounds = 4;               // bound of Algorithm 1's invalidation loop
@@ -87,7 +99,12 @@ struct Surface3DQuality {
   double edgesWithinSqrt2 = 0.0;  // fraction of edges with 3D metric length in [1/sqrt2, sqrt2]
   double edgeLengthMin = 0.0, edgeLengthMean = 0.0, edgeLengthMax = 0.0;
   double qualityMean = 0.0, qualityMin = 0.0;  // triangleQuality3D
-  double chordDeviationMax = 0.0;              // largest edge-to-surface gap (along the normal) over edges
+  // Largest mesh-to-surface gap along the surface normal: at samples of every edge and of
+  // every triangle's interior (barycentric points, centroid included), the distance between
+  // the point of the flat 3D triangle and the tangent plane at the surface point of the same
+  // parameter (first order the distance to the surface, without the tangential offset).
+  double chordDeviationMax = 0.0;
+  double edgeChordDeviationMax = 0.0;          // the same over edges only
   double isoChordDeviationMax = 0.0;           // chordDeviation(): to the image of the parameter segment
   double chordDeviationMaxRelative = 0.0;      // the same divided by the chord tolerance
   int inverted = 0;                            // clockwise triangles in their patch's (u, v)
