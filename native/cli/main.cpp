@@ -1,4 +1,5 @@
 // anisomesh command-line interface (native).
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -25,6 +26,9 @@ int usage(std::ostream& os, int code) {
         "commands:\n"
         "  mesh CASE.json -o OUT [--quads] [--all-quads] [--stats] [--max-elements N] [--no-updates]\n"
         "                            mesh a JSON case, planar or surface (OUT: .mesh, .vtk, .obj or .svg)\n"
+        "      [--svg-uv] [--svg-view AZ,EL] [--svg-control-space]\n"
+        "                            .svg of a surface: 3D view from azimuth AZ, elevation EL (degrees;\n"
+        "                            default -63,34), or the parameter plane; control-space ellipses over it\n"
         "  remesh IN.mesh -sol IN.sol -o OUT [-hgrad R] [-hmin H] [-hmax H] [--stats] [--max-elements N]\n"
         "                            remesh the domain of IN.mesh under the metric IN.sol, used as\n"
         "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1)\n"
@@ -83,14 +87,33 @@ void requireOutput(const std::string& out) {
   }
 }
 
-// Writes the mesh by extension; .svg pictures colour elements by metric quality when the
-// control space is known (planar runs).
-void writeOutput(const std::string& path, const Mesh& mesh, const ControlSpace* cs) {
+// How .svg pictures are drawn (mesh command options).
+struct SvgChoice {
+  bool uv = false;            // --svg-uv: surface meshes in the parameter plane
+  bool controlSpace = false;  // --svg-control-space: surface control spaces drawn over the mesh
+  double azimuth = -1.1, elevation = 0.6;  // --svg-view AZ,EL (degrees in, radians here)
+};
+
+// Writes the mesh by extension; .svg pictures colour elements by metric quality (planar:
+// in the final control space; surface: in 3D), surfaces in a 3D view unless choice.uv.
+void writeOutput(const std::string& path, const CaseRun& run, const SvgChoice& choice) {
+  const Mesh& mesh = run.mesh;
   if (!isSvg(path)) return writeMeshFile(path, mesh);
   SvgOptions o;
   o.width = 900;
   o.strokeWidth = 0.3;
-  if (cs) o.elementValues = elementQualities(mesh, *cs);
+  if (run.finalSpace) o.elementValues = elementQualities(mesh, *run.finalSpace);
+  else if (run.elementQuality.size() == size_t(mesh.elementCount()) && run.glyphs.empty())
+    o.elementValues = run.elementQuality;  // (plain elements under control-space glyphs)
+  o.view3d = mesh.dimension == 3 && !choice.uv;
+  o.azimuth = choice.azimuth;
+  o.elevation = choice.elevation;
+  for (const auto& g : run.glyphs) {
+    o.overlay.emplace_back();
+    if (o.view3d) o.overlay.back() = g.xyz;
+    else
+      for (const Vec2& p : g.uv) o.overlay.back().emplace_back(p.x(), p.y(), 0.0);
+  }
   writeTextFileAtomic(path, writeSvg(mesh, o));
 }
 
@@ -99,9 +122,24 @@ int runMesh(int argc, char** argv) {
   std::string input, output;
   bool stats = false, quads = false, allQuads = false, updates = true;
   long long maxElements = -1;
+  SvgChoice svg;
   while (!args.done()) {
     const std::string a = args.next();
     if (a == "-o" || a == "--output") output = args.value(a);
+    else if (a == "--svg-uv") svg.uv = true;
+    else if (a == "--svg-control-space") svg.controlSpace = true;
+    else if (a == "--svg-view") {
+      const std::string v = args.value(a);
+      char* end = nullptr;
+      const double az = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != ',') throw UsageError{a + " expects AZIMUTH,ELEVATION in degrees, got '" + v + "'"};
+      const char* rest = end + 1;
+      const double el = std::strtod(rest, &end);
+      if (end == rest || *end != '\0' || !std::isfinite(az) || !std::isfinite(el))
+        throw UsageError{a + " expects AZIMUTH,ELEVATION in degrees, got '" + v + "'"};
+      svg.azimuth = az * 0.017453292519943295;
+      svg.elevation = el * 0.017453292519943295;
+    }
     else if (a == "--quads") quads = true;
     else if (a == "--all-quads") allQuads = true;
     else if (a == "--stats") stats = true;
@@ -120,8 +158,9 @@ int runMesh(int argc, char** argv) {
   if (allQuads) o.allQuads = true;
   o.maxElements = maxElements;
   o.controlSpaceUpdates = updates;
+  o.controlSpaceGlyphs = svg.controlSpace && isSvg(output);
   const CaseRun run = runCase(readTextFile(input), o);
-  writeOutput(output, run.mesh, run.finalSpace.get());
+  writeOutput(output, run, svg);
   if (stats) std::cout << run.stats.dump() << "\n";
   return 0;
 }
@@ -155,9 +194,11 @@ int runRemesh(int argc, char** argv) {
   const std::vector<Metric> metrics = solToMetrics(readSolFile(sol), in.vertexCount());
   PipelineReport report;
   std::unique_ptr<AdaptiveControlSpace> cs;
-  const Mesh mesh = remesh(in, metrics, options, &report, &cs);
-  writeOutput(output, mesh, cs.get());
-  if (stats) std::cout << pipelineStatsJson(mesh, *cs, report).dump() << "\n";
+  CaseRun run;
+  run.mesh = remesh(in, metrics, options, &report, &cs);
+  run.finalSpace = std::move(cs);
+  writeOutput(output, run, SvgChoice{});
+  if (stats) std::cout << pipelineStatsJson(run.mesh, *run.finalSpace, report).dump() << "\n";
   return 0;
 }
 

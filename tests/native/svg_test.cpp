@@ -42,3 +42,22 @@ TEST(Svg, ColoursElementsByValueAndChecksTheCount) {
   o.elementValues = {0.5};
   EXPECT_THROW(writeSvg(twoTriangles(), o), Error);
 }
+
+TEST(Svg, View3DPaintsFarthestFirstAndDrawsTheOverlay) {
+  // Two parallel triangles, the upper one (z = 1) nearer to a viewer above: drawn last.
+  Mesh m;
+  m.dimension = 3;
+  m.points = {Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0, 1, 1), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  m.triangles = {{0, 1, 2}, {3, 4, 5}};
+  SvgOptions o;
+  o.view3d = true;
+  o.elevation = 1.2;
+  o.elementValues = {0.0, 1.0};  // near one red, far one green
+  o.overlay = {{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}};
+  const std::string svg = writeSvg(m, o);
+  EXPECT_EQ(count(svg, "<polygon"), 3u);
+  const size_t green = svg.find("fill=\"#00"), red = svg.find("fill=\"#");
+  ASSERT_NE(green, std::string::npos);
+  EXPECT_EQ(red, green) << "the far (green) triangle comes first";
+  EXPECT_NE(svg.find("fill=\"none\""), std::string::npos);
+}

@@ -16,9 +16,14 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
     SurfaceCaseSpec spec = parseSurfaceCaseJson(jsonText);
     if (options.maxElements > 0) spec.options.mesher.maxElements = options.maxElements;
     if (options.progress) spec.options.mesher.progress = options.progress;
+    if (options.quads) spec.options.quads = *options.quads;
+    if (options.allQuads) spec.options.allQuads = *options.allQuads;
+    spec.options.controlSpaceGlyphs = options.controlSpaceGlyphs;
     SurfaceMeshReport report;
     run.mesh = meshSurfaceCase(spec, &report);
     run.stats = surfaceMeshReportToJson(report);
+    run.elementQuality = std::move(report.elementQuality);
+    run.glyphs = std::move(report.controlSpaceGlyphs);
     // The keys every report has (planar reports carry the same), measured in 3D here.
     const nlohmann::json& q = run.stats["quality3d"];
     run.stats["quads"] = run.mesh.quads.size();

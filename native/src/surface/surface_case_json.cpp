@@ -313,7 +313,9 @@ SurfaceCaseSpec parseSurfaceCaseJson(const std::string& text) {
   if (root.contains("options")) {
     const json& v = root["options"];
     object(v, "options");
-    keys(v, "options", {"maxElements", "maxRounds", "improvementPasses"});
+    keys(v, "options", {"maxElements", "maxRounds", "improvementPasses", "quads", "allQuads"});
+    if (v.contains("quads")) o.quads = boolean(v["quads"], "options.quads");
+    if (v.contains("allQuads")) o.allQuads = boolean(v["allQuads"], "options.allQuads");
     if (v.contains("maxElements")) {
       o.mesher.maxElements = integer(v["maxElements"], "options.maxElements");
       require(o.mesher.maxElements > 0, ErrorCode::InvalidArgument, "options.maxElements: must be positive");

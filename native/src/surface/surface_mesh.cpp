@@ -388,6 +388,7 @@ class ModelMesher {
     pending_[size_t(patch)].emplace_back(std::in_place_type<S>, s);
   }
   void flushSources();
+  std::vector<ControlSpaceGlyph> glyphs() const;
   const ControlSpace& space(int patch) const { return *ps_[size_t(patch)].counted; }
   Vec2 uvOf(const Slot& s, size_t i) const { return s.c->point(s.t[i]); }
 
@@ -399,6 +400,7 @@ class ModelMesher {
   std::vector<std::vector<MetricSource>> pending_;
   int nextId_ = 0;
   int invalidations_ = 0;
+  std::vector<double> elementQuality_;
   double size_ = 1.0;
 };
 
@@ -786,6 +788,73 @@ void ModelMesher::checkPatchBoundary(int p) {
     }
 }
 
+// Glyphs of the final control spaces: at control element (leaf) centres inside the patch,
+// thinned so that accepted centres are at least 1.6 requested sizes apart (metric length
+// >= 1.6 in the candidate's metric; larger elements first), so a picture stays readable.
+std::vector<ControlSpaceGlyph> ModelMesher::glyphs() const {
+  std::vector<ControlSpaceGlyph> out;
+  for (size_t p = 0; p < m_.patches.size(); ++p) {
+    const SurfacePatch& patch = m_.patches[p];
+    const Box2 dom = patch.surface->domain();
+    const auto outer = sampleContour(patch.domain.outer, 16);
+    std::vector<std::vector<Vec2>> holes;
+    for (const auto& h : patch.domain.holes) holes.push_back(sampleContour(h, 16));
+    const AdaptiveControlSpace& cs = *ps_[p].cs;
+    struct Cand {
+      double size;
+      Vec2 c;
+      Metric m;
+    };
+    std::vector<Cand> cands;
+    double smallest = std::numeric_limits<double>::infinity();
+    for (const auto& nodes : cs.elementNodes()) {
+      Vec2 c = Vec2::Zero(), lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+      for (int n : nodes) {
+        c += cs.nodePosition(n);
+        lo = lo.cwiseMin(cs.nodePosition(n));
+        hi = hi.cwiseMax(cs.nodePosition(n));
+      }
+      c /= double(nodes.size());
+      bool inside = pointInPolygon(outer, c);
+      for (const auto& h : holes) inside = inside && !pointInPolygon(h, c);
+      if (!inside) continue;
+      const Metric m = cs.metricAt(c);
+      const MetricSizes ms = m.sizes();
+      smallest = std::min({smallest, ms.h1, ms.h2});
+      cands.push_back({(hi - lo).maxCoeff(), c, m});
+    }
+    std::stable_sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) { return a.size > b.size; });
+    const double bin = std::max(0.5 * smallest, dom.size().maxCoeff() / 400.0);
+    std::map<std::pair<long, long>, std::vector<Vec2>> accepted;
+    auto binOf = [&](double x, double y) { return std::make_pair(long(std::floor((x - dom.lo.x()) / bin)), long(std::floor((y - dom.lo.y()) / bin))); };
+    for (const Cand& cand : cands) {
+      const double r = std::max(cand.m.sizes().h1, cand.m.sizes().h2);
+      const auto b0 = binOf(cand.c.x() - r, cand.c.y() - r), b1 = binOf(cand.c.x() + r, cand.c.y() + r);
+      bool free = true;
+      for (long i = b0.first; i <= b1.first && free; ++i)
+        for (long j = b0.second; j <= b1.second && free; ++j) {
+          const auto it = accepted.find({i, j});
+          if (it == accepted.end()) continue;
+          for (const Vec2& q : it->second)
+            if (cand.m.length(q - cand.c) < 1.6) free = false;
+        }
+      if (!free) continue;
+      accepted[binOf(cand.c.x(), cand.c.y())].push_back(cand.c);
+      const Mat2 inv = cand.m.transform().inverse();
+      ControlSpaceGlyph g;
+      g.patch = int(p);
+      for (int k = 0; k < 24; ++k) {
+        const double a = 6.283185307179586 * k / 24;
+        const Vec2 uv = cand.c + 0.5 * (inv * Vec2(pm::cos(a), pm::sin(a)));
+        g.uv.push_back(uv);
+        g.xyz.push_back(patch.surface->point(uv.cwiseMax(dom.lo).cwiseMin(dom.hi)));
+      }
+      out.push_back(std::move(g));
+    }
+  }
+  return out;
+}
+
 Mesh ModelMesher::run(SurfaceMeshReport* report) {
   const auto t0 = Clock::now();
   require(!m_.patches.empty(), ErrorCode::InvalidArgument, "surface model: no patch");
@@ -931,6 +1000,7 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
       const double qq =
           triangleQuality3D(out.points[size_t(g[0])], out.points[size_t(g[1])], out.points[size_t(g[2])], mc);
       qSum += qq;
+      elementQuality_.push_back(qq);
       q.qualityMin = std::min(q.qualityMin, qq);
       ++triCount;
       for (int k = 0; k < 3; ++k) {
@@ -990,6 +1060,8 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
   out.pointRefs.assign(out.points.size(), 0);
 
   if (report) {
+    report->elementQuality = elementQuality_;
+    if (o_.controlSpaceGlyphs) report->controlSpaceGlyphs = glyphs();
     report->patches = int(m_.patches.size());
     report->rounds = round;
     report->invalidations = invalidations_;

@@ -14,6 +14,7 @@
 
 #include "anisomesh/controlspace/adaptive_control_space.h"
 #include "anisomesh/mesh/mesh.h"
+#include "anisomesh/surface/surface_mesh.h"
 
 namespace anisomesh {
 
@@ -24,6 +25,7 @@ struct RunCaseOptions {
   bool controlSpaceUpdates = true;   // planar: the section 3.2 update loop
   bool inspectControlSpace = false;  // also export the final control space (nodes, cells) as JSON
   bool vertexMetrics = false;        // planar: also the final control space's metric at every vertex
+  bool controlSpaceGlyphs = false;   // surface: also CaseRun::glyphs (the final control spaces drawn)
   // Called with a fraction in [0, 1] while meshing; returning false cancels (ErrorCode::Cancelled).
   std::function<bool(double)> progress;
 };
@@ -35,6 +37,8 @@ struct CaseRun {
   nlohmann::json controlSpace;                       // null unless inspectControlSpace
   std::vector<double> vertexMetrics;                 // m11, m12, m22 per vertex (RunCaseOptions::vertexMetrics)
   std::unique_ptr<AdaptiveControlSpace> finalSpace;  // planar: the control space meshed with
+  std::vector<double> elementQuality;                // surface: 3D quality per element (triangles, then quads)
+  std::vector<ControlSpaceGlyph> glyphs;             // surface: with RunCaseOptions::controlSpaceGlyphs
 };
 
 // True when the JSON text is a surface case (it has "patches").

@@ -84,12 +84,28 @@ struct SurfaceMeshOptions {
   int maxLevel = 12;               // deepest quadtree level
   double refineThreshold = 0.25;   // difference() between node metrics that splits a leaf
   double sharedTolerance = 1e-6;   // shared curves must match within this * model size
-  PlanarMesherOptions mesher;      // inner nodes and improvement
+  PlanarMesherOptions mesher;      // inner nodes and improvement (its quads / allQuads are ignored)
+  // Quad-dominant: triangle pairs merged in each patch's (u, v) (metric quality >= mesher.minQuadQuality);
+  // shared contour edges are never merged across, so the patches stay conforming.
+  bool quads = false;
+  // All-quad: then every element split (midpoints of edges shared by all elements using
+  // them, boundary edges split at the contour curve's middle parameter).
+  bool allQuads = false;
   bool mergeMesh = true;           // false: keep patches' vertices separate (debugging)
   // Flip whole patches so the merged mesh has one 3D orientation across shared curves;
   // a flipped patch's triangles are then clockwise in its own (u, v).
   bool consistentOrientation = true;
   bool measureQuality = true;      // fill SurfaceMeshReport::quality (3D measures cost about a mesh run)
+  bool controlSpaceGlyphs = false; // fill SurfaceMeshReport::controlSpaceGlyphs (pictures)
+};
+
+// The requested metric drawn at one control element (quadtree leaf) of a patch: the
+// ellipse {c + 0.5 Mt^-1 (cos a, sin a)} around the leaf centre c inside the patch (half
+// of the requested sizes along its axes), in (u, v) and mapped through S.
+struct ControlSpaceGlyph {
+  int patch = 0;
+  std::vector<Vec2> uv;
+  std::vector<Vec3> xyz;
 };
 
 // 3D quality of a surface mesh in the requested metric (each patch's control space,
@@ -127,6 +143,8 @@ struct SurfaceMeshReport {
   double secondsTotal = 0.0;
   std::vector<int> patchTriangles;  // per patch
   std::vector<std::array<int, 2>> sharedEdgeList;  // merged-mesh vertex pairs (i < j) on shared curves
+  std::vector<double> elementQuality;  // 3D quality of each element (triangles, then quads), with measureQuality
+  std::vector<ControlSpaceGlyph> controlSpaceGlyphs;  // final control spaces, with options.controlSpaceGlyphs
 };
 
 // Meshes every patch of the model (Algorithm 1) and merges them into one 3D Mesh:
