@@ -176,6 +176,53 @@ TEST(SurfaceMesh, TwoPatchCConformingAndAdaptationSmoothsAcross) {
   EXPECT_LE(without.quality.chordDeviationMaxRelative, 1.0);
 }
 
+TEST(SurfaceMesh, QuadsOnSurfacesConformAcrossSharedContours) {
+  // Quad-dominant and all-quad meshes of a two-patch case and of the sphere band (seam
+  // shared with itself): quads present, none inverted in (u, v), every shared edge used
+  // by exactly two elements, open edges exactly the non-shared contours.
+  for (const char* f : {"surface_two_patch_c.json", "surface_sphere.json"})
+    for (int mode = 0; mode < 2; ++mode) {
+      SCOPED_TRACE(std::string(f) + (mode ? " allQuads" : " quads"));
+      SurfaceCaseSpec spec = parseSurfaceCaseJson(readExample(f));
+      (mode ? spec.options.allQuads : spec.options.quads) = true;
+      SurfaceMeshReport r;
+      const Mesh mesh = meshSurfaceCase(spec, &r);
+      print(f, r);
+      EXPECT_GT(mesh.quads.size(), mode ? 1000u : 300u);
+      if (mode) {
+        EXPECT_TRUE(mesh.triangles.empty());
+      }
+      EXPECT_EQ(mesh.quadRefs.size(), mesh.quads.size());
+      EXPECT_EQ(r.quality.inverted, 0);
+      EXPECT_EQ(r.elementQuality.size(), mesh.triangles.size() + mesh.quads.size());
+      std::map<EdgeKey, int> uses;
+      for (const auto& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) ++uses[key(t[size_t(k)], t[size_t((k + 1) % 3)])];
+      for (const auto& q : mesh.quads)
+        for (int k = 0; k < 4; ++k) ++uses[key(q[size_t(k)], q[size_t((k + 1) % 4)])];
+      for (const auto& e : uses) EXPECT_LE(e.second, 2);
+      EXPECT_GT(r.sharedEdges, 0);
+      for (const auto& e : r.sharedEdgeList) EXPECT_EQ(uses[e], 2) << "shared edge " << e[0] << "-" << e[1];
+      std::set<EdgeKey> open, boundary;
+      for (const auto& e : uses)
+        if (e.second == 1) open.insert(e.first);
+      for (const auto& e : mesh.edges) boundary.insert(key(e[0], e[1]));
+      EXPECT_EQ(open, boundary);
+      // Shared curve points lie on both patches: all-quad midpoints of a shared edge are one vertex.
+      std::vector<int> used(mesh.points.size(), 0);
+      for (const auto& q : mesh.quads)
+        for (int v : q) ++used[size_t(v)];
+      for (const auto& t : mesh.triangles)
+        for (int v : t) ++used[size_t(v)];
+      for (size_t i = 0; i < used.size(); ++i) EXPECT_GT(used[i], 0) << "unused vertex " << i;
+      EXPECT_GE(r.quality.qualityMean, 0.8);
+      // 3D quads of the sphere stay on it (corners on the unit sphere).
+      if (std::string(f) == "surface_sphere.json") {
+        for (const auto& p : mesh.points) EXPECT_NEAR(p.norm(), 1.0, 1e-12);
+      }
+    }
+}
+
 TEST(SurfaceMesh, TwoFlatPatchesShareIdenticalVertices) {
   // Two planes with different parameterizations (B is scaled and reversed in u).
   SurfaceModel m;

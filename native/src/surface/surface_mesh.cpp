@@ -316,21 +316,29 @@ SegmentSource segmentSource(const Vec2& a, const Vec2& b, const Metric& m, doubl
   return s;
 }
 
-// Flips whole patches so that triangles on both sides of every shared edge traverse it in
+// Flips whole patches so that elements on both sides of every shared edge traverse it in
 // opposite directions (one consistent 3D orientation), starting from the first patch of
 // each connected group; a patch whose sharing contradicts itself (non-orientable) is left.
-void orientPatches(Mesh& out, const std::vector<int>& patchTriangles, const std::set<std::array<int, 2>>& shared) {
+// patchTriangles / patchQuads: element counts per patch, in the order of out's lists.
+void orientPatches(Mesh& out, const std::vector<int>& patchTriangles, const std::vector<int>& patchQuads,
+                   const std::set<std::array<int, 2>>& shared) {
   const size_t np = patchTriangles.size();
-  std::vector<int> patchOf;
-  for (size_t p = 0; p < np; ++p) patchOf.insert(patchOf.end(), size_t(patchTriangles[p]), int(p));
-  // For each shared edge, the (patch, +1/-1 direction) of its triangles.
+  std::vector<int> triPatch, quadPatch;
+  for (size_t p = 0; p < np; ++p) {
+    triPatch.insert(triPatch.end(), size_t(patchTriangles[p]), int(p));
+    quadPatch.insert(quadPatch.end(), size_t(patchQuads[p]), int(p));
+  }
+  // For each shared edge, the (patch, +1/-1 direction) of its elements.
   std::map<std::array<int, 2>, std::vector<std::pair<int, int>>> uses;
-  for (size_t t = 0; t < out.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int a = out.triangles[t][size_t(k)], b = out.triangles[t][size_t((k + 1) % 3)];
+  auto visit = [&](const int* v, int n, int patch) {
+    for (int k = 0; k < n; ++k) {
+      const int a = v[k], b = v[(k + 1) % n];
       const std::array<int, 2> e{std::min(a, b), std::max(a, b)};
-      if (shared.count(e)) uses[e].push_back({patchOf[t], a < b ? 1 : -1});
+      if (shared.count(e)) uses[e].push_back({patch, a < b ? 1 : -1});
     }
+  };
+  for (size_t t = 0; t < out.triangles.size(); ++t) visit(out.triangles[t].data(), 3, triPatch[t]);
+  for (size_t t = 0; t < out.quads.size(); ++t) visit(out.quads[t].data(), 4, quadPatch[t]);
   // Graph: patches p, q must flip alike (0) or oppositely (1).
   std::vector<std::vector<std::pair<int, int>>> adj(np);
   for (const auto& u : uses)
@@ -355,7 +363,66 @@ void orientPatches(Mesh& out, const std::vector<int>& patchTriangles, const std:
     }
   }
   for (size_t t = 0; t < out.triangles.size(); ++t)
-    if (flip[size_t(patchOf[t])] == 1) std::swap(out.triangles[t][1], out.triangles[t][2]);
+    if (flip[size_t(triPatch[t])] == 1) std::swap(out.triangles[t][1], out.triangles[t][2]);
+  for (size_t t = 0; t < out.quads.size(); ++t)
+    if (flip[size_t(quadPatch[t])] == 1) std::swap(out.quads[t][1], out.quads[t][3]);
+}
+
+// 3D quad quality in a constant metric: min over corners of 2 |e1 x e2|_M / (|e1|_M^2 + |e2|_M^2)
+// (1 for a unit square; as metricQuadQuality in the parameter plane).
+double quadQuality3D(const Vec3 x[4], const Mat3& m3) {
+  double q = 1.0;
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 e1 = x[(k + 1) % 4] - x[k], e2 = x[(k + 3) % 4] - x[k];
+    const double g11 = e1.dot(m3 * e1), g22 = e2.dot(m3 * e2), g12 = e1.dot(m3 * e2);
+    const double sum = g11 + g22;
+    q = std::min(q, sum > 0 ? 2.0 * std::sqrt(std::max(g11 * g22 - g12 * g12, 0.0)) / sum : 0.0);
+  }
+  return q;
+}
+
+// All-quad split of one patch's mesh in its (u, v): each triangle into 3 quads, each quad
+// into 4, one midpoint per edge. Boundary points are the first nb; the loop edge from
+// boundary point i to next[i] gets its point at curveMid[i] (on the contour curve). Returns,
+// for every new point, the boundary edge (i, next[i]) it splits or {-1, -1}.
+std::vector<std::array<int, 2>> splitPatchIntoQuads(Mesh& pm, size_t nb, const std::vector<int>& next,
+                                                    const std::vector<Vec2>& curveMid) {
+  std::map<std::array<int, 2>, int> mids;
+  std::vector<std::array<int, 2>> origin;
+  const size_t n0 = pm.params.size();
+  auto addPoint = [&](const Vec2& p, std::array<int, 2> from) {
+    pm.points.emplace_back(p.x(), p.y(), 0.0);
+    pm.params.push_back(p);
+    origin.push_back(from);
+    return int(pm.params.size()) - 1;
+  };
+  for (size_t i = 0; i < nb; ++i) mids[{std::min(int(i), next[i]), std::max(int(i), next[i])}] = addPoint(curveMid[i], {int(i), next[i]});
+  auto mid = [&](int a, int b) {
+    const std::array<int, 2> k{std::min(a, b), std::max(a, b)};
+    const auto it = mids.find(k);
+    if (it != mids.end()) return it->second;
+    return mids[k] = addPoint(0.5 * (pm.params[size_t(a)] + pm.params[size_t(b)]), {-1, -1});
+  };
+  std::vector<std::array<int, 4>> quads;
+  for (const auto& t : pm.triangles) {
+    const int mab = mid(t[0], t[1]), mbc = mid(t[1], t[2]), mca = mid(t[2], t[0]);
+    const int g = addPoint((pm.params[size_t(t[0])] + pm.params[size_t(t[1])] + pm.params[size_t(t[2])]) / 3.0, {-1, -1});
+    quads.push_back({t[0], mab, g, mca});
+    quads.push_back({t[1], mbc, g, mab});
+    quads.push_back({t[2], mca, g, mbc});
+  }
+  for (const auto& q : pm.quads) {
+    int m[4];
+    for (int k = 0; k < 4; ++k) m[k] = mid(q[size_t(k)], q[size_t((k + 1) % 4)]);
+    Vec2 c = Vec2::Zero();
+    for (int v : q) c += 0.25 * pm.params[size_t(v)];
+    const int o = addPoint(c, {-1, -1});
+    for (int k = 0; k < 4; ++k) quads.push_back({q[size_t(k)], m[k], o, m[(k + 3) % 4]});
+  }
+  pm.triangles.clear();
+  pm.quads = std::move(quads);
+  (void)n0;
+  return origin;
 }
 
 // Everything one run keeps per patch.
@@ -379,7 +446,9 @@ class ModelMesher {
   void discretize(int slot);
   std::vector<double> discretizeShared(const Slot& a, const Slot& b, std::vector<double>* tb);
   // Boundary loops of a patch with the merged-mesh id of every point and whether each edge lies on a shared curve.
-  std::vector<BoundaryLoop> loopsOf(int patch, std::vector<int>* ids, std::vector<char>* sharedEdge) const;
+  // curveMid (optional): per loop edge, the (u, v) of the curve at the middle parameter of the edge.
+  std::vector<BoundaryLoop> loopsOf(int patch, std::vector<int>* ids, std::vector<char>* sharedEdge,
+                                    std::vector<Vec2>* curveMid = nullptr) const;
   void adaptAcrossShared();
   void checkPatchBoundary(int patch);
   // Queues a source for the patch's control space (inserted by flushSources()).
@@ -611,7 +680,8 @@ void ModelMesher::discretize(int si) {
   s.invalid = false;
 }
 
-std::vector<BoundaryLoop> ModelMesher::loopsOf(int p, std::vector<int>* ids, std::vector<char>* sharedEdge) const {
+std::vector<BoundaryLoop> ModelMesher::loopsOf(int p, std::vector<int>* ids, std::vector<char>* sharedEdge,
+                                               std::vector<Vec2>* curveMid) const {
   const SurfacePatch& patch = m_.patches[size_t(p)];
   std::vector<BoundaryLoop> loops;
   for (int k = 0; k < contourCount(patch); ++k) {
@@ -619,6 +689,7 @@ std::vector<BoundaryLoop> ModelMesher::loopsOf(int p, std::vector<int>* ids, std
     BoundaryLoop loop;
     std::vector<int> lid;
     std::vector<char> lsh;
+    std::vector<Vec2> lmid;
     for (size_t j = 0; j < c.curves.size(); ++j) {
       const Slot& s = slots_[size_t(ps_[size_t(p)].slots[size_t(k)][j])];
       const bool rev = c.curves[j].reversed;
@@ -629,6 +700,7 @@ std::vector<BoundaryLoop> ModelMesher::loopsOf(int p, std::vector<int>* ids, std
         lid.push_back(s.gid[q]);
         loop.edgeRefs.push_back(s.c->ref());
         lsh.push_back(s.master >= 0 || s.follower >= 0);
+        lmid.push_back(s.c->point(0.5 * (s.t[q] + s.t[rev ? q - 1 : q + 1])));
       }
     }
     const bool ccw = signedArea(loop.points) > 0;
@@ -637,19 +709,23 @@ std::vector<BoundaryLoop> ModelMesher::loopsOf(int p, std::vector<int>* ids, std
       BoundaryLoop rev;
       std::vector<int> rid;
       std::vector<char> rsh;
+      std::vector<Vec2> rmid;
       for (size_t i = 0; i < n; ++i) {
         rev.points.push_back(loop.points[n - 1 - i]);
         rid.push_back(lid[n - 1 - i]);
         const size_t e = (2 * n - 2 - i) % n;
         rev.edgeRefs.push_back(loop.edgeRefs[e]);
         rsh.push_back(lsh[e]);
+        rmid.push_back(lmid[e]);
       }
       loop = std::move(rev);
       lid = std::move(rid);
       lsh = std::move(rsh);
+      lmid = std::move(rmid);
     }
     if (ids) ids->insert(ids->end(), lid.begin(), lid.end());
     if (sharedEdge) sharedEdge->insert(sharedEdge->end(), lsh.begin(), lsh.end());
+    if (curveMid) curveMid->insert(curveMid->end(), lmid.begin(), lmid.end());
     loops.push_back(std::move(loop));
   }
   return loops;
@@ -915,16 +991,23 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
   double lenSum = 0.0, qSum = 0.0;
   int triCount = 0, within = 0;
   q.edgeLengthMin = q.qualityMin = std::numeric_limits<double>::infinity();
-  std::vector<int> patchTriangles;
+  std::vector<int> patchTriangles, patchQuads;
+  std::vector<double> triQuality, quadQuality;
+  std::map<std::array<int, 2>, int> boundaryMid;  // all-quad: merged point splitting a contour edge
   for (size_t p = 0; p < m_.patches.size(); ++p) {
     const SurfacePatch& patch = m_.patches[p];
     const Surface& surf = *patch.surface;
     const ControlSpace& cs = space(int(p));
     std::vector<int> ids;
     std::vector<char> shared;
-    const auto loops = loopsOf(int(p), &ids, &shared);
+    std::vector<Vec2> curveMid;
+    const auto loops = loopsOf(int(p), &ids, &shared, &curveMid);
     PlanarMesherOptions mo = o_.mesher;
     mo.boundaryOnly = false;
+    // Quads are merged in the patch's (u, v) (never across its contour edges); the all-quad
+    // split is done here so that shared contour edges get one midpoint for both patches.
+    mo.quads = o_.quads || o_.allQuads;
+    mo.allQuads = false;
     Mesh pm;
     try {
       pm = meshPlanarBoundary(loops, cs, mo);
@@ -932,16 +1015,37 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
       throw Error(e.code(), patchLabel(patch, int(p)) + ": " + e.what());
     }
     const size_t nb = ids.size();
-    std::vector<int> gid(pm.points.size());
-    for (size_t i = 0; i < pm.points.size(); ++i) {
-      const Vec2 uv = pm.params.empty() ? Vec2(pm.points[i].head<2>()) : pm.params[i];
-      int g;
+    // Loop edges: boundary point i to next[i].
+    std::vector<int> next(nb);
+    {
+      size_t base = 0;
+      for (const auto& loop : loops) {
+        const size_t n = loop.points.size();
+        for (size_t i = 0; i < n; ++i) next[base + i] = int(base + (i + 1) % n);
+        base += n;
+      }
+    }
+    const size_t nBefore = pm.params.size();
+    std::vector<std::array<int, 2>> splits;
+    if (o_.allQuads) splits = splitPatchIntoQuads(pm, nb, next, curveMid);
+    std::vector<int> gid(pm.params.size());
+    for (size_t i = 0; i < pm.params.size(); ++i) {
+      const Vec2 uv = pm.params[i];
+      int g = -1;
+      const std::array<int, 2> from = i >= nBefore ? splits[i - nBefore] : std::array<int, 2>{-1, -1};
+      std::array<int, 2> key{-1, -1};
+      if (from[0] >= 0 && o_.mergeMesh) {
+        key = {std::min(ids[size_t(from[0])], ids[size_t(from[1])]), std::max(ids[size_t(from[0])], ids[size_t(from[1])])};
+        const auto it = boundaryMid.find(key);
+        if (it != boundaryMid.end()) g = it->second;
+      }
       if (i < nb && o_.mergeMesh) g = ids[i];
-      else {
+      else if (g < 0) {
         g = int(out.points.size());
         out.points.emplace_back();
         out.params.emplace_back();
         defined.push_back(-1);
+        if (key[0] >= 0) boundaryMid[key] = g;
       }
       gid[i] = g;
       if (defined[size_t(g)] < 0) {
@@ -953,78 +1057,107 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
         defined[size_t(g)] = int(p);
       }
     }
-    // Boundary edges: shared ones are interior to the merged mesh.
+    // Boundary edges (split in two for all-quad): shared ones are interior to the merged mesh.
     {
+      std::map<std::array<int, 2>, int> localMid;
+      for (size_t k = 0; k < splits.size(); ++k)
+        if (splits[k][0] >= 0) localMid[splits[k]] = int(nBefore + k);
       size_t base = 0;
       for (const auto& loop : loops) {
         const size_t n = loop.points.size();
         for (size_t i = 0; i < n; ++i) {
-          const int a = gid[base + i], b = gid[base + (i + 1) % n];
-          const std::array<int, 2> e{std::min(a, b), std::max(a, b)};
-          if (shared[base + i] && o_.mergeMesh) sharedEdges.insert(e);
-          else {
-            out.edges.push_back({a, b});
-            out.edgeRefs.push_back(loop.edgeRefs[i]);
+          std::vector<int> chain{gid[base + i]};
+          const auto it = localMid.find({int(base + i), next[base + i]});
+          if (it != localMid.end()) chain.push_back(gid[size_t(it->second)]);
+          chain.push_back(gid[size_t(next[base + i])]);
+          for (size_t c = 0; c + 1 < chain.size(); ++c) {
+            const int a = chain[c], b = chain[c + 1];
+            const std::array<int, 2> e{std::min(a, b), std::max(a, b)};
+            if (shared[base + i] && o_.mergeMesh) sharedEdges.insert(e);
+            else {
+              out.edges.push_back({a, b});
+              out.edgeRefs.push_back(loop.edgeRefs[i]);
+            }
           }
         }
         base += n;
       }
     }
-    auto uvOfLocal = [&](int i) { return pm.params.empty() ? Vec2(pm.points[size_t(i)].head<2>()) : pm.params[size_t(i)]; };
+    auto uvOfLocal = [&](int i) { return pm.params[size_t(i)]; };
     auto metric3 = [&](const Vec2& uv) {
       const SurfaceDerivatives d = surf.derivatives(uv);
       return metric3DFromParameter(cs.metricAt(uv), d);
     };
-    int count = 0;
-    if (!o_.measureQuality) {
-      for (const auto& t : pm.triangles) {
-        out.triangles.push_back({gid[size_t(t[0])], gid[size_t(t[1])], gid[size_t(t[2])]});
-        out.triangleRefs.push_back(patch.id);
-        ++count;
-      }
-    }
-    for (const auto& t : o_.measureQuality ? pm.triangles : std::vector<std::array<int, 3>>{}) {
-      const Vec2 a = uvOfLocal(t[0]), b = uvOfLocal(t[1]), c = uvOfLocal(t[2]);
-      const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-      if (!(area > 0)) ++q.inverted;
+    // Edge statistics once per merged edge.
+    auto measureEdge = [&](int i0, int i1) {
+      const int g0 = gid[size_t(i0)], g1 = gid[size_t(i1)];
+      if (!seenEdges.insert({std::min(g0, g1), std::max(g0, g1)}).second) return;
+      const Vec2 u0 = uvOfLocal(i0), u1 = uvOfLocal(i1);
+      const Vec3& x0 = out.points[size_t(g0)];
+      const Vec3& x1 = out.points[size_t(g1)];
+      const double l = (edgeLength3D(x0, x1, metric3(u0)) + 4.0 * edgeLength3D(x0, x1, metric3(0.5 * (u0 + u1))) +
+                        edgeLength3D(x0, x1, metric3(u1))) / 6.0;
+      lenSum += l;
+      q.edgeLengthMin = std::min(q.edgeLengthMin, l);
+      q.edgeLengthMax = std::max(q.edgeLengthMax, l);
+      if (l >= std::sqrt(0.5) && l <= std::sqrt(2.0)) ++within;
+      ChordDeviationOptions co;
+      co.samples = 7;
+      q.isoChordDeviationMax = std::max(q.isoChordDeviationMax, chordDeviation(surf, u0, u1, co));
+      q.edgeChordDeviationMax = std::max(q.edgeChordDeviationMax, normalChordDeviation(surf, u0, u1, x0, x1));
+      ++q.edges;
+    };
+    for (const auto& t : pm.triangles) {
       const std::array<int, 3> g{gid[size_t(t[0])], gid[size_t(t[1])], gid[size_t(t[2])]};
       out.triangles.push_back(g);
       out.triangleRefs.push_back(patch.id);
-      ++count;
-      {
-        const Vec2 tu[3] = {a, b, c};
-        const Vec3 tx[3] = {out.points[size_t(g[0])], out.points[size_t(g[1])], out.points[size_t(g[2])]};
-        q.chordDeviationMax = std::max(q.chordDeviationMax, normalTriangleDeviation(surf, tu, tx));
-      }
-      const Mat3 mc = metric3((a + b + c) / 3.0);
-      const double qq =
-          triangleQuality3D(out.points[size_t(g[0])], out.points[size_t(g[1])], out.points[size_t(g[2])], mc);
+      if (!o_.measureQuality) continue;
+      const Vec2 a = uvOfLocal(t[0]), b = uvOfLocal(t[1]), c = uvOfLocal(t[2]);
+      const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+      if (!(area > 0)) ++q.inverted;
+      const Vec2 tu[3] = {a, b, c};
+      const Vec3 tx[3] = {out.points[size_t(g[0])], out.points[size_t(g[1])], out.points[size_t(g[2])]};
+      q.chordDeviationMax = std::max(q.chordDeviationMax, normalTriangleDeviation(surf, tu, tx));
+      const double qq = triangleQuality3D(tx[0], tx[1], tx[2], metric3((a + b + c) / 3.0));
       qSum += qq;
-      elementQuality_.push_back(qq);
+      triQuality.push_back(qq);
       q.qualityMin = std::min(q.qualityMin, qq);
       ++triCount;
-      for (int k = 0; k < 3; ++k) {
-        const int i0 = t[size_t(k)], i1 = t[size_t((k + 1) % 3)];
-        const int g0 = gid[size_t(i0)], g1 = gid[size_t(i1)];
-        if (!seenEdges.insert({std::min(g0, g1), std::max(g0, g1)}).second) continue;
-        const Vec2 u0 = uvOfLocal(i0), u1 = uvOfLocal(i1);
-        const Vec3& x0 = out.points[size_t(g0)];
-        const Vec3& x1 = out.points[size_t(g1)];
-        const double l = (edgeLength3D(x0, x1, metric3(u0)) + 4.0 * edgeLength3D(x0, x1, metric3(0.5 * (u0 + u1))) +
-                          edgeLength3D(x0, x1, metric3(u1))) / 6.0;
-        lenSum += l;
-        q.edgeLengthMin = std::min(q.edgeLengthMin, l);
-        q.edgeLengthMax = std::max(q.edgeLengthMax, l);
-        if (l >= std::sqrt(0.5) && l <= std::sqrt(2.0)) ++within;
-        ChordDeviationOptions co;
-        co.samples = 7;
-        q.isoChordDeviationMax = std::max(q.isoChordDeviationMax, chordDeviation(surf, u0, u1, co));
-        q.edgeChordDeviationMax = std::max(q.edgeChordDeviationMax, normalChordDeviation(surf, u0, u1, x0, x1));
-        ++q.edges;
-      }
+      for (int k = 0; k < 3; ++k) measureEdge(t[size_t(k)], t[size_t((k + 1) % 3)]);
     }
-    patchTriangles.push_back(count);
+    for (const auto& t : pm.quads) {
+      const std::array<int, 4> g{gid[size_t(t[0])], gid[size_t(t[1])], gid[size_t(t[2])], gid[size_t(t[3])]};
+      out.quads.push_back(g);
+      out.quadRefs.push_back(patch.id);
+      if (!o_.measureQuality) continue;
+      Vec2 tu[4];
+      Vec3 tx[4];
+      for (int k = 0; k < 4; ++k) tu[k] = uvOfLocal(t[size_t(k)]), tx[k] = out.points[size_t(g[size_t(k)])];
+      // Inverted: a corner turning clockwise in (u, v) (non-convex or clockwise quad).
+      bool convex = true;
+      for (int k = 0; k < 4; ++k) {
+        const Vec2 e1 = tu[(k + 1) % 4] - tu[k], e0 = tu[k] - tu[(k + 3) % 4];
+        convex = convex && e0.x() * e1.y() - e0.y() * e1.x() > 0;
+      }
+      if (!convex) ++q.inverted;
+      // Chord deviation over the two triangles (0, 1, 2), (0, 2, 3) of the flat-split quad.
+      for (int d = 0; d < 2; ++d) {
+        const Vec2 su[3] = {tu[0], tu[1 + d], tu[2 + d]};
+        const Vec3 sx[3] = {tx[0], tx[1 + d], tx[2 + d]};
+        q.chordDeviationMax = std::max(q.chordDeviationMax, normalTriangleDeviation(surf, su, sx));
+      }
+      const double qq = quadQuality3D(tx, metric3(0.25 * (tu[0] + tu[1] + tu[2] + tu[3])));
+      qSum += qq;
+      quadQuality.push_back(qq);
+      q.qualityMin = std::min(q.qualityMin, qq);
+      ++triCount;
+      for (int k = 0; k < 4; ++k) measureEdge(t[size_t(k)], t[size_t((k + 1) % 4)]);
+    }
+    patchTriangles.push_back(int(pm.triangles.size()));
+    patchQuads.push_back(int(pm.quads.size()));
   }
+  elementQuality_ = triQuality;
+  elementQuality_.insert(elementQuality_.end(), quadQuality.begin(), quadQuality.end());
   q.edgesWithinSqrt2 = q.edges ? double(within) / q.edges : 0.0;
   q.edgeLengthMean = q.edges ? lenSum / q.edges : 0.0;
   q.qualityMean = triCount ? qSum / triCount : 0.0;
@@ -1032,7 +1165,7 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
   if (!triCount) q.qualityMin = 0.0;
   q.chordDeviationMax = std::max(q.chordDeviationMax, q.edgeChordDeviationMax);
   q.chordDeviationMaxRelative = o_.metric.chordTolerance > 0 ? q.chordDeviationMax / o_.metric.chordTolerance : 0.0;
-  if (o_.consistentOrientation) orientPatches(out, patchTriangles, sharedEdges);
+  if (o_.consistentOrientation) orientPatches(out, patchTriangles, patchQuads, sharedEdges);
   // Drop merged ids left over from earlier discretizations (never placed).
   {
     std::vector<int> remap(out.points.size(), -1);
@@ -1047,6 +1180,8 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
     out.points = std::move(pts);
     out.params = std::move(prm);
     for (auto& t : out.triangles)
+      for (int& v : t) v = remap[size_t(v)];
+    for (auto& t : out.quads)
       for (int& v : t) v = remap[size_t(v)];
     for (auto& e : out.edges)
       for (int& v : e) v = remap[size_t(v)];
@@ -1099,18 +1234,30 @@ Mat3 metric3DFromParameter(const Metric& m, const SurfaceDerivatives& d) {
 }
 
 double acrossEdgeSizeRatio(const Mesh& mesh, const std::vector<std::array<int, 2>>& edges) {
+  // Elements: triangles, then quads (index nt + q).
+  const size_t nt = mesh.triangles.size();
   std::map<std::array<int, 2>, std::vector<int>> at;
   for (const auto& e : edges) at[{std::min(e[0], e[1]), std::max(e[0], e[1])}];
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.triangles[t][size_t(k)], b = mesh.triangles[t][size_t((k + 1) % 3)];
+  auto visit = [&](const int* v, int n, int element) {
+    for (int k = 0; k < n; ++k) {
+      const int a = v[k], b = v[(k + 1) % n];
       auto it = at.find({std::min(a, b), std::max(a, b)});
-      if (it != at.end()) it->second.push_back(int(t));
+      if (it != at.end()) it->second.push_back(element);
     }
-  auto area = [&](int t) {
-    const auto& tr = mesh.triangles[size_t(t)];
-    const Vec3& a = mesh.points[size_t(tr[0])];
-    return 0.5 * (mesh.points[size_t(tr[1])] - a).cross(mesh.points[size_t(tr[2])] - a).norm();
+  };
+  for (size_t t = 0; t < nt; ++t) visit(mesh.triangles[t].data(), 3, int(t));
+  for (size_t t = 0; t < mesh.quads.size(); ++t) visit(mesh.quads[t].data(), 4, int(nt + t));
+  auto triArea = [&](int i, int j, int k) {
+    const Vec3& a = mesh.points[size_t(i)];
+    return 0.5 * (mesh.points[size_t(j)] - a).cross(mesh.points[size_t(k)] - a).norm();
+  };
+  auto area = [&](int e) {
+    if (size_t(e) < nt) {
+      const auto& t = mesh.triangles[size_t(e)];
+      return triArea(t[0], t[1], t[2]);
+    }
+    const auto& q = mesh.quads[size_t(e) - nt];
+    return triArea(q[0], q[1], q[2]) + triArea(q[0], q[2], q[3]);
   };
   double worst = 0.0;
   for (const auto& e : at)
@@ -1123,11 +1270,14 @@ double acrossEdgeSizeRatio(const Mesh& mesh, const std::vector<std::array<int, 2
 
 std::vector<std::array<int, 2>> openEdges(const Mesh& mesh) {
   std::map<std::array<int, 2>, int> count;
-  for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const int a = t[size_t(k)], b = t[size_t((k + 1) % 3)];
+  auto visit = [&](const int* v, int n) {
+    for (int k = 0; k < n; ++k) {
+      const int a = v[k], b = v[(k + 1) % n];
       ++count[{std::min(a, b), std::max(a, b)}];
     }
+  };
+  for (const auto& t : mesh.triangles) visit(t.data(), 3);
+  for (const auto& q : mesh.quads) visit(q.data(), 4);
   std::vector<std::array<int, 2>> out;
   for (const auto& e : count)
     if (e.second == 1) out.push_back(e.first);

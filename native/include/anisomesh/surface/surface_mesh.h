@@ -170,10 +170,10 @@ std::unique_ptr<AdaptiveControlSpace> buildPatchControlSpace(const SurfacePatch&
 // T = J+^T M J+ on the tangent plane plus n n^T / hn^2 (hn the smallest size).
 Mat3 metric3DFromParameter(const Metric& m, const SurfaceDerivatives& d);
 
-// Largest ratio sqrt(area) of the two triangles at each edge listed (3D areas); 0 if none.
+// Largest ratio sqrt(area) of the two elements (triangles or quads) at each edge listed (3D areas); 0 if none.
 double acrossEdgeSizeRatio(const Mesh& mesh, const std::vector<std::array<int, 2>>& edges);
 
-// Boundary edges (used by one triangle) of a mesh, sorted pairs (i < j).
+// Boundary edges (used by one element) of a mesh, sorted pairs (i < j).
 std::vector<std::array<int, 2>> openEdges(const Mesh& mesh);
 
 }  // namespace anisomesh
