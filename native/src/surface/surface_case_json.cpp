@@ -293,7 +293,9 @@ SurfaceCaseSpec parseSurfaceCaseJson(const std::string& text) {
   if (root.contains("metric")) {
     const json& m = root["metric"];
     object(m, "metric");
-    keys(m, "metric", {"chordTolerance", "chordSafety", "angleTolerance", "hmin", "hmax", "maxAspectRatio", "gradation"});
+    keys(m, "metric", {"chordTolerance", "chordSafety", "angleTolerance", "hmin", "hmax", "maxAspectRatio", "gradation",
+                       "contourCurvature"});
+    if (m.contains("contourCurvature")) o.contourCurvature = boolean(m["contourCurvature"], "metric.contourCurvature");
     o.chordSafety = m.contains("chordSafety") ? num(m["chordSafety"], "metric.chordSafety") : kDefaultChordSafety;
     require(std::isfinite(o.chordSafety) && o.chordSafety > 0.0, ErrorCode::InvalidArgument,
             "metric.chordSafety: must be > 0");

@@ -69,6 +69,59 @@ class CountingControlSpace : public ControlSpace {
   Counters& c_;
 };
 
+const Contour& contourOf(const SurfacePatch& p, int k) { return k == 0 ? p.domain.outer : p.domain.holes[size_t(k - 1)]; }
+int contourCount(const SurfacePatch& p) { return 1 + int(p.domain.holes.size()); }
+
+// Section 3.1: the curvature of every contour curve in 3D, C(t) = S(c(t)), as sources along
+// it before the first discretization (the section 3.2 chord check stays as a safeguard).
+// At the middle of each of 64 pieces per curve: kappa = |C' x C''| / |C'|^3 with
+// C' = J c', C'' = Suu cu'^2 + 2 Suv cu' cv' + Svv cv'^2 + J c''; size along the tangent T
+// h = curvatureSize(kappa) (the surface sizing: chord tolerance / chordSafety^2, angle
+// tolerance, clamps), across it (in the tangent plane) d_max h, along the normal h; the 3D
+// metric is pulled back into (u, v) and applied within half the piece's (u, v) length of it.
+// Pieces where h reaches hmax (nearly straight in 3D) add nothing.
+std::vector<MetricSource> contourCurvatureSources(const SurfacePatch& patch, const SurfaceMetricOptions& sizing) {
+  std::vector<MetricSource> out;
+  const Surface& surf = *patch.surface;
+  const int pieces = 64;
+  for (int k = 0; k < contourCount(patch); ++k)
+    for (const auto& cc : contourOf(patch, k).curves) {
+      const Curve& c = *cc.curve;
+      Vec2 prev = c.point(0.0);
+      for (int i = 0; i < pieces; ++i) {
+        const Vec2 nextPt = c.point(double(i + 1) / pieces);
+        const Vec2 a = prev;
+        prev = nextPt;
+        if (!((nextPt - a).norm() > 0)) continue;
+        const double t = (i + 0.5) / pieces;
+        const Vec2 uv = c.point(t), d1 = c.derivative(t), d2 = c.secondDerivative(t);
+        const SurfaceDerivatives d = surf.derivatives(uv);
+        if (isDegenerate(d)) continue;
+        const Vec3 c1 = d.su * d1.x() + d.sv * d1.y();
+        const Vec3 c2 = d.suu * (d1.x() * d1.x()) + 2.0 * d.suv * (d1.x() * d1.y()) + d.svv * (d1.y() * d1.y()) +
+                        d.su * d2.x() + d.sv * d2.y();
+        const double speed = c1.norm();
+        if (!(speed > 0)) continue;
+        const double kappa = c1.cross(c2).norm() / (speed * speed * speed);
+        const double h = curvatureSize(kappa, sizing);
+        if (!(std::isfinite(h) && h < sizing.hmax)) continue;
+        const Vec3 tan = c1 / speed;
+        const Vec3 nrm = d.su.cross(d.sv).normalized();
+        const Vec3 across = nrm.cross(tan).normalized();
+        const double hx = std::min(sizing.hmax, sizing.maxAspectRatio * h);
+        const Mat3 m3 = tan * tan.transpose() / (h * h) + across * across.transpose() / (hx * hx) +
+                        nrm * nrm.transpose() / (h * h);
+        SegmentSource src;
+        src.a = a;
+        src.b = nextPt;
+        src.metric = pullBackMetric(m3, d);
+        src.radius = 0.5 * (nextPt - a).norm();
+        out.emplace_back(src);
+      }
+    }
+  return out;
+}
+
 std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& patch,
                                                             const std::vector<Source3D>& sources3d,
                                                             const SurfaceMeshOptions& o, Counters& counters) {
@@ -134,10 +187,15 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
             if (auto m = eval(cs->nodePosition(i))) cs->setNodeMetric(i, *m);
       });
   cs->applyConstraints();
-  if (!patch.sources.empty()) {
+  std::vector<MetricSource> sources = patch.sources;
+  if (o.contourCurvature) {
+    const auto contour = contourCurvatureSources(patch, sizing);
+    sources.insert(sources.end(), contour.begin(), contour.end());
+  }
+  if (!sources.empty()) {
     DiscreteInsertionOptions io;
     io.fallbackMetric = fallback;
-    insertSources(*cs, patch.sources, io);
+    insertSources(*cs, sources, io);
   }
   if (o.gradation > 0.0) {
     GradationOptions g;
@@ -161,9 +219,6 @@ struct Slot {
   std::vector<int> gid;    // merged-mesh vertex of each point
   bool invalid = true;
 };
-
-const Contour& contourOf(const SurfacePatch& p, int k) { return k == 0 ? p.domain.outer : p.domain.holes[size_t(k - 1)]; }
-int contourCount(const SurfacePatch& p) { return 1 + int(p.domain.holes.size()); }
 
 std::string slotName(const SurfaceModel& m, const Slot& s) {
   return patchLabel(m.patches[size_t(s.patch)], s.patch) + " " + contourName(s.contour) + " curve " +

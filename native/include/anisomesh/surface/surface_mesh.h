@@ -78,6 +78,9 @@ struct SurfaceMeshOptions {
   // sizing (edges of metric length 1 have sagitta tol). Derivation in kDefaultChordSafety.
   double chordSafety = kDefaultChordSafety;
   double gradation = 2.0;          // dr in the parameter plane; 0 = off
+  // Section 3.1: sizes from the 3D curvature of every contour curve put into the initial
+  // control space along it (false: only the section 3.2 chord check catches contour curvature).
+  bool contourCurvature = true;
   bool adaptation = true;          // adjust control spaces of adjacent patches (figs. 11-13)
   int maxRounds = 4;               // bound of Algorithm 1's invalidation loop
   int initialLevel = 3;            // quadtree main-level grid 2^initialLevel
@@ -161,7 +164,7 @@ Mesh meshSurfacePatch(const SurfacePatch& patch, const SurfaceMeshOptions& optio
 
 // The initial control space of a patch (section 3.1): curvature metric sampled into an
 // adaptive quadtree (extrapolated where the parameterization is degenerate), user
-// sources, 3D sources, size clamps, gradation. Exposed for tests and the benchmark.
+// sources, contour curvature sources, 3D sources, size clamps, gradation. Exposed for tests and the benchmark.
 std::unique_ptr<AdaptiveControlSpace> buildPatchControlSpace(const SurfacePatch& patch,
                                                              const std::vector<Source3D>& sources3d,
                                                              const SurfaceMeshOptions& options);
