@@ -116,3 +116,24 @@ TEST(CliPipeline, StatsAndSvg) {
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
   std::remove(out.c_str());
 }
+
+TEST(CliPipeline, SurfaceSvgViews) {
+  // A surface case as an SVG: 3D view (one polygon per element, coloured by 3D quality),
+  // the parameter plane with control-space glyphs, and bad --svg-view values rejected.
+  const std::string out = tmp("sphere.svg"), uv = tmp("sphere_uv.svg");
+  CliRun r = run("mesh " + example("surface/surface_sphere.json") + " -o " + out + " --svg-view -60,25 --stats");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const std::string svg = slurp(out);
+  size_t polygons = 0;
+  for (size_t p = svg.find("<polygon"); p != std::string::npos; p = svg.find("<polygon", p + 1)) ++polygons;
+  EXPECT_EQ(polygons, j["triangles"].get<size_t>());
+  r = run("mesh " + example("surface/surface_sphere.json") + " -o " + uv + " --svg-uv --svg-control-space");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string svgUv = slurp(uv);
+  EXPECT_NE(svgUv.find("fill=\"none\""), std::string::npos);  // the glyph overlay
+  r = run("mesh " + example("surface/surface_sphere.json") + " -o " + out + " --svg-view 30");
+  EXPECT_EQ(r.code, 2);
+  std::remove(out.c_str());
+  std::remove(uv.c_str());
+}

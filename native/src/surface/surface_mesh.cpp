@@ -444,7 +444,6 @@ std::vector<std::array<int, 2>> splitPatchIntoQuads(Mesh& pm, size_t nb, const s
                                                     const std::vector<Vec2>& curveMid) {
   std::map<std::array<int, 2>, int> mids;
   std::vector<std::array<int, 2>> origin;
-  const size_t n0 = pm.params.size();
   auto addPoint = [&](const Vec2& p, std::array<int, 2> from) {
     pm.points.emplace_back(p.x(), p.y(), 0.0);
     pm.params.push_back(p);
@@ -476,7 +475,6 @@ std::vector<std::array<int, 2>> splitPatchIntoQuads(Mesh& pm, size_t nb, const s
   }
   pm.triangles.clear();
   pm.quads = std::move(quads);
-  (void)n0;
   return origin;
 }
 
@@ -1070,6 +1068,10 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
       throw Error(e.code(), patchLabel(patch, int(p)) + ": " + e.what());
     }
     const size_t nb = ids.size();
+    if (pm.params.size() != pm.points.size()) {  // (the planar mesher fills params; keep the fallback)
+      pm.params.clear();
+      for (const Vec3& x : pm.points) pm.params.push_back(x.head<2>());
+    }
     // Loop edges: boundary point i to next[i].
     std::vector<int> next(nb);
     {
