@@ -1082,6 +1082,31 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
         base += n;
       }
     }
+    // A merged quad is not flat: where its two triangulations leave the surface by more
+    // than the chord tolerance, the merge is undone (the pair it came from, diagonal 1-3),
+    // so quad-dominant meshes keep the tolerance the triangles were sized for.
+    if (!pm.quads.empty() && o_.metric.chordTolerance > 0) {
+      std::vector<std::array<int, 4>> kept;
+      for (const auto& qd : pm.quads) {
+        Vec2 u[4];
+        Vec3 x[4];
+        for (int k = 0; k < 4; ++k) u[k] = pm.params[size_t(qd[size_t(k)])], x[k] = surf.point(u[k]);
+        double dev = 0.0;
+        for (const auto& tri : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}, std::array<int, 3>{0, 1, 3},
+                                std::array<int, 3>{1, 2, 3}}) {
+          const Vec2 tu[3] = {u[tri[0]], u[tri[1]], u[tri[2]]};
+          const Vec3 tx[3] = {x[tri[0]], x[tri[1]], x[tri[2]]};
+          dev = std::max(dev, normalTriangleDeviation(surf, tu, tx));
+        }
+        if (dev <= o_.metric.chordTolerance) {
+          kept.push_back(qd);
+        } else {
+          pm.triangles.push_back({qd[0], qd[1], qd[3]});
+          pm.triangles.push_back({qd[1], qd[2], qd[3]});
+        }
+      }
+      pm.quads = std::move(kept);
+    }
     const size_t nBefore = pm.params.size();
     std::vector<std::array<int, 2>> splits;
     if (o_.allQuads) splits = splitPatchIntoQuads(pm, nb, next, curveMid);
