@@ -2,7 +2,7 @@
 // panel, live remeshing in a worker, quality numbers and histograms, export/import and
 // the state in the URL.
 import GUI from 'lil-gui';
-import { JobRunner, CancelledError } from './jobs.js';
+import { JobRunner, CancelledError, wallNow } from './jobs.js';
 import { presets, presetById, defaultPresetId } from './presets.js';
 import { defaultView, encodeState, decodeState, checkCase, errorTarget, InputError } from './state.js';
 import { Views, softwareWebGL } from './views.js';
@@ -12,8 +12,8 @@ import { qualityColor, lengthColor, sizeColor, css } from './colors.js';
 import { uniqueEdges } from './measure.js';
 
 const $ = (id) => document.getElementById(id);
-const DRAG_DEBOUNCE_MS = 40;   // remesh while dragging: stale jobs get cancelled anyway
 const EDIT_DEBOUNCE_MS = 120;
+const PROGRESS_LOG = 400;      // progress events kept for the test hook
 
 // --- state ------------------------------------------------------------------------------
 
@@ -33,6 +33,11 @@ const state = {
   lastError: null,      // { code, message, target }
   lastJob: null,        // { meshMs, workerMs, totalMs, drawMs }
   dragToMeshMs: null,   // pointer up -> new mesh drawn
+  dragInputToMeshMs: null,  // the drag's last edit of the case -> its mesh drawn
+  lastBreakdown: null,  // where the time of the last job went (see breakdown())
+  breakdowns: [],       // the last 50 of them
+  progressLog: [],      // { id, stage, fraction, at } of recent jobs (test hook)
+  progress: null,       // { stage, fraction } of the running job
   workerStartMs: null,  // worker creation -> core ready (precompiled module)
   workerRestartMs: [],  // the same for replacement workers after a cancellation
   version: null,
@@ -42,24 +47,45 @@ const state = {
 // --- workers ----------------------------------------------------------------------------
 
 const status = $('status'), statusText = $('status-text'), spinner = status.querySelector('.spinner');
-let progress = { stage: 'meshing', started: 0 };
+const progressBar = $('progress'), progressFill = progressBar.querySelector('.fill');
+let progress = { stage: 'meshing', fraction: null, started: 0 };
 let busyTimer = null;
+// The toolbar while a job runs: the stage, its progress (a bar and a percentage when the
+// core reports a fraction) and the elapsed time.
+function showProgress() {
+  const pct = progress.fraction == null ? '' : ` ${Math.round(100 * progress.fraction)} %`;
+  statusText.textContent = `${progress.stage}${pct} · ${((performance.now() - progress.started) / 1000).toFixed(1)} s`;
+  progressBar.hidden = progress.fraction == null;
+  progressFill.style.width = `${(100 * (progress.fraction ?? 0)).toFixed(1)}%`;
+  progressBar.setAttribute('aria-valuenow', String(Math.round(100 * (progress.fraction ?? 0))));
+}
 function setBusy(busy) {
   spinner.hidden = !busy;
   status.classList.toggle('busy', busy);
   clearInterval(busyTimer);
   if (busy) {
-    progress.started = performance.now();
-    const tick = () => { statusText.textContent = `${progress.stage}… ${((performance.now() - progress.started) / 1000).toFixed(1)} s`; };
-    tick();
-    busyTimer = setInterval(tick, 100);
+    progress = { stage: 'starting', fraction: null, started: performance.now() };
+    showProgress();
+    busyTimer = setInterval(showProgress, 100);
+  } else {
+    progressBar.hidden = true;
+    state.progress = null;
   }
 }
 const meshRunner = new JobRunner({
   supersede: true,
   precompiled: new URLSearchParams(location.search).get('precompile') !== '0',  // ?precompile=0 to measure the difference
+  spare: new URLSearchParams(location.search).get('spare') !== '0',            // ?spare=0: no spare worker (for comparison)
   onBusy: setBusy,
-  onProgress: ({ stage }) => { progress.stage = stage; },
+  onProgress: ({ id, stage, fraction }) => {
+    progress.stage = stage;
+    // A stage without a fraction of its own (the quality report) keeps the bar where it was.
+    if (fraction != null) progress.fraction = fraction;
+    state.progress = { stage, fraction };
+    state.progressLog.push({ id, stage, fraction, at: Math.round(performance.now()) });
+    if (state.progressLog.length > PROGRESS_LOG) state.progressLog.splice(0, state.progressLog.length - PROGRESS_LOG);
+    showProgress();
+  },
 });
 const utilRunner = new JobRunner();  // exports and checks: never cancelled by meshing
 
@@ -81,17 +107,24 @@ const views = new Views($('view'), {
     views.setSources(state.case.sources, state.selected, state.view.sources);
     sourceGui.controllersRecursive().forEach((c) => c.updateDisplay());
     if (phase === 'move') {
-      if (changed) edited(DRAG_DEBOUNCE_MS);
+      if (changed) editedByDrag();
       return;
     }
-    state.dragEndAt = performance.now();
-    // Released where the last move left it: the job already queued or running for this
-    // input is the right one, so it is not restarted.
-    if (changed) edited(0);
+    state.dragEndAt = wallNow();
+    if (changed) bumpVersion();
     state.dragEndVersion = state.caseVersion;
-    if (!changed && state.meshedVersion === state.caseVersion) {
+    state.dragLastEditAt = state.editAt;
+    // Released: the latest input must not wait behind a stale job. A job already running
+    // for this very input goes on; a job for an older input is superseded at once.
+    dragWaiting = false;
+    if (state.meshedVersion === state.caseVersion) {
       state.dragToMeshMs = 0;
+      state.dragInputToMeshMs = 0;
       state.dragEndAt = null;
+    } else if (state.runningVersion !== state.caseVersion) {
+      clearTimeout(editTimer);
+      editTimer = null;
+      remesh();
     }
   },
 }, {
@@ -304,18 +337,47 @@ function showError(target, message) {
 let editTimer = null;
 let needsFit = true;
 
-/** The case changed: remesh after delay ms (a newer edit restarts the wait; a running job is superseded). */
-function edited(delay = EDIT_DEBOUNCE_MS) {
+/** A new version of the case (an edit): stamps when it was made, for the latency figures. */
+function bumpVersion() {
   state.caseVersion++;
+  state.editAt = wallNow();
   views.setSources(state.case.sources, state.selected, state.view.sources);
-  clearTimeout(editTimer);
-  editTimer = setTimeout(() => { editTimer = null; remesh(); }, delay);
   saveUrlSoon();
 }
 
+/** The case changed: remesh after delay ms (a newer edit restarts the wait; a running job is superseded). */
+function edited(delay = EDIT_DEBOUNCE_MS) {
+  bumpVersion();
+  clearTimeout(editTimer);
+  editTimer = setTimeout(() => { editTimer = null; remesh(); }, delay);
+}
+
+// While a handle is dragged: remesh at once when the worker is free (leading edge, no
+// debounce wait); when a job is running, let it finish and draw (the mesh follows the
+// drag) and then start the latest input right away. Releasing the handle supersedes a
+// stale job (see onDrag).
+let dragWaiting = false;
+function editedByDrag() {
+  bumpVersion();
+  if (!meshRunner.busy && editTimer === null) remesh();
+  else dragWaiting = true;
+}
+
+// The latest input waits for the worker (during a drag): start it now, queued behind the
+// rest of the current job (its quality report, a few ms) rather than replacing the worker.
+function startWaitingDrag() {
+  if (!dragWaiting) return;
+  dragWaiting = false;
+  remesh({ queue: true });
+}
+
+/** Wants the control-space overlay from the worker (it costs an inspection of the structure). */
+const wantOverlay = () => Boolean(state.view.controlSpace) && !state.surface;
+
 let completionWaiters = [];
-async function remesh() {
+async function remesh({ queue = false } = {}) {
   const version = state.caseVersion;
+  const editAt = state.editAt ?? wallNow();
   try {
     checkCase(state.case);
   } catch (e) {
@@ -325,34 +387,97 @@ async function remesh() {
   }
   state.jobsStarted++;
   const before = meshRunner.restarts;
-  const job = meshRunner.run('mesh', { case: state.case, surface: state.surface });
+  let drawn = null;  // the breakdown once the mesh is on screen
+  const overlay = wantOverlay();
+  state.runningVersion = version;
+  const job = meshRunner.run('mesh', { case: state.case, surface: state.surface, overlay }, {
+    queue,
+    onPartial: ({ result, marks, receivedAt }) => { drawn = draw(result, version, editAt, marks, receivedAt, overlay); },
+  });
   state.cancelled += meshRunner.restarts - before;
   if (meshRunner.restarts > before) {
     const t0 = performance.now();
     meshRunner.ready.then(() => state.workerRestartMs.push(Math.round(performance.now() - t0)));
   }
   try {
-    const { result, workerMs, totalMs } = await job;
-    const t0 = performance.now();
-    state.lastJob = { meshMs: Math.round(result.meshMs), workerMs: Math.round(workerMs), totalMs: Math.round(totalMs), drawMs: null };
-    showResult(result);
-    views.render();  // draw now so the time below includes the draw
-    state.lastJob.drawMs = Math.round(performance.now() - t0);
-    state.meshedVersion = version;
-    if (state.dragEndAt && version >= state.dragEndVersion) {
-      state.dragToMeshMs = Math.round(performance.now() - state.dragEndAt);
-      state.dragEndAt = null;
-    }
+    const { result, marks, totalMs, workerMs, receivedAt } = await job;
+    if (!drawn) drawn = draw(result, version, editAt, marks, receivedAt, overlay);  // surface runs: all at once
+    const t0 = wallNow();
+    state.lastStats = result.stats;
+    renderStats(result.stats);
+    renderHistograms(state.lastMeasures, result.stats);
+    renderLegend();
+    const b = drawn;
+    b.reportMs = marks.statsEnd && marks.statsStart ? marks.statsEnd - marks.statsStart : 0;
+    b.afterDrawMs = wallNow() - t0;
+    const ps = result.stats.pipelineSeconds;
+    if (ps) Object.assign(b, { coreControlSpaceMs: 1000 * ps.controlSpace, coreUpdatesMs: 1000 * ps.boundaryUpdates, coreMeshingMs: 1000 * ps.meshing });
+    for (const k of Object.keys(b)) if (typeof b[k] === 'number') b[k] = Math.round(b[k] * 10) / 10;
+    state.lastJob = { meshMs: Math.round(b.coreMs), workerMs: Math.round(workerMs), totalMs: Math.round(totalMs), drawMs: Math.round(b.geometryMs + b.renderMs) };
     state.jobsDone++;
     state.lastError = null;
     clearErrors();
-    statusText.textContent = `meshed in ${(totalMs / 1000).toFixed(2)} s`;
+    statusText.textContent = `meshed in ${(b.inputToDrawnMs / 1000).toFixed(2)} s`;
     status.classList.remove('err');
+    if (state.runningVersion === version) state.runningVersion = null;
     settle();
   } catch (e) {
+    if (state.runningVersion === version) state.runningVersion = null;
     if (e instanceof CancelledError) return;
     fail({ code: e.code ?? 'INTERNAL', message: e.message, target: errorTarget(e.code, e.message) }, version);
+  } finally {
+    startWaitingDrag();
   }
+}
+
+/**
+ * Puts a mesh from the worker on screen and returns where the time went, in ms:
+ *   inputToPostMs   the edit -> the job posted (a wait for a busy worker while dragging)
+ *   postToStartMs   the job posted -> the worker starts it (message, a worker start-up)
+ *   coreMs          the core in the worker: case run + copying out + measures
+ *     coreRunMs, coreOutputMs, coreMeasuresMs (and, with the report, coreControlSpaceMs,
+ *     coreUpdatesMs, coreMeshingMs from its pipelineSeconds)
+ *   toPageMs        the core done -> the result in the page (overlay, transfer)
+ *   geometryMs      page: the geometry (and overlay) rebuilt
+ *   renderMs        page: drawing the frame (uploads included)
+ *   inputToDrawnMs  the edit -> the frame drawn
+ * reportMs and afterDrawMs follow once the quality report is in.
+ */
+function draw(result, version, editAt, marks, receivedAt, overlay) {
+  const t0 = wallNow();
+  state.overlayShown = overlay;
+  showResult(result);
+  const t1 = wallNow();
+  views.render();  // draw now: the time includes the draw
+  const t2 = wallNow();
+  state.meshedVersion = version;
+  const core = result.core ?? {};
+  const b = {
+    triangles: result.mesh.triangles.length / 3,
+    quads: result.mesh.quads.length / 4,
+    inputToPostMs: marks.posted - editAt,
+    postToStartMs: marks.ready - marks.posted,
+    coreMs: marks.coreEnd - marks.coreStart,
+    coreRunMs: core.runMs,
+    coreOutputMs: core.outputMs,
+    coreMeasuresMs: core.measuresMs,
+    toPageMs: receivedAt - marks.coreEnd,
+    geometryMs: t1 - t0,
+    renderMs: t2 - t1,
+    inputToDrawnMs: t2 - editAt,
+  };
+  state.lastBreakdown = b;
+  state.breakdowns.push(b);
+  if (state.breakdowns.length > 50) state.breakdowns.shift();
+  if (state.dragEndAt && version >= state.dragEndVersion) {
+    state.dragToMeshMs = Math.round(t2 - state.dragEndAt);
+    state.dragInputToMeshMs = Math.round(t2 - (state.dragLastEditAt ?? state.dragEndAt));
+    b.drag = true;
+    state.dragEndAt = null;
+  }
+  // While dragging, the next input starts now (the report of this one is a few ms away).
+  if (dragWaiting && !state.dragEndAt) startWaitingDrag();
+  return b;
 }
 
 function fail(error, version) {
@@ -373,15 +498,16 @@ function settle() {
 }
 
 function idle() {
-  return editTimer === null && !meshRunner.busy;
+  return editTimer === null && !meshRunner.busy && !dragWaiting;
 }
 
+// The mesh part of a result on screen (the quality report and the histograms follow
+// when the report arrives).
 function showResult(result) {
   if (result.mesh.dimension === 3 || state.surface) state.view.view === '2d' && applyViewMode('split');
   views.setMesh(result, styleOf());
   views.setControlSpace(result.overlay, state.view.controlSpace);
   state.overlay = result.overlay;
-  state.lastStats = result.stats;
   state.lastMeasures = result.measures;
   if (needsFit) {
     needsFit = false;
@@ -389,9 +515,6 @@ function showResult(result) {
     views.fit3D();
   }
   views.setSources(state.case.sources, state.selected, state.view.sources);
-  renderStats(result.stats);
-  renderHistograms(result.measures, result.stats);
-  renderLegend();
 }
 
 function styleOf() {
@@ -399,6 +522,8 @@ function styleOf() {
 }
 
 function restyle() {
+  // The overlay is inspected only when shown: turning it on remeshes with it.
+  if (wantOverlay() && !state.overlayShown && state.case && views.mesh) edited(0);
   views.setStyle(styleOf());
   views.setControlSpace(state.overlay, state.view.controlSpace);
   views.setSources(state.case?.sources, state.selected, state.view.sources);
@@ -737,7 +862,12 @@ const app = {
   showMesh(mesh) {
     const measures = { edges: uniqueEdges(mesh.triangles, mesh.quads ?? new Uint32Array(0)), edgeLength: null, quality: null, vertexH: null };
     needsFit = true;
-    showResult({ mesh: { quads: new Uint32Array(0), edges: new Uint32Array(0), ...mesh }, measures, overlay: null, stats: { vertices: mesh.params.length / 2, triangles: mesh.triangles.length / 3, quads: 0, edges: measures.edges.length / 2 } });
+    const stats = { vertices: mesh.params.length / 2, triangles: mesh.triangles.length / 3, quads: 0, edges: measures.edges.length / 2 };
+    showResult({ mesh: { quads: new Uint32Array(0), edges: new Uint32Array(0), ...mesh }, measures, overlay: null });
+    state.lastStats = stats;
+    renderStats(stats);
+    renderHistograms(measures, stats);
+    renderLegend();
   },
   checkExpression,
 };
