@@ -38,6 +38,7 @@ const state = {
   breakdowns: [],       // the last 50 of them
   progressLog: [],      // { id, stage, fraction, at } of recent jobs (test hook)
   progress: null,       // { stage, fraction } of the running job
+  syncDraw: false,      // measurements: renderMs waits for the GPU (a 1-pixel read back)
   workerStartMs: null,  // worker creation -> core ready (precompiled module)
   workerRestartMs: [],  // the same for replacement workers after a cancellation
   version: null,
@@ -363,19 +364,18 @@ function editedByDrag() {
   else dragWaiting = true;
 }
 
-// The latest input waits for the worker (during a drag): start it now, queued behind the
-// rest of the current job (its quality report, a few ms) rather than replacing the worker.
+// The latest input of a drag waited for the worker: start it now.
 function startWaitingDrag() {
   if (!dragWaiting) return;
   dragWaiting = false;
-  remesh({ queue: true });
+  remesh();
 }
 
 /** Wants the control-space overlay from the worker (it costs an inspection of the structure). */
 const wantOverlay = () => Boolean(state.view.controlSpace) && !state.surface;
 
 let completionWaiters = [];
-async function remesh({ queue = false } = {}) {
+async function remesh() {
   const version = state.caseVersion;
   const editAt = state.editAt ?? wallNow();
   try {
@@ -387,68 +387,77 @@ async function remesh({ queue = false } = {}) {
   }
   state.jobsStarted++;
   const before = meshRunner.restarts;
-  let drawn = null;  // the breakdown once the mesh is on screen
   const overlay = wantOverlay();
   state.runningVersion = version;
-  const job = meshRunner.run('mesh', { case: state.case, surface: state.surface, overlay }, {
-    queue,
-    onPartial: ({ result, marks, receivedAt }) => { drawn = draw(result, version, editAt, marks, receivedAt, overlay); },
-  });
+  const job = meshRunner.run('mesh', { case: state.case, surface: state.surface, overlay });
   state.cancelled += meshRunner.restarts - before;
   if (meshRunner.restarts > before) {
     const t0 = performance.now();
     meshRunner.ready.then(() => state.workerRestartMs.push(Math.round(performance.now() - t0)));
   }
   try {
-    const { result, marks, totalMs, workerMs, receivedAt } = await job;
-    if (!drawn) drawn = draw(result, version, editAt, marks, receivedAt, overlay);  // surface runs: all at once
-    const t0 = wallNow();
-    state.lastStats = result.stats;
-    renderStats(result.stats);
-    renderHistograms(state.lastMeasures, result.stats);
-    renderLegend();
-    const b = drawn;
-    b.reportMs = marks.statsEnd && marks.statsStart ? marks.statsEnd - marks.statsStart : 0;
-    b.afterDrawMs = wallNow() - t0;
-    const ps = result.stats.pipelineSeconds;
-    if (ps) Object.assign(b, { coreControlSpaceMs: 1000 * ps.controlSpace, coreUpdatesMs: 1000 * ps.boundaryUpdates, coreMeshingMs: 1000 * ps.meshing });
-    for (const k of Object.keys(b)) if (typeof b[k] === 'number') b[k] = Math.round(b[k] * 10) / 10;
+    const { id, result, marks, totalMs, workerMs, receivedAt } = await job;
+    const b = draw(result, version, editAt, marks, receivedAt, overlay);
     state.lastJob = { meshMs: Math.round(b.coreMs), workerMs: Math.round(workerMs), totalMs: Math.round(totalMs), drawMs: Math.round(b.geometryMs + b.renderMs) };
-    state.jobsDone++;
     state.lastError = null;
     clearErrors();
-    statusText.textContent = `meshed in ${(b.inputToDrawnMs / 1000).toFixed(2)} s`;
     status.classList.remove('err');
     if (state.runningVersion === version) state.runningVersion = null;
+    // While dragging, the next input goes first: the report of a mesh already left
+    // behind is never computed. Otherwise the quality report (planar runs) follows.
+    if (dragWaiting) {
+      state.jobsDone++;
+      startWaitingDrag();
+      return;
+    }
+    let stats = result.stats;
+    if (!stats) {
+      const r = await meshRunner.run('report', { of: id });
+      stats = r.result.stats;
+      b.reportMs = r.result.reportMs;
+    }
+    const t0 = wallNow();
+    state.lastStats = stats;
+    renderStats(stats);
+    renderHistograms(state.lastMeasures, stats);
+    renderLegend();
+    b.afterDrawMs = wallNow() - t0;
+    const ps = stats.pipelineSeconds;
+    if (ps) Object.assign(b, { coreControlSpaceMs: 1000 * ps.controlSpace, coreUpdatesMs: 1000 * ps.boundaryUpdates, coreMeshingMs: 1000 * ps.meshing });
+    for (const k of Object.keys(b)) if (typeof b[k] === 'number') b[k] = Math.round(b[k] * 10) / 10;
+    state.jobsDone++;
+    statusText.textContent = `meshed in ${(b.inputToDrawnMs / 1000).toFixed(2)} s`;
     settle();
   } catch (e) {
     if (state.runningVersion === version) state.runningVersion = null;
     if (e instanceof CancelledError) return;
     fail({ code: e.code ?? 'INTERNAL', message: e.message, target: errorTarget(e.code, e.message) }, version);
-  } finally {
-    startWaitingDrag();
   }
 }
 
 /**
  * Puts a mesh from the worker on screen and returns where the time went, in ms:
- *   inputToPostMs   the edit -> the job posted (a wait for a busy worker while dragging)
- *   postToStartMs   the job posted -> the worker starts it (message, a worker start-up)
+ *   inputToPostMs   the edit -> the job posted (waiting for a busy worker while dragging)
+ *   postToStartMs   the job posted -> the worker starts it (message; a worker start-up)
  *   coreMs          the core in the worker: case run + copying out + measures
- *     coreRunMs, coreOutputMs, coreMeasuresMs (and, with the report, coreControlSpaceMs,
+ *     coreRunMs, coreOutputMs, coreMeasuresMs (and, once the report is in, coreControlSpaceMs,
  *     coreUpdatesMs, coreMeshingMs from its pipelineSeconds)
  *   toPageMs        the core done -> the result in the page (overlay, transfer)
  *   geometryMs      page: the geometry (and overlay) rebuilt
- *   renderMs        page: drawing the frame (uploads included)
- *   inputToDrawnMs  the edit -> the frame drawn
- * reportMs and afterDrawMs follow once the quality report is in.
+ *   renderMs        page: drawing the 2D view (GPU uploads included; with state.syncDraw
+ *                   until the GPU has finished it). The 3D view follows on the next frame.
+ *   inputToDrawnMs  the edit -> the 2D view drawn
+ * reportMs (the quality report, a separate job) and afterDrawMs (numbers, histograms)
+ * follow once the report is in.
  */
 function draw(result, version, editAt, marks, receivedAt, overlay) {
   const t0 = wallNow();
   state.overlayShown = overlay;
   showResult(result);
   const t1 = wallNow();
-  views.render();  // draw now: the time includes the draw
+  // Draw the view being edited now and the other one on the next frame: on a software
+  // rasterizer the two cost about the same, and the 2D view is where the handle moves.
+  views.renderNow(['2d', '3d'], { sync: state.syncDraw });
   const t2 = wallNow();
   state.meshedVersion = version;
   const core = result.core ?? {};
@@ -466,6 +475,7 @@ function draw(result, version, editAt, marks, receivedAt, overlay) {
     renderMs: t2 - t1,
     inputToDrawnMs: t2 - editAt,
   };
+  for (const k of Object.keys(b)) if (typeof b[k] === 'number') b[k] = Math.round(b[k] * 10) / 10;
   state.lastBreakdown = b;
   state.breakdowns.push(b);
   if (state.breakdowns.length > 50) state.breakdowns.shift();
@@ -475,8 +485,6 @@ function draw(result, version, editAt, marks, receivedAt, overlay) {
     b.drag = true;
     state.dragEndAt = null;
   }
-  // While dragging, the next input starts now (the report of this one is a few ms away).
-  if (dragWaiting && !state.dragEndAt) startWaitingDrag();
   return b;
 }
 

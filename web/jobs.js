@@ -1,5 +1,4 @@
-// Worker client: jobs with ids, progress and partial-result messages, and cancellation by
-// replacing the worker.
+// Worker client: jobs with ids, progress messages, and cancellation by replacing the worker.
 //
 // The wasm core cannot be interrupted from JS (it is synchronous inside the worker), so a
 // job that is still running when a newer one arrives is cancelled by terminating the
@@ -44,7 +43,7 @@ export class JobRunner {
     this.useSpare = spare;
     this.onBusy = onBusy;
     this.onProgress = onProgress;
-    this.pending = new Map();  // id -> { resolve, reject, op, started, onPartial }
+    this.pending = new Map();  // id -> { resolve, reject, op, started }
     this.nextId = 1;
     this.restarts = 0;
     this.spareSwaps = 0;       // cancellations served by the spare worker (no start-up wait)
@@ -100,8 +99,6 @@ export class JobRunner {
     if (!p) return;
     if (data.type === 'progress') {
       this.onProgress({ id: data.id, op: p.op, stage: data.stage, fraction: data.fraction ?? null, elapsedMs: performance.now() - p.started });
-    } else if (data.type === 'partial') {
-      p.onPartial?.({ result: data.result, marks: data.marks, receivedAt: wallNow() });
     } else if (data.type === 'result') {
       this.pending.delete(data.id);
       this.#busyChanged();
@@ -115,16 +112,15 @@ export class JobRunner {
   get busy() { return this.pending.size > 0; }
 
   /**
-   * Runs op in the worker; resolves to { result, workerMs, marks, totalMs } or rejects
-   * (CancelledError when superseded). onPartial({ result, marks }) receives a part of the
-   * result sent ahead of the rest (the mesh before its quality report).
+   * Runs op in the worker; resolves to { id, result, workerMs, marks, totalMs, receivedAt }
+   * or rejects (CancelledError when superseded). marks: the worker's wall-clock times of
+   * the job's steps (posted, received, ready, and what the op adds).
    */
-  run(op, args, { onPartial = null, queue = false } = {}) {
-    // queue: wait behind the jobs already sent instead of superseding them.
-    if (this.supersede && !queue && this.pending.size > 0) this.cancelAll();
+  run(op, args) {
+    if (this.supersede && this.pending.size > 0) this.cancelAll();
     const id = this.nextId++;
     const promise = new Promise((resolve, reject) => {
-      this.pending.set(id, { resolve, reject, op, started: performance.now(), onPartial });
+      this.pending.set(id, { resolve: (r) => resolve({ id, ...r }), reject, op, started: performance.now() });
     });
     this.#busyChanged();
     this.worker.postMessage({ type: 'job', id, op, args, postedAt: wallNow() });

@@ -212,6 +212,26 @@ export class Views {
     this.framesRendered++;
   }
 
+  /**
+   * Draws the first of `order` ('2d', '3d') shown now and the others on the next frame.
+   * sync: wait until the GPU has finished the drawing (a 1-pixel read back; measurements only).
+   */
+  renderNow(order, { sync = false } = {}) {
+    const shown = order.filter((k) => this.viewports()[k]);
+    if (!this.preserveDrawingBuffer || !shown.length) {
+      this.dirty = new Set(['all']);
+      this.render();
+    } else {
+      this.dirty = new Set([shown[0]]);
+      this.render();
+      for (const k of shown.slice(1)) this.requestRender(k);
+    }
+    if (sync) {
+      const gl = this.renderer.getContext();
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+    }
+  }
+
   #interacting(on) {
     const hide = on && (this.edgeCount ?? 0) > this.hideEdgesAbove;
     for (const o of this.group3.children) if (o.isLineSegments && o.userData.edges) o.visible = !hide;

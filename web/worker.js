@@ -5,7 +5,6 @@
 //        { type: 'job', id, op, args, postedAt }
 //   out: { type: 'ready', version, initMs }
 //        { type: 'progress', id, stage, fraction }             during a job (fraction in [0, 1] or null)
-//        { type: 'partial', id, result, marks }                part of the result sent ahead (the mesh)
 //        { type: 'result', id, ok: true, result, workerMs, marks } | { type: 'result', id, ok: false, error }
 // Typed arrays in results are transferred, not copied. marks: wall-clock times
 // (performance.timeOrigin + now, comparable with the page's) of the job's steps.
@@ -77,6 +76,7 @@ function sampledVtk(cs) {
 }
 
 const wallNow = () => performance.timeOrigin + performance.now();
+let lastMeshJob = null;  // id of the planar mesh job whose run the core keeps for its report
 
 // The planar mesher reports a fraction: 0 while the control space and its section 3.2
 // rounds run, then boundary (to 0.1), point insertion (to 0.8), improvement (to 0.95).
@@ -89,11 +89,12 @@ function stageOf(fraction) {
 }
 
 const ops = {
-  // Meshes a case (planar or surface: meshCase takes both). The mesh goes to the page as
-  // soon as it exists, with the per-edge metric lengths and per-element qualities for the
-  // colouring (measured in the core); the quality report follows in the result.
+  // Meshes a case (planar or surface: meshCase takes both): the mesh with per-edge metric
+  // lengths and per-element qualities for the colouring (measured in the core). A planar
+  // run's quality report is a separate job ('report'), which the page asks for once the
+  // mesh is drawn, and skips for the meshes a drag has already left behind.
   // overlay: also inspect the final control space for the overlay (planar only).
-  mesh({ case: c, surface = false, overlay = false }, { progress, partial, marks }) {
+  mesh({ case: c, surface = false, overlay = false }, { progress, marks, id }) {
     progress('control space', 0);
     let lastFraction = -1, lastAt = 0;
     const onProgress = (fraction) => {
@@ -110,21 +111,23 @@ const ops = {
     const run = am.meshCase(c, { inspectControlSpace: overlay && !surface, measures: true, stats: surface, onProgress });
     marks.coreEnd = wallNow();
     const { mesh, measures, timings } = run;
-    const ahead = {
+    lastMeshJob = surface ? null : id;
+    return {
       mesh,
       overlay: overlay ? overlayFromInspect(run.controlSpace) : null,
       measures: { edges: measures.edges, edgeLength: measures.edgeLength ?? null, quality: measures.quality ?? null, vertexH: measures.vertexH ?? null },
-      stats: run.stats,
+      stats: run.stats,  // null for a planar run: see 'report'
       core: timings,
     };
-    if (surface) return ahead;  // a surface run comes with its report
-    marks.overlay = wallNow();
-    partial(ahead);
+  },
+  // The quality report of the planar mesh job `of`, which must be the last job run here.
+  report({ of }, { progress }) {
+    if (of !== lastMeshJob) throw Object.assign(new Error(`report: job ${of} is not the last mesh job (${lastMeshJob})`), { code: 'INVALID_ARGUMENT' });
     progress('quality report', null);
-    marks.statsStart = wallNow();
+    const t0 = performance.now();
     const stats = am.caseStats();
-    marks.statsEnd = wallNow();
-    return { stats };
+    lastMeshJob = null;
+    return { stats, reportMs: performance.now() - t0 };
   },
   // Text of the mesh in a file format.
   writeMesh({ mesh, format }) {
@@ -164,12 +167,9 @@ async function runJob({ id, op, args, postedAt }) {
   try {
     if (!(op in ops)) throw Object.assign(new Error(`unknown operation '${op}'`), { code: 'INVALID_ARGUMENT' });
     const hooks = {
+      id,
       marks,
       progress: (stage, fraction = null) => self.postMessage({ type: 'progress', id, stage, fraction }),
-      partial: (result) => {
-        marks.partialPosted = wallNow();
-        self.postMessage({ type: 'partial', id, result, marks }, [...new Set(transferables(result))]);
-      },
     };
     const result = ops[op](args ?? {}, hooks);
     marks.resultPosted = wallNow();

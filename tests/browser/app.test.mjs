@@ -228,10 +228,10 @@ test('the page keeps animating while the core meshes, and the toolbar shows the 
   await settle(page, () => window.anisomeshApp.loadPreset('point-source'));
   const r = await page.evaluate(async () => {
     const a = window.anisomeshApp;
-    // A finer case so that the job lasts long enough to watch.
-    a.state.case.sources[0].h0 = 0.0007;
-    a.state.case.controlSpace.hmin = 0.0007;
-    a.state.case.controlSpace.hmax = 0.012;
+    // A fine case (~130k triangles) so that the job lasts long enough to watch.
+    a.state.case.sources[0].h0 = 0.0004;
+    a.state.case.controlSpace.hmin = 0.0004;
+    a.state.case.controlSpace.hmax = 0.0065;
     a.edited(0);
     let frames = 0, busyFrames = 0, busySeen = false, text = '';
     // Watch the spinner itself (not once per frame: a software-rendered frame can outlast the job).

@@ -1,18 +1,22 @@
 // Measurements for the report (not a test: no timed assertions) and the README screenshots.
 //   node tests/browser/measure.mjs [--no-screenshots]
-// Prints: pointer-up -> new mesh drawn for a ~50k-triangle case, and the frame rate while
-// orbiting a ~200k-triangle mesh in the 3D view (headless Chromium, software WebGL).
+// Prints: pointer-up -> new mesh drawn for a ~50k-triangle case (DRAGS drags, default 12)
+// with where the time went (the app's breakdown: see draw() in web/app.js), and the frame
+// rate while orbiting a ~200k-triangle mesh in the 3D view (headless Chromium, software WebGL).
+// ONLY=drag or ONLY=orbit runs one part.
 import { launch, openPage, settle } from './launch.mjs';
 import { sphereMesh } from './fixtures.mjs';
 import { fileURLToPath } from 'node:url';
 import { stat } from 'node:fs/promises';
 
-const shots = !process.argv.includes('--no-screenshots');
+const only = process.env.ONLY ?? null;
+const shots = !process.argv.includes('--no-screenshots') && !only;
 const out = fileURLToPath(new URL('../../web/screenshots/', import.meta.url));
 const env = await launch();
 const median = (a) => [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)];
 
 try {
+  if (only !== 'orbit') {
   // --- 1. drag -> mesh for ~50k triangles ---------------------------------------------
   const { page, errors } = await openPage(env.browser, env.url);
   await settle(page, () => window.anisomeshApp.loadPreset('point-source-fine'));
@@ -24,9 +28,10 @@ try {
     a.edited(0);
   });
   const base = await page.evaluate(() => ({ tris: window.anisomeshApp.state.lastStats.triangles, job: window.anisomeshApp.state.lastJob }));
-  console.log(`case: point source, ${base.tris} triangles; job ${JSON.stringify(base.job)}`);
-  const samples = [];
-  for (let rep = 0; rep < 3; rep++) {
+  console.log(`case: preset point-source-fine with h0 = hmin = 0.0006, hmax = 0.0105: ${base.tris} triangles; job ${JSON.stringify(base.job)}`);
+  const drags = Number(process.env.DRAGS ?? 12);
+  const samples = [], inputSamples = [], breakdowns = [];
+  for (let rep = 0; rep < drags; rep++) {
     const h = await page.evaluate(() => window.anisomeshApp.handleClientPosition(0, 'center'));
     await page.mouse.move(h.x, h.y);
     await page.mouse.down();
@@ -35,11 +40,25 @@ try {
     await page.evaluate(() => { window.anisomeshApp.state.dragToMeshMs = null; });
     await page.mouse.up();
     await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
-    const r = await page.evaluate(() => ({ ms: window.anisomeshApp.state.dragToMeshMs, job: window.anisomeshApp.state.lastJob, tris: window.anisomeshApp.state.lastStats.triangles }));
+    const r = await page.evaluate(() => {
+      const s = window.anisomeshApp.state;
+      return { ms: s.dragToMeshMs, inputMs: s.dragInputToMeshMs, job: s.lastJob, tris: s.lastStats.triangles, b: s.breakdowns.filter((x) => x.drag).at(-1) ?? null };
+    });
     samples.push(r.ms);
-    console.log(`  drag ${rep + 1}: pointer up -> mesh drawn ${r.ms} ms (${r.tris} triangles; core ${r.job.meshMs} ms, worker ${r.job.workerMs} ms, round trip ${r.job.totalMs} ms, draw ${r.job.drawMs} ms)`);
+    if (r.inputMs != null) inputSamples.push(r.inputMs);
+    if (r.b) breakdowns.push(r.b);
+    console.log(`  drag ${rep + 1}: pointer up -> mesh drawn ${r.ms} ms (${r.tris} triangles; core ${r.job.meshMs} ms, worker ${r.job.workerMs} ms, round trip ${r.job.totalMs} ms, draw ${r.job.drawMs} ms)` +
+      (r.b ? `\n    breakdown ${JSON.stringify(r.b)}` : ''));
+    await page.evaluate(() => new Promise((res) => setTimeout(res, 150)));
   }
-  console.log(`RESULT drag->mesh (~${base.tris} triangles): median ${median(samples)} ms of ${samples.join(', ')}`);
+  console.log(`RESULT drag->mesh drawn (~${base.tris} triangles): median ${median(samples)} ms of ${samples.length} drags: ${samples.join(', ')}`);
+  if (inputSamples.length) console.log(`RESULT last drag input -> mesh drawn: median ${median(inputSamples)} ms`);
+  if (breakdowns.length) {
+    // Median of each stage over the drags (the stages of one drag add up to its total; medians need not).
+    const keys = Object.keys(breakdowns[0]).filter((k) => typeof breakdowns[0][k] === 'number');
+    console.log(`RESULT breakdown, median of ${breakdowns.length} drags (ms):`);
+    for (const k of keys) console.log(`  ${k.padEnd(20)} ${median(breakdowns.map((b) => b[k] ?? 0))}`);
+  }
   const restarts = await page.evaluate(() => window.anisomeshApp.state.workerRestartMs);
   console.log(`RESULT worker restart after cancel (precompiled wasm module): median ${median(restarts)} ms of ${restarts.length}`);
   if (errors.length) console.log('page errors:', errors);
@@ -65,6 +84,8 @@ try {
     await pc.close();
   }
 
+  }
+  if (only !== 'drag') {
   // --- 2. orbit a ~200k-triangle mesh -------------------------------------------------
   const { page: p2, errors: e2 } = await openPage(env.browser, env.url);
   await settle(p2, () => window.anisomeshApp.loadPreset('point-source-fine'));
@@ -103,6 +124,7 @@ try {
   if (e2.length) console.log('page errors:', e2);
   await p2.close();
 
+  }
   // --- 3. screenshots -----------------------------------------------------------------
   if (shots) {
     const { page: p3 } = await openPage(env.browser, env.url);
@@ -113,8 +135,9 @@ try {
     await p3.evaluate(() => {
       const a = window.anisomeshApp;
       a.setView({ controlSpace: true, edges: 'plain', lift: 0.6 });
-      a.views.fit3D();
     });
+    await settle(p3);  // the overlay is inspected when it is turned on
+    await p3.evaluate(() => window.anisomeshApp.views.fit3D());
     await p3.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     await p3.screenshot({ path: `${out}app-shear-layer-control-space.png` });
     await settle(p3, () => window.anisomeshApp.loadPreset('boundary-layer'));
