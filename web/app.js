@@ -100,6 +100,7 @@ const views = new Views($('view'), {
     const s = state.case.sources[i];
     if (phase === 'start') {
       dragFrom = { p, p1: s.p1 && [...s.p1], p2: s.p2 && [...s.p2] };
+      views.dragging = true;  // the 3D view waits for the release (see draw())
       return;
     }
     const before = JSON.stringify(s);
@@ -118,10 +119,16 @@ const views = new Views($('view'), {
     // Released: the latest input must not wait behind a stale job. A job already running
     // for this very input goes on; a job for an older input is superseded at once.
     dragWaiting = false;
+    clearTimeout(restTimer);
+    views.dragging = false;
     if (state.meshedVersion === state.caseVersion) {
+      // The mesh of the last input was drawn before the release.
       state.dragToMeshMs = 0;
-      state.dragInputToMeshMs = 0;
+      const b = state.breakdowns.findLast((x) => x.version === state.caseVersion);
+      state.dragInputToMeshMs = b ? Math.round(b.inputToDrawnMs) : 0;
+      if (b) b.drag = true;
       state.dragEndAt = null;
+      views.requestRender('3d');
     } else if (state.runningVersion !== state.caseVersion) {
       clearTimeout(editTimer);
       editTimer = null;
@@ -357,11 +364,25 @@ function edited(delay = EDIT_DEBOUNCE_MS) {
 // debounce wait); when a job is running, let it finish and draw (the mesh follows the
 // drag) and then start the latest input right away. Releasing the handle supersedes a
 // stale job (see onDrag).
-let dragWaiting = false;
+// When the pointer rests (no move for DRAG_REST_MS) while a stale job runs, that job is
+// superseded so the resting position does not wait for it.
+let dragWaiting = false, restTimer = null;
+const DRAG_REST_MS = 30;
 function editedByDrag() {
   bumpVersion();
-  if (!meshRunner.busy && editTimer === null) remesh();
-  else dragWaiting = true;
+  clearTimeout(restTimer);
+  if (!meshRunner.busy && editTimer === null) {
+    remesh();
+    return;
+  }
+  dragWaiting = true;
+  restTimer = setTimeout(() => {
+    restTimer = null;
+    if (dragWaiting && state.runningVersion !== state.caseVersion) {
+      dragWaiting = false;
+      remesh();
+    }
+  }, DRAG_REST_MS);
 }
 
 // The latest input of a drag waited for the worker: start it now.
@@ -457,11 +478,14 @@ function draw(result, version, editAt, marks, receivedAt, overlay) {
   const t1 = wallNow();
   // Draw the view being edited now and the other one on the next frame: on a software
   // rasterizer the two cost about the same, and the 2D view is where the handle moves.
-  views.renderNow(['2d', '3d'], { sync: state.syncDraw });
+  // While a handle is held the 3D view is not redrawn at all (it would only queue work
+  // for the rasterizer that the next mesh makes stale); it catches up on release.
+  views.renderNow(views.dragging ? ['2d'] : ['2d', '3d'], { sync: state.syncDraw });
   const t2 = wallNow();
   state.meshedVersion = version;
   const core = result.core ?? {};
   const b = {
+    version,
     triangles: result.mesh.triangles.length / 3,
     quads: result.mesh.quads.length / 4,
     inputToPostMs: marks.posted - editAt,

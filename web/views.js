@@ -60,9 +60,12 @@ export class Views {
     // makes three.js delete it, and recompiling costs ~100 ms per program on software WebGL.
     const line = (o) => new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, transparent: true, ...o });
     this.mats = {
-      // All 2D materials are 'transparent' so that three.js draws them in one list ordered
-      // by the layers' renderOrder (opaque objects would otherwise go first, under the faces).
-      face2: new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, depthTest: false, transparent: true }),
+      // The 2D line materials are 'transparent' so that three.js draws them in one list ordered
+      // by the layers' renderOrder, after the (opaque) faces.
+      // The faces are the bottom layer, so they may be opaque (drawn first anyway): no
+      // blending, ~15 % less time per 2D frame on a software rasterizer. They turn
+      // transparent when dimmed under the control-space overlay.
+      face2: new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, depthTest: false, transparent: false }),
       face3: new THREE.MeshLambertMaterial({
         vertexColors: true, side: THREE.DoubleSide, flatShading: true, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
       }),
@@ -180,6 +183,8 @@ export class Views {
 
   /** Schedules a draw of one viewport ('2d', '3d') or of all (default) on the next frame. */
   requestRender(which = 'all') {
+    // While a source handle is dragged only the 2D view is redrawn (see app.js draw()).
+    if (this.dragging && which === 'all' && this.viewports()['2d']) which = '2d';
     (this.dirty ??= new Set()).add(which);
     if (this.renderPending) return;
     this.renderPending = true;
@@ -403,6 +408,10 @@ export class Views {
     const dim = Boolean(overlay && visible);
     const m = this.mats;
     m.face2.opacity = dim ? 0.35 : 1;
+    if (m.face2.transparent !== dim) {
+      m.face2.transparent = dim;
+      m.face2.needsUpdate = true;
+    }
     m.edgeLength2.opacity = dim ? 0.3 : 0.95;
     m.edgePlain2.opacity = dim ? 0.2 : 0.55;
     if (!dim) { this.requestRender('2d'); return; }
