@@ -54,7 +54,7 @@ let busyTimer = null;
 // The toolbar while a job runs: the stage, its progress (a bar and a percentage when the
 // core reports a fraction) and the elapsed time.
 function showProgress() {
-  const pct = progress.fraction == null ? '' : ` ${Math.round(100 * progress.fraction)} %`;
+  const pct = progress.fraction > 0 ? ` ${Math.round(100 * progress.fraction)} %` : '';
   statusText.textContent = `${progress.stage}${pct} · ${((performance.now() - progress.started) / 1000).toFixed(1)} s`;
   progressBar.hidden = progress.fraction == null;
   progressFill.style.width = `${(100 * (progress.fraction ?? 0)).toFixed(1)}%`;

@@ -43,6 +43,13 @@ export class Views {
       control: new THREE.Group(), sources: new THREE.Group(),
     };
     Object.values(this.layers2).forEach((g, i) => { g.renderOrder = i; this.scene2.add(g); });
+    // The cached image of the 2D mesh layers, drawn as one quad (see #render2D).
+    this.antialias = antialias;
+    this.blitScene = new THREE.Scene();
+    this.blitCam = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
+    this.blit = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.MeshBasicMaterial({ depthTest: false, depthWrite: false }));
+    this.blit.frustumCulled = false;
+    this.blitScene.add(this.blit);
 
     // --- 3D scene ---
     this.scene3 = new THREE.Scene();
@@ -136,6 +143,7 @@ export class Views {
   }
 
   #updateCam2() {
+    this.cache2Valid = false;
     const v = this.viewports()['2d'];
     if (!v) return;
     const aspect = v.w / Math.max(v.h, 1);
@@ -211,7 +219,7 @@ export class Views {
       // WebGL's y axis points up; autoClear clears inside the scissor only.
       this.renderer.setViewport(v.x, H - v.y - v.h, v.w, v.h);
       this.renderer.setScissor(v.x, H - v.y - v.h, v.w, v.h);
-      if (kind === '2d') this.renderer.render(this.scene2, this.cam2);
+      if (kind === '2d') this.#render2D(v);
       else this.renderer.render(this.scene3, this.cam3);
     }
     this.framesRendered++;
@@ -235,6 +243,55 @@ export class Views {
       const gl = this.renderer.getContext();
       gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
     }
+  }
+
+  /**
+   * The 2D view: the mesh layers (faces, edges, boundary, control-space overlay) are drawn
+   * into an offscreen image that is kept until they or the camera change; a frame is that
+   * image plus the sources on top. Moving a source handle then costs a textured quad and
+   * a few lines instead of the whole mesh, which on a software rasterizer keeps its
+   * frames from queueing up in front of the next mesh.
+   */
+  #render2D(v) {
+    const r = this.renderer;
+    const ratio = r.getPixelRatio();
+    const w = Math.max(1, Math.round(v.w * ratio)), h = Math.max(1, Math.round(v.h * ratio));
+    let rt = this.cache2;
+    if (!rt || rt.width !== w || rt.height !== h) {
+      rt?.dispose();
+      rt = this.cache2 = new THREE.WebGLRenderTarget(w, h, {
+        depthBuffer: false, samples: this.antialias ? 4 : 0, minFilter: THREE.NearestFilter, magFilter: THREE.NearestFilter,
+      });
+      rt.texture.colorSpace = THREE.SRGBColorSpace;  // 8-bit sRGB storage, decoded when drawn: no banding
+      this.blit.material.map = rt.texture;
+      this.blit.material.needsUpdate = true;
+      this.cache2Valid = false;
+    }
+    const layers = this.layers2;
+    if (!this.cache2Valid) {
+      layers.sources.visible = false;
+      r.setRenderTarget(rt);
+      r.clear();
+      r.render(this.scene2, this.cam2);
+      r.setRenderTarget(null);
+      layers.sources.visible = true;
+      this.cache2Valid = true;
+      this.cache2Draws = (this.cache2Draws ?? 0) + 1;
+    }
+    r.render(this.blitScene, this.blitCam);  // clears the viewport (autoClear) and copies the image
+    const others = [layers.faces, layers.edges, layers.boundary, layers.control];
+    const shown = others.map((g) => g.visible);
+    others.forEach((g) => { g.visible = false; });
+    const autoClear = r.autoClear;
+    r.autoClear = false;
+    r.render(this.scene2, this.cam2);
+    r.autoClear = autoClear;
+    others.forEach((g, i) => { g.visible = shown[i]; });
+  }
+
+  /** The 2D mesh layers or the 2D camera changed: redraw them (not just the sources). */
+  invalidate2D() {
+    this.cache2Valid = false;
   }
 
   #interacting(on) {
@@ -310,6 +367,7 @@ export class Views {
     this.#share(g.boundary3, g.boundary2, flat, bVerts);
     if (!flat) fillSegments(this.#attribute(g.boundary3, 'position', bVerts).array, mesh.edges, pos3);
 
+    this.cache2Valid = false;
     // Bounds of the used range (the arrays' slack holds stale values): fit3D reads them.
     const box = boundsOf(flat ? uvPos : pos3, nv);
     for (const geom of [g.faces2, g.faces3, g.edges2, g.edges3, g.boundary2, g.boundary3]) {
@@ -401,6 +459,7 @@ export class Views {
 
   /** overlay: { nodes: Float32Array (x, y, h1, h2, alpha), lines: Float32Array (x0, y0, x1, y1) } or null. */
   setControlSpace(overlay, visible) {
+    this.cache2Valid = false;
     const g = this.layers2.control;
     for (const o of [...g.children]) { g.remove(o); o.geometry.dispose(); }
     this.controlLegend = null;

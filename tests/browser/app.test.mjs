@@ -325,3 +325,26 @@ test('the control-space overlay is inspected only when shown', async () => {
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('a sources-only change redraws the sources over the cached 2D mesh image', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('holes-dr2'));
+  const r = await page.evaluate(async () => {
+    const a = window.anisomeshApp, v = a.views;
+    const frame = () => new Promise((res) => requestAnimationFrame(() => requestAnimationFrame(res)));
+    await frame();
+    const before = { cached: v.cache2Draws, frames: v.framesRendered, cov: v.coverage('2d') };
+    a.selectSource(a.state.selected === 0 ? 1 : 0);  // the selection colour changes, the mesh does not
+    await frame();
+    const mid = { cached: v.cache2Draws, frames: v.framesRendered };
+    v.fit2D([0, 0, 5, 2]);  // the camera changes: the image is redrawn
+    await frame();
+    return { before, mid, after: { cached: v.cache2Draws, cov: v.coverage('2d') } };
+  });
+  assert.ok(r.mid.frames > r.before.frames, 'a frame was drawn for the selection');
+  assert.equal(r.mid.cached, r.before.cached, 'the mesh image was reused');
+  assert.ok(r.after.cached > r.mid.cached, 'a camera change redraws the mesh image');
+  assert.ok(r.before.cov > 0.05 && r.after.cov > 0.05, JSON.stringify(r));
+  assert.deepEqual(errors, []);
+  await page.close();
+});

@@ -3,7 +3,7 @@
 // Prints: pointer-up -> new mesh drawn for a ~50k-triangle case (DRAGS drags, default 12)
 // with where the time went (the app's breakdown: see draw() in web/app.js), and the frame
 // rate while orbiting a ~200k-triangle mesh in the 3D view (headless Chromium, software WebGL).
-// ONLY=drag or ONLY=orbit runs one part.
+// ONLY=drag or ONLY=orbit runs one part; SYNC=1 makes "drawn" wait for the GPU.
 import { launch, openPage, settle } from './launch.mjs';
 import { sphereMesh } from './fixtures.mjs';
 import { fileURLToPath } from 'node:url';
@@ -30,6 +30,9 @@ try {
   const base = await page.evaluate(() => ({ tris: window.anisomeshApp.state.lastStats.triangles, job: window.anisomeshApp.state.lastJob }));
   console.log(`case: preset point-source-fine with h0 = hmin = 0.0006, hmax = 0.0105: ${base.tris} triangles; job ${JSON.stringify(base.job)}`);
   const drags = Number(process.env.DRAGS ?? 12);
+  // SYNC=1: the app's draw waits until the GPU has finished the frame (a 1-pixel read
+  // back), so "drawn" means pixels done rather than commands issued.
+  if (process.env.SYNC) await page.evaluate(() => { window.anisomeshApp.state.syncDraw = true; });
   // The page's own record of the last pointer move and of the release (any app version).
   await page.evaluate(() => {
     const c = document.querySelector('#view canvas');
@@ -164,7 +167,21 @@ try {
     await settle(p3);
     await p3.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     await p3.screenshot({ path: `${out}app-boundary-layer-quads.png` });
-    for (const f of ['app-holes-dr2.png', 'app-shear-layer-control-space.png', 'app-boundary-layer-quads.png']) {
+    // A long run in progress: the toolbar's stage, bar and percentage.
+    await settle(p3, () => window.anisomeshApp.loadPreset('point-source-fine'));
+    await p3.evaluate(() => {
+      const a = window.anisomeshApp;
+      a.state.case.options.quads = false;
+      a.setView({ edges: 'length', lift: 0 });
+      a.state.case.sources[0].h0 = 0.0003;
+      a.state.case.controlSpace.hmin = 0.0003;
+      a.state.case.controlSpace.hmax = 0.005;
+      a.edited(0);
+    });
+    await p3.waitForFunction(() => (window.anisomeshApp.state.progress?.fraction ?? 0) > 0.3, null, { timeout: 60000 });
+    await p3.screenshot({ path: `${out}app-progress.png`, clip: { x: 0, y: 0, width: 1280, height: 120 } });
+    await settle(p3);
+    for (const f of ['app-holes-dr2.png', 'app-shear-layer-control-space.png', 'app-boundary-layer-quads.png', 'app-progress.png']) {
       console.log(`screenshot web/screenshots/${f}: ${((await stat(out + f)).size / 1024).toFixed(0)} KB`);
     }
     await p3.close();
