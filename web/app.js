@@ -138,6 +138,8 @@ const views = new Views($('view'), {
 }, {
   // ?aa=1 / ?aa=0 forces antialiasing; by default it is off on software WebGL (4x slower there).
   antialias: query.has('aa') ? query.get('aa') !== '0' : !softwareWebGL(),
+  // ?moving=1 / ?moving=0.5: the 3D view's resolution while orbiting (default: half on software WebGL).
+  movingScale: query.has('moving') ? Number(query.get('moving')) : softwareWebGL() ? 0.5 : 1,
 });
 
 // --- GUI --------------------------------------------------------------------------------
@@ -364,13 +366,17 @@ function edited(delay = EDIT_DEBOUNCE_MS) {
 // debounce wait); when a job is running, let it finish and draw (the mesh follows the
 // drag) and then start the latest input right away. Releasing the handle supersedes a
 // stale job (see onDrag).
-// When the pointer rests (no move for DRAG_REST_MS) while a stale job runs, that job is
-// superseded so the resting position does not wait for it.
-let dragWaiting = false, restTimer = null;
-const DRAG_REST_MS = 30;
+// When the pointer rests while a stale job runs, that job is superseded so the resting
+// position does not wait for it. Resting: no move for 1.5 times the recent interval
+// between moves (at least 30 ms; the browser sends at most one move per frame, and a
+// loaded page draws few frames).
+let dragWaiting = false, restTimer = null, lastMoveAt = 0, moveInterval = 16;
 function editedByDrag() {
   bumpVersion();
   clearTimeout(restTimer);
+  const now = performance.now();
+  if (now - lastMoveAt < 500) moveInterval = 0.7 * moveInterval + 0.3 * (now - lastMoveAt);
+  lastMoveAt = now;
   if (!meshRunner.busy && editTimer === null) {
     remesh();
     return;
@@ -382,7 +388,7 @@ function editedByDrag() {
       dragWaiting = false;
       remesh();
     }
-  }, DRAG_REST_MS);
+  }, Math.max(30, 1.5 * moveInterval));
 }
 
 // The latest input of a drag waited for the worker: start it now.
