@@ -459,6 +459,7 @@ async function remesh() {
     if (state.runningVersion === version) state.runningVersion = null;
     if (e instanceof CancelledError) return;
     fail({ code: e.code ?? 'INTERNAL', message: e.message, target: errorTarget(e.code, e.message) }, version);
+    startWaitingDrag();  // a drag goes on past an input the core rejects
   }
 }
 

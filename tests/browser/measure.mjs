@@ -3,20 +3,20 @@
 // Prints: pointer-up -> new mesh drawn for a ~50k-triangle case (DRAGS drags, default 12)
 // with where the time went (the app's breakdown: see draw() in web/app.js), and the frame
 // rate while orbiting a ~200k-triangle mesh in the 3D view (headless Chromium, software WebGL).
-// ONLY=drag or ONLY=orbit runs one part; SYNC=1 makes "drawn" wait for the GPU.
+// ONLY=drag, ONLY=orbit or ONLY=shots runs one part; SYNC=1 makes "drawn" wait for the GPU.
 import { launch, openPage, settle } from './launch.mjs';
 import { sphereMesh } from './fixtures.mjs';
 import { fileURLToPath } from 'node:url';
 import { stat } from 'node:fs/promises';
 
 const only = process.env.ONLY ?? null;
-const shots = !process.argv.includes('--no-screenshots') && !only;
+const shots = !process.argv.includes('--no-screenshots') && (!only || only === 'shots');
 const out = fileURLToPath(new URL('../../web/screenshots/', import.meta.url));
 const env = await launch();
 const median = (a) => [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)];
 
 try {
-  if (only !== 'orbit') {
+  if (!only || only === 'drag') {
   // --- 1. drag -> mesh for ~50k triangles ---------------------------------------------
   const { page, errors } = await openPage(env.browser, env.url);
   await settle(page, () => window.anisomeshApp.loadPreset('point-source-fine'));
@@ -82,7 +82,7 @@ try {
   await page.close();
 
   // --- 1b. worker replacement cost with and without the precompiled module ------------
-  for (const q of ['', '?precompile=0']) {
+  for (const q of ['', '?spare=0', '?spare=0&precompile=0']) {
     const { page: pc } = await openPage(env.browser, env.url.replace(/\/web\/$/, '/web/index.html') + q);
     await settle(pc, () => window.anisomeshApp.loadPreset('holes-off'));
     const ms = await pc.evaluate(async () => {
@@ -97,12 +97,13 @@ try {
       }
       return a.state.workerRestartMs;
     });
-    console.log(`RESULT worker restart ${q ? 'without' : 'with'} the precompiled module: median ${median(ms)} ms of ${ms.join(', ')}`);
+    const how = { '': 'spare worker (default)', '?spare=0': 'no spare, precompiled module', '?spare=0&precompile=0': 'no spare, no precompiled module' }[q];
+    console.log(`RESULT worker restart after a cancel, ${how}: median ${median(ms)} ms of ${ms.join(', ')}`);
     await pc.close();
   }
 
   }
-  if (only !== 'drag') {
+  if (!only || only === 'orbit') {
   // --- 2. orbit a ~200k-triangle mesh -------------------------------------------------
   const { page: p2, errors: e2 } = await openPage(env.browser, env.url);
   await settle(p2, () => window.anisomeshApp.loadPreset('point-source-fine'));
@@ -117,16 +118,23 @@ try {
   // Three settings: the default (edge lines hidden while the camera moves, above 60k
   // edges; on software WebGL the 3D view at half resolution while it moves), full
   // resolution with the edges hidden, and full resolution with the edges drawn.
+  // A warm-up orbit first (the first seconds after a mesh run slower: the worker's report,
+  // garbage collection), then the settings alternately, twice; the mean of the two.
   const orbit = async () => p2.evaluate(async () => {
-    const v = window.anisomeshApp.views;
-    const scale = v.movingScale;
-    const out = { movingScale: scale };
-    out.byDefault = await v.benchOrbit(4000);
-    v.movingScale = 1;
-    out.fullRes = await v.benchOrbit(4000);
-    v.hideEdgesAbove = Infinity;
-    out.withEdges = await v.benchOrbit(4000);
-    v.hideEdgesAbove = 60000;
+    const a = window.anisomeshApp, v = a.views;
+    await a.whenIdle();
+    const scale = v.movingScale ?? 1;
+    const out = { movingScale: scale, byDefault: 0, fullRes: 0, withEdges: 0 };
+    await v.benchOrbit(2000);
+    for (let k = 0; k < 2; k++) {
+      v.movingScale = scale;
+      out.byDefault += (await v.benchOrbit(3000)) / 2;
+      v.movingScale = 1;
+      out.fullRes += (await v.benchOrbit(3000)) / 2;
+      v.hideEdgesAbove = Infinity;
+      out.withEdges += (await v.benchOrbit(3000)) / 2;
+      v.hideEdgesAbove = 60000;
+    }
     v.movingScale = scale;
     return out;
   });
@@ -180,12 +188,15 @@ try {
       const a = window.anisomeshApp;
       a.state.case.options.quads = false;
       a.setView({ edges: 'length', lift: 0 });
-      a.state.case.sources[0].h0 = 0.0003;
-      a.state.case.controlSpace.hmin = 0.0003;
-      a.state.case.controlSpace.hmax = 0.005;
+      a.state.case.sources[0].h0 = 0.0002;
+      a.state.case.controlSpace.hmin = 0.0002;
+      a.state.case.controlSpace.hmax = 0.003;
       a.edited(0);
     });
-    await p3.waitForFunction(() => (window.anisomeshApp.state.progress?.fraction ?? 0) > 0.3, null, { timeout: 60000 });
+    await p3.waitForFunction(() => {
+      const p = window.anisomeshApp.state.progress;
+      return p?.stage === 'inserting points' && p.fraction > 0.25;
+    }, null, { timeout: 60000, polling: 20 });
     await p3.screenshot({ path: `${out}app-progress.png`, clip: { x: 0, y: 0, width: 1280, height: 120 } });
     await settle(p3);
     for (const f of ['app-holes-dr2.png', 'app-shear-layer-control-space.png', 'app-boundary-layer-quads.png', 'app-progress.png']) {
