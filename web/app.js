@@ -138,8 +138,6 @@ const views = new Views($('view'), {
 }, {
   // ?aa=1 / ?aa=0 forces antialiasing; by default it is off on software WebGL (4x slower there).
   antialias: query.has('aa') ? query.get('aa') !== '0' : !softwareWebGL(),
-  // ?moving=1 / ?moving=0.5: the 3D view's resolution while orbiting (default: half on software WebGL).
-  movingScale: query.has('moving') ? Number(query.get('moving')) : softwareWebGL() ? 0.5 : 1,
 });
 
 // --- GUI --------------------------------------------------------------------------------

@@ -18,7 +18,7 @@ export class Views {
    * container: element the canvas fills.
    * hooks: { onSelect(sourceIndex), onDrag(sourceIndex, key, [x, y], phase: 'start'|'move'|'end') }
    */
-  constructor(container, hooks = {}, { antialias = true, preserveDrawingBuffer = true, movingScale = 1 } = {}) {
+  constructor(container, hooks = {}, { antialias = true, preserveDrawingBuffer = true } = {}) {
     this.container = container;
     this.hooks = hooks;
     this.mode = 'split';
@@ -45,10 +45,6 @@ export class Views {
     Object.values(this.layers2).forEach((g, i) => { g.renderOrder = i; this.scene2.add(g); });
     // The cached image of the 2D mesh layers, drawn as one quad (see #render2D).
     this.antialias = antialias;
-    // While the 3D camera moves, the 3D view may be drawn at movingScale of its resolution
-    // and scaled up (software WebGL: fewer pixels to shade); full resolution when it stops.
-    this.movingScale = movingScale;
-    this.moving3 = false;
     this.blitScene = new THREE.Scene();
     this.blitCam = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
     this.blit = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.MeshBasicMaterial({ depthTest: false, depthWrite: false }));
@@ -224,7 +220,6 @@ export class Views {
       this.renderer.setViewport(v.x, H - v.y - v.h, v.w, v.h);
       this.renderer.setScissor(v.x, H - v.y - v.h, v.w, v.h);
       if (kind === '2d') this.#render2D(v);
-      else if (this.moving3 && this.movingScale < 1) this.#render3DScaled(v);
       else this.renderer.render(this.scene3, this.cam3);
     }
     this.framesRendered++;
@@ -294,36 +289,12 @@ export class Views {
     others.forEach((g, i) => { g.visible = shown[i]; });
   }
 
-  // The 3D view drawn offscreen at movingScale of its size and copied up into its viewport.
-  #render3DScaled(v) {
-    const r = this.renderer;
-    const f = this.movingScale * r.getPixelRatio();
-    const w = Math.max(1, Math.round(v.w * f)), h = Math.max(1, Math.round(v.h * f));
-    let rt = this.moving3Target;
-    if (!rt || rt.width !== w || rt.height !== h) {
-      rt?.dispose();
-      rt = this.moving3Target = new THREE.WebGLRenderTarget(w, h, { minFilter: THREE.LinearFilter, magFilter: THREE.LinearFilter });
-      rt.texture.colorSpace = THREE.SRGBColorSpace;
-      this.blit3 ??= new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.MeshBasicMaterial({ depthTest: false, depthWrite: false }));
-      this.blit3.frustumCulled = false;
-      this.blit3.material.map = rt.texture;
-      this.blit3.material.needsUpdate = true;
-      this.blit3Scene ??= new THREE.Scene().add(this.blit3);
-    }
-    r.setRenderTarget(rt);
-    r.clear();
-    r.render(this.scene3, this.cam3);
-    r.setRenderTarget(null);
-    r.render(this.blit3Scene, this.blitCam);
-  }
-
   /** The 2D mesh layers or the 2D camera changed: redraw them (not just the sources). */
   invalidate2D() {
     this.cache2Valid = false;
   }
 
   #interacting(on) {
-    this.moving3 = on;
     const hide = on && (this.edgeCount ?? 0) > this.hideEdgesAbove;
     for (const o of this.group3.children) if (o.isLineSegments && o.userData.edges) o.visible = !hide;
     if (!on) this.requestRender('3d');

@@ -115,31 +115,24 @@ try {
     a.state.view.lift = 0.5;
     a.edited(0);
   });
-  // Three settings: the default (edge lines hidden while the camera moves, above 60k
-  // edges; on software WebGL the 3D view at half resolution while it moves), full
-  // resolution with the edges hidden, and full resolution with the edges drawn.
-  // A warm-up orbit first (the first seconds after a mesh run slower: the worker's report,
-  // garbage collection), then the settings alternately, twice; the mean of the two.
+  // Two settings: the default (edge lines hidden while the camera moves, above 60k edges)
+  // and the edges drawn. A warm-up orbit first (the first seconds after a mesh run slower:
+  // the worker's report, garbage collection), then the settings alternately, twice; the
+  // mean of the two.
   const orbit = async () => p2.evaluate(async () => {
     const a = window.anisomeshApp, v = a.views;
     await a.whenIdle();
-    const scale = v.movingScale ?? 1;
-    const out = { movingScale: scale, byDefault: 0, fullRes: 0, withEdges: 0 };
+    const out = { byDefault: 0, withEdges: 0 };
     await v.benchOrbit(2000);
     for (let k = 0; k < 2; k++) {
-      v.movingScale = scale;
       out.byDefault += (await v.benchOrbit(3000)) / 2;
-      v.movingScale = 1;
-      out.fullRes += (await v.benchOrbit(3000)) / 2;
       v.hideEdgesAbove = Infinity;
       out.withEdges += (await v.benchOrbit(3000)) / 2;
       v.hideEdgesAbove = 60000;
     }
-    v.movingScale = scale;
     return out;
   });
-  const fps = (o) => `${o.byDefault.toFixed(1)} fps by default (edges hidden while moving, ${o.movingScale}x resolution while moving), ` +
-    `${o.fullRes.toFixed(1)} fps at full resolution, ${o.withEdges.toFixed(1)} fps with the edges drawn`;
+  const fps = (o) => `${o.byDefault.toFixed(1)} fps by default (edge lines hidden while moving), ${o.withEdges.toFixed(1)} fps with the edges drawn`;
   const planarInfo = await p2.evaluate(() => {
     const a = window.anisomeshApp;
     a.views.setStyle({ colorBy: 'quality', edges: 'length', lift: 0.5 });
