@@ -174,16 +174,26 @@ export function wrapCore(core) {
       if (maxElements !== undefined && !(Number.isInteger(maxElements) && maxElements > 0)) {
         throw argError('options.maxElements: expected a positive integer');
       }
-      for (const key of ['inspectControlSpace', 'vertexMetrics', 'quads', 'allQuads', 'controlSpaceUpdates']) {
+      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates']) {
         if (options[key] !== undefined && typeof options[key] !== 'boolean') throw argError(`options.${key}: expected a boolean`);
       }
       const r = unwrap(core.meshCase(caseText(c), options));
       return {
         mesh: r.mesh,
-        stats: JSON.parse(r.stats),
+        stats: r.stats === null ? null : JSON.parse(r.stats),
         controlSpace: r.controlSpace ? JSON.parse(r.controlSpace) : null,
         vertexMetrics: r.vertexMetrics,
+        measures: r.measures,
+        timings: r.timings,
       };
+    },
+    /**
+     * The quality report of the last planar meshCase run made with { stats: false }: the
+     * same object its stats would have been. Lets a caller show the mesh first and the
+     * report after. Throws INVALID_ARGUMENT when there is no such run.
+     */
+    caseStats() {
+      return JSON.parse(unwrap(core.caseStats()).stats);
     },
     /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22). */
     remesh(mesh, metrics, options = {}) {

@@ -84,11 +84,20 @@ export interface MeshStats {
 
 export interface CaseResult {
   mesh: MeshArrays;
-  stats: MeshStats;
+  /** The quality report; null for a planar run with stats: false (see caseStats()). */
+  stats: MeshStats | null;
   /** The control space's nodes and cells (with inspectControlSpace), else null. */
   controlSpace: Record<string, unknown> | null;
   /** Planar cases with vertexMetrics: the final control space's m11, m12, m22 at every vertex, else null. */
   vertexMetrics: Float64Array | null;
+  /**
+   * With measures: the distinct element edges (a < b pairs), and for planar cases the metric
+   * length of each edge, the metric quality of each element (triangles, then quads) and the
+   * smallest requested size at each vertex, measured as the quality report measures them.
+   */
+  measures?: { edges: Uint32Array; edgeLength?: Float32Array; quality?: Float32Array; vertexH?: Float32Array };
+  /** Milliseconds spent in the core: the case run, copying the results out, the measures. */
+  timings: { runMs: number; outputMs: number; measuresMs: number };
 }
 
 /** A control space kept alive in the core: free it with dispose() (a FinalizationRegistry is only a safety net). */
@@ -110,6 +119,10 @@ export interface MeshCaseOptions {
   inspectControlSpace?: boolean;
   /** Also return the final control space's metric at every vertex (planar cases). */
   vertexMetrics?: boolean;
+  /** Also return per-edge lengths and per-element qualities (CaseResult.measures). */
+  measures?: boolean;
+  /** Planar cases: false skips the quality report (stats is null); caseStats() computes it after. */
+  stats?: boolean;
   /** Override the case's options.quads / options.allQuads. */
   quads?: boolean;
   allQuads?: boolean;
@@ -144,6 +157,8 @@ export interface Anisomesh {
    * false cancels the run with AnisomeshError CANCELLED.
    */
   meshCase(c: Case | string, options?: MeshCaseOptions): CaseResult;
+  /** The quality report of the last planar meshCase run made with { stats: false }. */
+  caseStats(): MeshStats;
   /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22 each). */
   remesh(
     mesh: MeshArrays,

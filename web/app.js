@@ -2,7 +2,7 @@
 // panel, live remeshing in a worker, quality numbers and histograms, export/import and
 // the state in the URL.
 import GUI from 'lil-gui';
-import { JobRunner, CancelledError } from './jobs.js';
+import { JobRunner, CancelledError, wallNow } from './jobs.js';
 import { presets, presetById, defaultPresetId } from './presets.js';
 import { defaultView, encodeState, decodeState, checkCase, errorTarget, InputError } from './state.js';
 import { Views, softwareWebGL } from './views.js';
@@ -12,8 +12,8 @@ import { qualityColor, lengthColor, sizeColor, css } from './colors.js';
 import { uniqueEdges } from './measure.js';
 
 const $ = (id) => document.getElementById(id);
-const DRAG_DEBOUNCE_MS = 40;   // remesh while dragging: stale jobs get cancelled anyway
 const EDIT_DEBOUNCE_MS = 120;
+const PROGRESS_LOG = 400;      // progress events kept for the test hook
 
 // --- state ------------------------------------------------------------------------------
 
@@ -33,6 +33,12 @@ const state = {
   lastError: null,      // { code, message, target }
   lastJob: null,        // { meshMs, workerMs, totalMs, drawMs }
   dragToMeshMs: null,   // pointer up -> new mesh drawn
+  dragInputToMeshMs: null,  // the drag's last edit of the case -> its mesh drawn
+  lastBreakdown: null,  // where the time of the last job went (see breakdown())
+  breakdowns: [],       // the last 50 of them
+  progressLog: [],      // { id, stage, fraction, at } of recent jobs (test hook)
+  progress: null,       // { stage, fraction } of the running job
+  syncDraw: false,      // measurements: renderMs waits for the GPU (a 1-pixel read back)
   workerStartMs: null,  // worker creation -> core ready (precompiled module)
   workerRestartMs: [],  // the same for replacement workers after a cancellation
   version: null,
@@ -42,24 +48,45 @@ const state = {
 // --- workers ----------------------------------------------------------------------------
 
 const status = $('status'), statusText = $('status-text'), spinner = status.querySelector('.spinner');
-let progress = { stage: 'meshing', started: 0 };
+const progressBar = $('progress'), progressFill = progressBar.querySelector('.fill');
+let progress = { stage: 'meshing', fraction: null, started: 0 };
 let busyTimer = null;
+// The toolbar while a job runs: the stage, its progress (a bar and a percentage when the
+// core reports a fraction) and the elapsed time.
+function showProgress() {
+  const pct = progress.fraction > 0 ? ` ${Math.round(100 * progress.fraction)} %` : '';
+  statusText.textContent = `${progress.stage}${pct} · ${((performance.now() - progress.started) / 1000).toFixed(1)} s`;
+  progressBar.hidden = progress.fraction == null;
+  progressFill.style.width = `${(100 * (progress.fraction ?? 0)).toFixed(1)}%`;
+  progressBar.setAttribute('aria-valuenow', String(Math.round(100 * (progress.fraction ?? 0))));
+}
 function setBusy(busy) {
   spinner.hidden = !busy;
   status.classList.toggle('busy', busy);
   clearInterval(busyTimer);
   if (busy) {
-    progress.started = performance.now();
-    const tick = () => { statusText.textContent = `${progress.stage}… ${((performance.now() - progress.started) / 1000).toFixed(1)} s`; };
-    tick();
-    busyTimer = setInterval(tick, 100);
+    progress = { stage: 'starting', fraction: null, started: performance.now() };
+    showProgress();
+    busyTimer = setInterval(showProgress, 100);
+  } else {
+    progressBar.hidden = true;
+    state.progress = null;
   }
 }
 const meshRunner = new JobRunner({
   supersede: true,
   precompiled: new URLSearchParams(location.search).get('precompile') !== '0',  // ?precompile=0 to measure the difference
+  spare: new URLSearchParams(location.search).get('spare') !== '0',            // ?spare=0: no spare worker (for comparison)
   onBusy: setBusy,
-  onProgress: ({ stage }) => { progress.stage = stage; },
+  onProgress: ({ id, stage, fraction }) => {
+    progress.stage = stage;
+    // A stage without a fraction of its own (the quality report) keeps the bar where it was.
+    if (fraction != null) progress.fraction = fraction;
+    state.progress = { stage, fraction };
+    state.progressLog.push({ id, stage, fraction, at: Math.round(performance.now()) });
+    if (state.progressLog.length > PROGRESS_LOG) state.progressLog.splice(0, state.progressLog.length - PROGRESS_LOG);
+    showProgress();
+  },
 });
 const utilRunner = new JobRunner();  // exports and checks: never cancelled by meshing
 
@@ -73,6 +100,7 @@ const views = new Views($('view'), {
     const s = state.case.sources[i];
     if (phase === 'start') {
       dragFrom = { p, p1: s.p1 && [...s.p1], p2: s.p2 && [...s.p2] };
+      views.dragging = true;  // the 3D view waits for the release (see draw())
       return;
     }
     const before = JSON.stringify(s);
@@ -81,17 +109,30 @@ const views = new Views($('view'), {
     views.setSources(state.case.sources, state.selected, state.view.sources);
     sourceGui.controllersRecursive().forEach((c) => c.updateDisplay());
     if (phase === 'move') {
-      if (changed) edited(DRAG_DEBOUNCE_MS);
+      if (changed) editedByDrag();
       return;
     }
-    state.dragEndAt = performance.now();
-    // Released where the last move left it: the job already queued or running for this
-    // input is the right one, so it is not restarted.
-    if (changed) edited(0);
+    state.dragEndAt = wallNow();
+    if (changed) bumpVersion();
     state.dragEndVersion = state.caseVersion;
-    if (!changed && state.meshedVersion === state.caseVersion) {
+    state.dragLastEditAt = state.editAt;
+    // Released: the latest input must not wait behind a stale job. A job already running
+    // for this very input goes on; a job for an older input is superseded at once.
+    dragWaiting = false;
+    clearTimeout(restTimer);
+    views.dragging = false;
+    if (state.meshedVersion === state.caseVersion) {
+      // The mesh of the last input was drawn before the release.
       state.dragToMeshMs = 0;
+      const b = state.breakdowns.findLast((x) => x.version === state.caseVersion);
+      state.dragInputToMeshMs = b ? Math.round(b.inputToDrawnMs) : 0;
+      if (b) b.drag = true;
       state.dragEndAt = null;
+      views.requestRender('3d');
+    } else if (state.runningVersion !== state.caseVersion) {
+      clearTimeout(editTimer);
+      editTimer = null;
+      remesh();
     }
   },
 }, {
@@ -304,18 +345,64 @@ function showError(target, message) {
 let editTimer = null;
 let needsFit = true;
 
-/** The case changed: remesh after delay ms (a newer edit restarts the wait; a running job is superseded). */
-function edited(delay = EDIT_DEBOUNCE_MS) {
+/** A new version of the case (an edit): stamps when it was made, for the latency figures. */
+function bumpVersion() {
   state.caseVersion++;
+  state.editAt = wallNow();
   views.setSources(state.case.sources, state.selected, state.view.sources);
-  clearTimeout(editTimer);
-  editTimer = setTimeout(() => { editTimer = null; remesh(); }, delay);
   saveUrlSoon();
 }
+
+/** The case changed: remesh after delay ms (a newer edit restarts the wait; a running job is superseded). */
+function edited(delay = EDIT_DEBOUNCE_MS) {
+  bumpVersion();
+  clearTimeout(editTimer);
+  editTimer = setTimeout(() => { editTimer = null; remesh(); }, delay);
+}
+
+// While a handle is dragged: remesh at once when the worker is free (leading edge, no
+// debounce wait); when a job is running, let it finish and draw (the mesh follows the
+// drag) and then start the latest input right away. Releasing the handle supersedes a
+// stale job (see onDrag).
+// When the pointer rests while a stale job runs, that job is superseded so the resting
+// position does not wait for it. Resting: no move for 1.5 times the recent interval
+// between moves (at least 30 ms; the browser sends at most one move per frame, and a
+// loaded page draws few frames).
+let dragWaiting = false, restTimer = null, lastMoveAt = 0, moveInterval = 16;
+function editedByDrag() {
+  bumpVersion();
+  clearTimeout(restTimer);
+  const now = performance.now();
+  if (now - lastMoveAt < 500) moveInterval = 0.7 * moveInterval + 0.3 * (now - lastMoveAt);
+  lastMoveAt = now;
+  if (!meshRunner.busy && editTimer === null) {
+    remesh();
+    return;
+  }
+  dragWaiting = true;
+  restTimer = setTimeout(() => {
+    restTimer = null;
+    if (dragWaiting && state.runningVersion !== state.caseVersion) {
+      dragWaiting = false;
+      remesh();
+    }
+  }, Math.max(30, 1.5 * moveInterval));
+}
+
+// The latest input of a drag waited for the worker: start it now.
+function startWaitingDrag() {
+  if (!dragWaiting) return;
+  dragWaiting = false;
+  remesh();
+}
+
+/** Wants the control-space overlay from the worker (it costs an inspection of the structure). */
+const wantOverlay = () => Boolean(state.view.controlSpace) && !state.surface;
 
 let completionWaiters = [];
 async function remesh() {
   const version = state.caseVersion;
+  const editAt = state.editAt ?? wallNow();
   try {
     checkCase(state.case);
   } catch (e) {
@@ -325,34 +412,109 @@ async function remesh() {
   }
   state.jobsStarted++;
   const before = meshRunner.restarts;
-  const job = meshRunner.run('mesh', { case: state.case, surface: state.surface });
+  const overlay = wantOverlay();
+  state.runningVersion = version;
+  const job = meshRunner.run('mesh', { case: state.case, surface: state.surface, overlay });
   state.cancelled += meshRunner.restarts - before;
   if (meshRunner.restarts > before) {
     const t0 = performance.now();
     meshRunner.ready.then(() => state.workerRestartMs.push(Math.round(performance.now() - t0)));
   }
   try {
-    const { result, workerMs, totalMs } = await job;
-    const t0 = performance.now();
-    state.lastJob = { meshMs: Math.round(result.meshMs), workerMs: Math.round(workerMs), totalMs: Math.round(totalMs), drawMs: null };
-    showResult(result);
-    views.render();  // draw now so the time below includes the draw
-    state.lastJob.drawMs = Math.round(performance.now() - t0);
-    state.meshedVersion = version;
-    if (state.dragEndAt && version >= state.dragEndVersion) {
-      state.dragToMeshMs = Math.round(performance.now() - state.dragEndAt);
-      state.dragEndAt = null;
-    }
-    state.jobsDone++;
+    const { id, result, marks, totalMs, workerMs, receivedAt } = await job;
+    const b = draw(result, version, editAt, marks, receivedAt, overlay);
+    state.lastJob = { meshMs: Math.round(b.coreMs), workerMs: Math.round(workerMs), totalMs: Math.round(totalMs), drawMs: Math.round(b.geometryMs + b.renderMs) };
     state.lastError = null;
     clearErrors();
-    statusText.textContent = `meshed in ${(totalMs / 1000).toFixed(2)} s`;
     status.classList.remove('err');
+    if (state.runningVersion === version) state.runningVersion = null;
+    // While dragging, the next input goes first: the report of a mesh already left
+    // behind is never computed. Otherwise the quality report (planar runs) follows.
+    if (dragWaiting) {
+      state.jobsDone++;
+      startWaitingDrag();
+      return;
+    }
+    let stats = result.stats;
+    if (!stats) {
+      const r = await meshRunner.run('report', { of: id });
+      stats = r.result.stats;
+      b.reportMs = r.result.reportMs;
+    }
+    const t0 = wallNow();
+    state.lastStats = stats;
+    renderStats(stats);
+    renderHistograms(state.lastMeasures, stats);
+    renderLegend();
+    b.afterDrawMs = wallNow() - t0;
+    const ps = stats.pipelineSeconds;
+    if (ps) Object.assign(b, { coreControlSpaceMs: 1000 * ps.controlSpace, coreUpdatesMs: 1000 * ps.boundaryUpdates, coreMeshingMs: 1000 * ps.meshing });
+    for (const k of Object.keys(b)) if (typeof b[k] === 'number') b[k] = Math.round(b[k] * 10) / 10;
+    state.jobsDone++;
+    statusText.textContent = `meshed in ${(b.inputToDrawnMs / 1000).toFixed(2)} s`;
     settle();
   } catch (e) {
+    if (state.runningVersion === version) state.runningVersion = null;
     if (e instanceof CancelledError) return;
     fail({ code: e.code ?? 'INTERNAL', message: e.message, target: errorTarget(e.code, e.message) }, version);
+    startWaitingDrag();  // a drag goes on past an input the core rejects
   }
+}
+
+/**
+ * Puts a mesh from the worker on screen and returns where the time went, in ms:
+ *   inputToPostMs   the edit -> the job posted (waiting for a busy worker while dragging)
+ *   postToStartMs   the job posted -> the worker starts it (message; a worker start-up)
+ *   coreMs          the core in the worker: case run + copying out + measures
+ *     coreRunMs, coreOutputMs, coreMeasuresMs (and, once the report is in, coreControlSpaceMs,
+ *     coreUpdatesMs, coreMeshingMs from its pipelineSeconds)
+ *   toPageMs        the core done -> the result in the page (overlay, transfer)
+ *   geometryMs      page: the geometry (and overlay) rebuilt
+ *   renderMs        page: drawing the 2D view (GPU uploads included; with state.syncDraw
+ *                   until the GPU has finished it). The 3D view follows on the next frame.
+ *   inputToDrawnMs  the edit -> the 2D view drawn
+ * reportMs (the quality report, a separate job) and afterDrawMs (numbers, histograms)
+ * follow once the report is in.
+ */
+function draw(result, version, editAt, marks, receivedAt, overlay) {
+  const t0 = wallNow();
+  state.overlayShown = overlay;
+  showResult(result);
+  const t1 = wallNow();
+  // Draw the view being edited now and the other one on the next frame: on a software
+  // rasterizer the two cost about the same, and the 2D view is where the handle moves.
+  // While a handle is held the 3D view is not redrawn at all (it would only queue work
+  // for the rasterizer that the next mesh makes stale); it catches up on release.
+  views.renderNow(views.dragging ? ['2d'] : ['2d', '3d'], { sync: state.syncDraw });
+  const t2 = wallNow();
+  state.meshedVersion = version;
+  const core = result.core ?? {};
+  const b = {
+    version,
+    triangles: result.mesh.triangles.length / 3,
+    quads: result.mesh.quads.length / 4,
+    inputToPostMs: marks.posted - editAt,
+    postToStartMs: marks.ready - marks.posted,
+    coreMs: marks.coreEnd - marks.coreStart,
+    coreRunMs: core.runMs,
+    coreOutputMs: core.outputMs,
+    coreMeasuresMs: core.measuresMs,
+    toPageMs: receivedAt - marks.coreEnd,
+    geometryMs: t1 - t0,
+    renderMs: t2 - t1,
+    inputToDrawnMs: t2 - editAt,
+  };
+  for (const k of Object.keys(b)) if (typeof b[k] === 'number') b[k] = Math.round(b[k] * 10) / 10;
+  state.lastBreakdown = b;
+  state.breakdowns.push(b);
+  if (state.breakdowns.length > 50) state.breakdowns.shift();
+  if (state.dragEndAt && version >= state.dragEndVersion) {
+    state.dragToMeshMs = Math.round(t2 - state.dragEndAt);
+    state.dragInputToMeshMs = Math.round(t2 - (state.dragLastEditAt ?? state.dragEndAt));
+    b.drag = true;
+    state.dragEndAt = null;
+  }
+  return b;
 }
 
 function fail(error, version) {
@@ -373,15 +535,16 @@ function settle() {
 }
 
 function idle() {
-  return editTimer === null && !meshRunner.busy;
+  return editTimer === null && !meshRunner.busy && !dragWaiting;
 }
 
+// The mesh part of a result on screen (the quality report and the histograms follow
+// when the report arrives).
 function showResult(result) {
   if (result.mesh.dimension === 3 || state.surface) state.view.view === '2d' && applyViewMode('split');
   views.setMesh(result, styleOf());
   views.setControlSpace(result.overlay, state.view.controlSpace);
   state.overlay = result.overlay;
-  state.lastStats = result.stats;
   state.lastMeasures = result.measures;
   if (needsFit) {
     needsFit = false;
@@ -389,9 +552,6 @@ function showResult(result) {
     views.fit3D();
   }
   views.setSources(state.case.sources, state.selected, state.view.sources);
-  renderStats(result.stats);
-  renderHistograms(result.measures, result.stats);
-  renderLegend();
 }
 
 function styleOf() {
@@ -399,6 +559,8 @@ function styleOf() {
 }
 
 function restyle() {
+  // The overlay is inspected only when shown: turning it on remeshes with it.
+  if (wantOverlay() && !state.overlayShown && state.case && views.mesh) edited(0);
   views.setStyle(styleOf());
   views.setControlSpace(state.overlay, state.view.controlSpace);
   views.setSources(state.case?.sources, state.selected, state.view.sources);
@@ -737,7 +899,12 @@ const app = {
   showMesh(mesh) {
     const measures = { edges: uniqueEdges(mesh.triangles, mesh.quads ?? new Uint32Array(0)), edgeLength: null, quality: null, vertexH: null };
     needsFit = true;
-    showResult({ mesh: { quads: new Uint32Array(0), edges: new Uint32Array(0), ...mesh }, measures, overlay: null, stats: { vertices: mesh.params.length / 2, triangles: mesh.triangles.length / 3, quads: 0, edges: measures.edges.length / 2 } });
+    const stats = { vertices: mesh.params.length / 2, triangles: mesh.triangles.length / 3, quads: 0, edges: measures.edges.length / 2 };
+    showResult({ mesh: { quads: new Uint32Array(0), edges: new Uint32Array(0), ...mesh }, measures, overlay: null });
+    state.lastStats = stats;
+    renderStats(stats);
+    renderHistograms(measures, stats);
+    renderLegend();
   },
   checkExpression,
 };

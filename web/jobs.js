@@ -2,8 +2,9 @@
 //
 // The wasm core cannot be interrupted from JS (it is synchronous inside the worker), so a
 // job that is still running when a newer one arrives is cancelled by terminating the
-// worker and starting a fresh one. The page compiles the wasm once and posts the
-// WebAssembly.Module to each new worker, so a restart costs an instantiation only.
+// worker. The page compiles the wasm once and posts the WebAssembly.Module to each new
+// worker, and a superseding runner keeps a spare worker instantiated ahead of time: a
+// cancellation swaps the spare in at once, so the new job does not wait for a start-up.
 
 const workerUrl = new URL('./worker.js', import.meta.url);
 const wasmUrl = new URL('../wasm/dist/anisomesh-core.wasm', import.meta.url);
@@ -27,51 +28,53 @@ export class CancelledError extends Error {
   }
 }
 
+/** Wall-clock milliseconds comparable between the page and its workers (their performance.now() origins differ). */
+export const wallNow = () => performance.timeOrigin + performance.now();
+
 /**
  * One worker running jobs one at a time.
- * supersede: a new job cancels the queued and running ones (meshing); otherwise jobs queue (exports).
+ * supersede: a new job cancels the queued and running ones (meshing), and a spare worker
+ * is kept ready to take over; otherwise jobs queue (exports).
  */
 export class JobRunner {
-  constructor({ supersede = false, precompiled = true, onBusy = () => {}, onProgress = () => {} } = {}) {
+  constructor({ supersede = false, precompiled = true, spare = supersede, onBusy = () => {}, onProgress = () => {} } = {}) {
     this.supersede = supersede;
     this.precompiled = precompiled;  // false: each worker fetches and compiles the wasm itself (for comparison)
+    this.useSpare = spare;
     this.onBusy = onBusy;
     this.onProgress = onProgress;
     this.pending = new Map();  // id -> { resolve, reject, op, started }
     this.nextId = 1;
     this.restarts = 0;
+    this.spareSwaps = 0;       // cancellations served by the spare worker (no start-up wait)
     this.lastStartMs = null;   // time from creating a worker to its 'ready' message
     this.version = null;
-    this.#start();
+    this.spare = null;
+    this.#use(this.#spawn());
+    if (this.useSpare) this.spare = this.#spawn();
   }
 
-  #start() {
+  /** A new worker slot: { worker, ready (promise of the version), isReady }. */
+  #spawn() {
     const t0 = performance.now();
     const worker = new Worker(workerUrl, { type: 'module' });
-    this.worker = worker;
-    this.ready = new Promise((resolve, reject) => {
+    const slot = { worker, isReady: false, startMs: null };
+    slot.ready = new Promise((resolve, reject) => {
       worker.onmessage = ({ data }) => {
-        if (worker !== this.worker) return;  // a terminated worker's late message
         if (data.type === 'ready') {
-          this.lastStartMs = performance.now() - t0;
+          slot.isReady = true;
+          slot.startMs = performance.now() - t0;
           this.version = data.version;
           resolve(data.version);
         } else if (data.type === 'fatal') {
           reject(new Error(data.message));
-        } else if (data.type === 'progress') {
-          const p = this.pending.get(data.id);
-          if (p) this.onProgress({ id: data.id, op: p.op, stage: data.stage, elapsedMs: performance.now() - p.started });
-        } else if (data.type === 'result') {
-          const p = this.pending.get(data.id);
-          if (!p) return;
-          this.pending.delete(data.id);
-          this.#busyChanged();
-          if (data.ok) p.resolve({ result: data.result, workerMs: data.workerMs, totalMs: performance.now() - p.started });
-          else p.reject(Object.assign(new Error(data.error.message), { code: data.error.code }));
-        }
+        } else if (slot === this.slot) {
+          this.#message(data);
+        }  // else: a terminated worker's late message
       };
       worker.onerror = (e) => reject(new Error(e.message || 'worker failed to start'));
     });
+    slot.ready.catch(() => {});  // reported through this.ready when the slot is in use
     if (!this.precompiled) worker.postMessage({ type: 'init' });
     else {
       compileCore().then(
@@ -79,32 +82,65 @@ export class JobRunner {
         () => worker.postMessage({ type: 'init' }),  // no precompiled module: the worker fetches itself
       );
     }
+    return slot;
+  }
+
+  #use(slot) {
+    this.slot = slot;
+    this.worker = slot.worker;
+    this.ready = slot.ready.then((v) => {
+      if (this.slot === slot) this.lastStartMs = slot.startMs;
+      return v;
+    });
+  }
+
+  #message(data) {
+    const p = this.pending.get(data.id);
+    if (!p) return;
+    if (data.type === 'progress') {
+      this.onProgress({ id: data.id, op: p.op, stage: data.stage, fraction: data.fraction ?? null, elapsedMs: performance.now() - p.started });
+    } else if (data.type === 'result') {
+      this.pending.delete(data.id);
+      this.#busyChanged();
+      if (data.ok) p.resolve({ result: data.result, workerMs: data.workerMs, marks: data.marks, totalMs: performance.now() - p.started, receivedAt: wallNow() });
+      else p.reject(Object.assign(new Error(data.error.message), { code: data.error.code }));
+    }
   }
 
   #busyChanged() { this.onBusy(this.pending.size > 0); }
 
   get busy() { return this.pending.size > 0; }
 
-  /** Runs op in the worker; resolves to { result, workerMs, totalMs } or rejects (CancelledError when superseded). */
+  /**
+   * Runs op in the worker; resolves to { id, result, workerMs, marks, totalMs, receivedAt }
+   * or rejects (CancelledError when superseded). marks: the worker's wall-clock times of
+   * the job's steps (posted, received, ready, and what the op adds).
+   */
   run(op, args) {
     if (this.supersede && this.pending.size > 0) this.cancelAll();
     const id = this.nextId++;
     const promise = new Promise((resolve, reject) => {
-      this.pending.set(id, { resolve, reject, op, started: performance.now() });
+      this.pending.set(id, { resolve: (r) => resolve({ id, ...r }), reject, op, started: performance.now() });
     });
     this.#busyChanged();
-    this.worker.postMessage({ type: 'job', id, op, args });
+    this.worker.postMessage({ type: 'job', id, op, args, postedAt: wallNow() });
     return promise;
   }
 
-  /** Cancels every pending job: the worker is replaced by a fresh one. */
+  /** Cancels every pending job: the worker is replaced by the spare (or a fresh one). */
   cancelAll() {
     if (this.pending.size === 0) return;
     this.worker.terminate();
     this.restarts++;
     for (const p of this.pending.values()) p.reject(new CancelledError());
     this.pending.clear();
-    this.#start();
+    const spare = this.spare;
+    this.spare = null;
+    if (spare?.isReady) this.spareSwaps++;
+    this.#use(spare ?? this.#spawn());
+    // The next spare starts when this one is in use: instantiating it from the compiled
+    // module is cheap and runs in its own thread.
+    if (this.useSpare) this.spare = this.#spawn();
     this.#busyChanged();
   }
 }

@@ -43,6 +43,13 @@ export class Views {
       control: new THREE.Group(), sources: new THREE.Group(),
     };
     Object.values(this.layers2).forEach((g, i) => { g.renderOrder = i; this.scene2.add(g); });
+    // The cached image of the 2D mesh layers, drawn as one quad (see #render2D).
+    this.antialias = antialias;
+    this.blitScene = new THREE.Scene();
+    this.blitCam = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
+    this.blit = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.MeshBasicMaterial({ depthTest: false, depthWrite: false }));
+    this.blit.frustumCulled = false;
+    this.blitScene.add(this.blit);
 
     // --- 3D scene ---
     this.scene3 = new THREE.Scene();
@@ -60,9 +67,12 @@ export class Views {
     // makes three.js delete it, and recompiling costs ~100 ms per program on software WebGL.
     const line = (o) => new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, transparent: true, ...o });
     this.mats = {
-      // All 2D materials are 'transparent' so that three.js draws them in one list ordered
-      // by the layers' renderOrder (opaque objects would otherwise go first, under the faces).
-      face2: new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, depthTest: false, transparent: true }),
+      // The 2D line materials are 'transparent' so that three.js draws them in one list ordered
+      // by the layers' renderOrder, after the (opaque) faces.
+      // The faces are the bottom layer, so they may be opaque (drawn first anyway): no
+      // blending, ~15 % less time per 2D frame on a software rasterizer. They turn
+      // transparent when dimmed under the control-space overlay.
+      face2: new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, depthTest: false, transparent: false }),
       face3: new THREE.MeshLambertMaterial({
         vertexColors: true, side: THREE.DoubleSide, flatShading: true, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
       }),
@@ -133,6 +143,7 @@ export class Views {
   }
 
   #updateCam2() {
+    this.cache2Valid = false;
     const v = this.viewports()['2d'];
     if (!v) return;
     const aspect = v.w / Math.max(v.h, 1);
@@ -180,6 +191,8 @@ export class Views {
 
   /** Schedules a draw of one viewport ('2d', '3d') or of all (default) on the next frame. */
   requestRender(which = 'all') {
+    // While a source handle is dragged only the 2D view is redrawn (see app.js draw()).
+    if (this.dragging && which === 'all' && this.viewports()['2d']) which = '2d';
     (this.dirty ??= new Set()).add(which);
     if (this.renderPending) return;
     this.renderPending = true;
@@ -206,10 +219,79 @@ export class Views {
       // WebGL's y axis points up; autoClear clears inside the scissor only.
       this.renderer.setViewport(v.x, H - v.y - v.h, v.w, v.h);
       this.renderer.setScissor(v.x, H - v.y - v.h, v.w, v.h);
-      if (kind === '2d') this.renderer.render(this.scene2, this.cam2);
+      if (kind === '2d') this.#render2D(v);
       else this.renderer.render(this.scene3, this.cam3);
     }
     this.framesRendered++;
+  }
+
+  /**
+   * Draws the first of `order` ('2d', '3d') shown now and the others on the next frame.
+   * sync: wait until the GPU has finished the drawing (a 1-pixel read back; measurements only).
+   */
+  renderNow(order, { sync = false } = {}) {
+    const shown = order.filter((k) => this.viewports()[k]);
+    if (!this.preserveDrawingBuffer || !shown.length) {
+      this.dirty = new Set(['all']);
+      this.render();
+    } else {
+      this.dirty = new Set([shown[0]]);
+      this.render();
+      for (const k of shown.slice(1)) this.requestRender(k);
+    }
+    if (sync) {
+      const gl = this.renderer.getContext();
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+    }
+  }
+
+  /**
+   * The 2D view: the mesh layers (faces, edges, boundary, control-space overlay) are drawn
+   * into an offscreen image that is kept until they or the camera change; a frame is that
+   * image plus the sources on top. Moving a source handle then costs a textured quad and
+   * a few lines instead of the whole mesh, which on a software rasterizer keeps its
+   * frames from queueing up in front of the next mesh.
+   */
+  #render2D(v) {
+    const r = this.renderer;
+    const ratio = r.getPixelRatio();
+    const w = Math.max(1, Math.round(v.w * ratio)), h = Math.max(1, Math.round(v.h * ratio));
+    let rt = this.cache2;
+    if (!rt || rt.width !== w || rt.height !== h) {
+      rt?.dispose();
+      rt = this.cache2 = new THREE.WebGLRenderTarget(w, h, {
+        depthBuffer: false, samples: this.antialias ? 4 : 0, minFilter: THREE.NearestFilter, magFilter: THREE.NearestFilter,
+      });
+      rt.texture.colorSpace = THREE.SRGBColorSpace;  // 8-bit sRGB storage, decoded when drawn: no banding
+      this.blit.material.map = rt.texture;
+      this.blit.material.needsUpdate = true;
+      this.cache2Valid = false;
+    }
+    const layers = this.layers2;
+    if (!this.cache2Valid) {
+      layers.sources.visible = false;
+      r.setRenderTarget(rt);
+      r.clear();
+      r.render(this.scene2, this.cam2);
+      r.setRenderTarget(null);
+      layers.sources.visible = true;
+      this.cache2Valid = true;
+      this.cache2Draws = (this.cache2Draws ?? 0) + 1;
+    }
+    r.render(this.blitScene, this.blitCam);  // clears the viewport (autoClear) and copies the image
+    const others = [layers.faces, layers.edges, layers.boundary, layers.control];
+    const shown = others.map((g) => g.visible);
+    others.forEach((g) => { g.visible = false; });
+    const autoClear = r.autoClear;
+    r.autoClear = false;
+    r.render(this.scene2, this.cam2);
+    r.autoClear = autoClear;
+    others.forEach((g, i) => { g.visible = shown[i]; });
+  }
+
+  /** The 2D mesh layers or the 2D camera changed: redraw them (not just the sources). */
+  invalidate2D() {
+    this.cache2Valid = false;
   }
 
   #interacting(on) {
@@ -234,56 +316,129 @@ export class Views {
     if (this.result) this.#buildMesh(style);
   }
 
+  // Geometry is reused between meshes: the objects stay in the scenes and their typed
+  // arrays are refilled in place (grown with some slack when a mesh is larger), so a
+  // remesh while dragging uploads the used range with bufferSubData instead of
+  // allocating new GPU buffers. A flat planar mesh shares one geometry between the 2D
+  // and the 3D view (uploaded once); flat shading needs no normals.
   #buildMesh(style) {
     const { mesh, measures } = this.result;
-    const clear = (g) => {
-      for (const o of [...g.children]) { g.remove(o); o.geometry?.dispose(); }
-    };
-    for (const g of [this.layers2.faces, this.layers2.edges, this.layers2.boundary, this.group3]) clear(g);
-
     const nv = mesh.params.length / 2;
-    const uvPos = new Float32Array(3 * nv);
-    for (let i = 0; i < nv; i++) { uvPos[3 * i] = mesh.params[2 * i]; uvPos[3 * i + 1] = mesh.params[2 * i + 1]; }
+    const flat = mesh.dimension === 2 && !(style.lift > 0 && measures.vertexH);
+    const uvPos = this.#scratch('uv', 3 * nv);
+    for (let i = 0; i < nv; i++) { uvPos[3 * i] = mesh.params[2 * i]; uvPos[3 * i + 1] = mesh.params[2 * i + 1]; uvPos[3 * i + 2] = 0; }
     let pos3 = mesh.positions;
-    if (mesh.dimension === 2 && style.lift > 0 && measures.vertexH) {
+    if (mesh.dimension === 2 && !flat) {
       // Lift the plane by the log of the requested size: refinement shows as valleys/peaks.
-      pos3 = new Float32Array(mesh.positions);
+      pos3 = this.#scratch('lift', 3 * nv);
+      pos3.set(mesh.positions.subarray(0, 3 * nv));
       const hs = measures.vertexH;
       let hmin = Infinity, hmax = 0;
-      for (const h of hs) { hmin = Math.min(hmin, h); hmax = Math.max(hmax, h); }
+      for (let i = 0; i < hs.length; i++) { const h = hs[i]; if (h < hmin) hmin = h; if (h > hmax) hmax = h; }
       const span = Math.log(hmax / hmin) || 1;
-      const size = this.#extent(uvPos);
+      const size = this.#extent(uvPos, nv);
       for (let i = 0; i < nv; i++) pos3[3 * i + 2] = style.lift * 0.35 * size * (Math.log(hmax / hs[i]) / span);
     }
-
-    this.edgeCount = style.edges === 'off' ? 0 : measures.edges.length / 2;
+    const g = this.#meshObjects();
+    const nt = mesh.triangles.length / 3, nq = mesh.quads.length / 4;
+    const faceVerts = 3 * (nt + 2 * nq);
     const quality = style.colorBy === 'quality' ? measures.quality : null;
-    const faceColors = elementColors(mesh, quality);
-    const faces2 = faceGeometry(mesh, uvPos, faceColors);
-    const faces3 = faceGeometry(mesh, pos3, faceColors);
-    faces3.computeVertexNormals();
-    this.layers2.faces.add(new THREE.Mesh(faces2, this.mats.face2));
-    this.group3.add(new THREE.Mesh(faces3, this.mats.face3));
+    const faceCol = this.#attribute(g.faces2, 'color', faceVerts);
+    fillFaceColors(faceCol.array, mesh, quality);
+    fillFaces(this.#attribute(g.faces2, 'position', faceVerts).array, mesh, uvPos);
+    this.#share(g.faces3, g.faces2, flat, faceVerts);
+    if (!flat) fillFaces(this.#attribute(g.faces3, 'position', faceVerts).array, mesh, pos3);
 
-    if (style.edges !== 'off') {
-      const lengths = style.edges === 'length' ? measures.edgeLength : null;
-      const colors = edgeColors(measures.edges, lengths);
-      this.layers2.edges.add(new THREE.LineSegments(segmentGeometry(measures.edges, uvPos, colors), lengths ? this.mats.edgeLength2 : this.mats.edgePlain2));
-      const lines3 = new THREE.LineSegments(segmentGeometry(measures.edges, pos3, colors), lengths ? this.mats.edgeLength3 : this.mats.edgePlain3);
-      lines3.userData.edges = true;
-      this.group3.add(lines3);
-    }
-    if (mesh.edges?.length) {
-      const black = new Float32Array(mesh.edges.length * 3).fill(0.1);
-      this.layers2.boundary.add(new THREE.LineSegments(segmentGeometry(mesh.edges, uvPos, black), this.mats.boundary2));
-      this.group3.add(new THREE.LineSegments(segmentGeometry(mesh.edges, pos3, black), this.mats.boundary3));
+    const edges = style.edges !== 'off' ? measures.edges : null;
+    this.edgeCount = edges ? edges.length / 2 : 0;
+    const edgeVerts = edges ? edges.length : 0;
+    const lengths = style.edges === 'length' ? measures.edgeLength : null;
+    fillEdgeColors(this.#attribute(g.edges2, 'color', edgeVerts).array, edges, lengths);
+    fillSegments(this.#attribute(g.edges2, 'position', edgeVerts).array, edges, uvPos);
+    this.#share(g.edges3, g.edges2, flat, edgeVerts);
+    if (!flat) fillSegments(this.#attribute(g.edges3, 'position', edgeVerts).array, edges, pos3);
+    g.lines2.material = lengths ? this.mats.edgeLength2 : this.mats.edgePlain2;
+    g.lines3.material = lengths ? this.mats.edgeLength3 : this.mats.edgePlain3;
+    g.lines2.visible = g.lines3.visible = Boolean(edges);
+
+    const bVerts = mesh.edges?.length ?? 0;
+    this.#attribute(g.boundary2, 'color', bVerts).array.fill(0.1, 0, 3 * bVerts);
+    fillSegments(this.#attribute(g.boundary2, 'position', bVerts).array, mesh.edges, uvPos);
+    this.#share(g.boundary3, g.boundary2, flat, bVerts);
+    if (!flat) fillSegments(this.#attribute(g.boundary3, 'position', bVerts).array, mesh.edges, pos3);
+
+    this.cache2Valid = false;
+    // Bounds of the used range (the arrays' slack holds stale values): fit3D reads them.
+    const box = boundsOf(flat ? uvPos : pos3, nv);
+    for (const geom of [g.faces2, g.faces3, g.edges2, g.edges3, g.boundary2, g.boundary3]) {
+      geom.boundingBox = box.clone();
+      geom.boundingSphere = box.getBoundingSphere(new THREE.Sphere());
     }
     this.requestRender();
   }
 
-  #extent(xyz) {
+  /** The persistent objects drawing the mesh (created on first use). */
+  #meshObjects() {
+    if (this.meshObjects) return this.meshObjects;
+    const g = {};
+    for (const k of ['faces2', 'faces3', 'edges2', 'edges3', 'boundary2', 'boundary3']) g[k] = new THREE.BufferGeometry();
+    const add = (group, obj) => { obj.frustumCulled = false; group.add(obj); return obj; };
+    add(this.layers2.faces, new THREE.Mesh(g.faces2, this.mats.face2));
+    g.mesh3 = add(this.group3, new THREE.Mesh(g.faces3, this.mats.face3));
+    g.lines2 = add(this.layers2.edges, new THREE.LineSegments(g.edges2, this.mats.edgeLength2));
+    g.lines3 = add(this.group3, new THREE.LineSegments(g.edges3, this.mats.edgeLength3));
+    g.lines3.userData.edges = true;
+    add(this.layers2.boundary, new THREE.LineSegments(g.boundary2, this.mats.boundary2));
+    add(this.group3, new THREE.LineSegments(g.boundary3, this.mats.boundary3));
+    this.meshObjects = g;
+    return g;
+  }
+
+  /**
+   * geom's attribute `name` (3 floats per vertex) holding at least `count` vertices: the
+   * existing one when it is large enough (marked for upload of the used range), else a
+   * new one with 25 % slack. Sets the draw range to count.
+   */
+  #attribute(geom, name, count) {
+    let attr = geom.getAttribute(name);
+    if (!attr || attr.array.length < 3 * count) {
+      if (attr) geom.dispose();  // frees the GPU buffers of the smaller arrays
+      attr = new THREE.BufferAttribute(new Float32Array(Math.ceil(3 * count * 1.25) + 3), 3);
+      attr.setUsage(THREE.DynamicDrawUsage);
+      geom.setAttribute(name, attr);
+    } else {
+      attr.clearUpdateRanges();
+      attr.addUpdateRange(0, 3 * count);
+      attr.needsUpdate = true;
+    }
+    geom.setDrawRange(0, count);
+    return attr;
+  }
+
+  // The 3D geometry draws the 2D one's arrays (flat planar mesh: no upload of its own),
+  // or its own positions; the colours are always the 2D geometry's.
+  #share(geom3, geom2, shared, count) {
+    const pos2 = geom2.getAttribute('position'), col2 = geom2.getAttribute('color');
+    if (shared) {
+      if (geom3.getAttribute('position') && geom3.getAttribute('position') !== pos2) geom3.dispose();
+      geom3.setAttribute('position', pos2);
+    } else if (geom3.getAttribute('position') === pos2) {
+      geom3.deleteAttribute('position');
+    }
+    geom3.setAttribute('color', col2);
+    geom3.setDrawRange(0, count);
+  }
+
+  /** A reusable Float32Array of at least n floats (its first n are what the caller fills). */
+  #scratch(key, n) {
+    (this.scratch ??= {});
+    if (!this.scratch[key] || this.scratch[key].length < n) this.scratch[key] = new Float32Array(Math.ceil(n * 1.25));
+    return this.scratch[key];
+  }
+
+  #extent(xyz, n = xyz.length / 3) {
     let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
-    for (let i = 0; i < xyz.length; i += 3) {
+    for (let i = 0; i < 3 * n; i += 3) {
       x0 = Math.min(x0, xyz[i]); x1 = Math.max(x1, xyz[i]); y0 = Math.min(y0, xyz[i + 1]); y1 = Math.max(y1, xyz[i + 1]);
     }
     return Math.max(x1 - x0, y1 - y0);
@@ -304,6 +459,7 @@ export class Views {
 
   /** overlay: { nodes: Float32Array (x, y, h1, h2, alpha), lines: Float32Array (x0, y0, x1, y1) } or null. */
   setControlSpace(overlay, visible) {
+    this.cache2Valid = false;
     const g = this.layers2.control;
     for (const o of [...g.children]) { g.remove(o); o.geometry.dispose(); }
     this.controlLegend = null;
@@ -311,6 +467,10 @@ export class Views {
     const dim = Boolean(overlay && visible);
     const m = this.mats;
     m.face2.opacity = dim ? 0.35 : 1;
+    if (m.face2.transparent !== dim) {
+      m.face2.transparent = dim;
+      m.face2.needsUpdate = true;
+    }
     m.edgeLength2.opacity = dim ? 0.3 : 0.95;
     m.edgePlain2.opacity = dim ? 0.2 : 0.55;
     if (!dim) { this.requestRender('2d'); return; }
@@ -557,62 +717,76 @@ export class Views {
 
 // --- geometry builders ------------------------------------------------------------------
 
-// Colour per element (triangles, then quads) as rgb triples.
-function elementColors(mesh, quality) {
-  const ne = mesh.triangles.length / 3 + mesh.quads.length / 4;
-  const out = new Float32Array(3 * ne);
-  for (let e = 0; e < ne; e++) out.set(quality ? qualityColor(quality[e]) : FACE_PLAIN, 3 * e);
-  return out;
+// Colour tables: the colour maps sampled finely, so a mesh's colours are table look-ups.
+const LUT = 1024;
+function table(fn) {
+  const t = new Float32Array(3 * (LUT + 1));
+  for (let i = 0; i <= LUT; i++) t.set(fn(i / LUT), 3 * i);
+  return t;
+}
+const qualityLut = table(qualityColor);
+const lengthLut = table((x) => lengthColor(2 ** (2 * x - 1)));  // x = 0.5 + 0.5 log2(length)
+const lutIndex = (x) => 3 * Math.round(LUT * (x < 0 ? 0 : x > 1 ? 1 : x));
+
+// Colour of each face vertex (triangles, then quads as two triangles): quality colours or plain.
+function fillFaceColors(out, mesh, quality) {
+  const nt = mesh.triangles.length / 3, nq = mesh.quads.length / 4;
+  let o = 0;
+  const put = (r, g, b, times) => { for (let k = 0; k < times; k++) { out[o++] = r; out[o++] = g; out[o++] = b; } };
+  for (let e = 0; e < nt + nq; e++) {
+    const times = e < nt ? 3 : 6;
+    if (quality) {
+      const i = lutIndex(quality[e]);
+      put(qualityLut[i], qualityLut[i + 1], qualityLut[i + 2], times);
+    } else put(FACE_PLAIN[0], FACE_PLAIN[1], FACE_PLAIN[2], times);
+  }
 }
 
 // Non-indexed triangles (quads split in two) so each element carries its own flat colour.
-function faceGeometry(mesh, xyz, colors) {
+function fillFaces(pos, mesh, xyz) {
   const tris = mesh.triangles, quads = mesh.quads;
-  const nt = tris.length / 3, nq = quads.length / 4;
-  const n = 3 * (nt + 2 * nq);
-  const pos = new Float32Array(3 * n), col = new Float32Array(3 * n);
   let o = 0;
-  const put = (v, e) => {
-    pos[o] = xyz[3 * v]; pos[o + 1] = xyz[3 * v + 1]; pos[o + 2] = xyz[3 * v + 2];
-    col[o] = colors[3 * e]; col[o + 1] = colors[3 * e + 1]; col[o + 2] = colors[3 * e + 2];
-    o += 3;
-  };
-  for (let t = 0; t < nt; t++) { put(tris[3 * t], t); put(tris[3 * t + 1], t); put(tris[3 * t + 2], t); }
-  for (let q = 0; q < nq; q++) {
-    const b = 4 * q, e = nt + q;
-    put(quads[b], e); put(quads[b + 1], e); put(quads[b + 2], e);
-    put(quads[b], e); put(quads[b + 2], e); put(quads[b + 3], e);
+  const put = (v) => { pos[o++] = xyz[3 * v]; pos[o++] = xyz[3 * v + 1]; pos[o++] = xyz[3 * v + 2]; };
+  for (let t = 0; t < tris.length; t++) put(tris[t]);
+  for (let q = 0; q < quads.length; q += 4) {
+    put(quads[q]); put(quads[q + 1]); put(quads[q + 2]);
+    put(quads[q]); put(quads[q + 2]); put(quads[q + 3]);
   }
-  const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
-  g.setAttribute('color', new THREE.BufferAttribute(col, 3));
-  return g;
 }
 
-// Colour per edge: metric length colours, or a plain dark grey.
-function edgeColors(edges, lengths) {
-  const ne = edges.length / 2;
-  const out = new Float32Array(6 * ne);
+// Colour per edge end: metric length colours, or a plain dark grey.
+function fillEdgeColors(out, edges, lengths) {
+  const ne = edges ? edges.length / 2 : 0;
   for (let e = 0; e < ne; e++) {
-    const c = lengths ? lengthColor(lengths[e]) : [0.25, 0.3, 0.38];
-    out.set(c, 6 * e);
-    out.set(c, 6 * e + 3);
+    let r = 0.25, g = 0.3, b = 0.38;
+    if (lengths) {
+      const i = lutIndex(0.5 + 0.5 * Math.log2(Math.max(lengths[e], 1e-6)));
+      r = lengthLut[i]; g = lengthLut[i + 1]; b = lengthLut[i + 2];
+    }
+    const o = 6 * e;
+    out[o] = out[o + 3] = r; out[o + 1] = out[o + 4] = g; out[o + 2] = out[o + 5] = b;
   }
-  return out;
 }
 
-// Line segments (pairs of vertex ids) as a non-indexed geometry; colors: rgb per segment end.
-function segmentGeometry(pairs, xyz, colors) {
-  const n = pairs.length;
-  const pos = new Float32Array(3 * n);
+// Line segments (pairs of vertex ids) as non-indexed positions.
+function fillSegments(pos, pairs, xyz) {
+  const n = pairs ? pairs.length : 0;
   for (let i = 0; i < n; i++) {
     const v = pairs[i];
     pos[3 * i] = xyz[3 * v]; pos[3 * i + 1] = xyz[3 * v + 1]; pos[3 * i + 2] = xyz[3 * v + 2];
   }
-  const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
-  g.setAttribute('color', new THREE.BufferAttribute(colors.length === 3 * n ? colors : colors.subarray(0, 3 * n), 3));
-  return g;
+}
+
+function boundsOf(xyz, n) {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < n; i++) {
+    for (let k = 0; k < 3; k++) {
+      const x = xyz[3 * i + k];
+      if (x < lo[k]) lo[k] = x;
+      if (x > hi[k]) hi[k] = x;
+    }
+  }
+  return n ? new THREE.Box3(new THREE.Vector3(...lo), new THREE.Vector3(...hi)) : new THREE.Box3();
 }
 
 /** True when WebGL runs on a software rasterizer (SwiftShader, llvmpipe): MSAA is then too costly. */

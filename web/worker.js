@@ -2,17 +2,18 @@
 //
 // Protocol (see jobs.js):
 //   in : { type: 'init', module?: WebAssembly.Module }         once, right after start
-//        { type: 'job', id, op, args }
+//        { type: 'job', id, op, args, postedAt }
 //   out: { type: 'ready', version, initMs }
-//        { type: 'progress', id, stage }                       between the steps of a job
-//        { type: 'result', id, ok: true, result, workerMs } | { type: 'result', id, ok: false, error }
+//        { type: 'progress', id, stage, fraction }             during a job (fraction in [0, 1] or null)
+//        { type: 'result', id, ok: true, result, workerMs, marks } | { type: 'result', id, ok: false, error }
+// Typed arrays in results are transferred, not copied. marks: wall-clock times
+// (performance.timeOrigin + now, comparable with the page's) of the job's steps.
 //
 // The core is synchronous, so a job cannot be interrupted from inside: the page cancels
 // a stale job by terminating this worker and starting a fresh one (cheap because the
 // page compiles the wasm once and posts the compiled WebAssembly.Module here).
 import createAnisomeshCore from '../wasm/dist/anisomesh-core.js';
 import { wrapCore } from '../wasm/api.js';
-import { measure, mtFromTensors, smallestSizes, uniqueEdges } from './measure.js';
 
 let am = null;
 let readyResolve;
@@ -74,31 +75,59 @@ function sampledVtk(cs) {
   return out.join('\n') + '\n';
 }
 
-// meshCase takes planar and surface cases alike (a surface case has "patches"); only
-// planar runs export their control space.
-function runCase(c, surface) {
-  return am.meshCase(c, { inspectControlSpace: !surface, vertexMetrics: !surface });
+const wallNow = () => performance.timeOrigin + performance.now();
+let lastMeshJob = null;  // id of the planar mesh job whose run the core keeps for its report
+
+// The planar mesher reports a fraction: 0 while the control space and its section 3.2
+// rounds run, then boundary (to 0.1), point insertion (to 0.8), improvement (to 0.95).
+function stageOf(fraction) {
+  if (fraction <= 0) return 'control space';
+  if (fraction < 0.1) return 'boundary';
+  if (fraction < 0.8) return 'inserting points';
+  if (fraction < 1) return 'improving';
+  return 'finishing';
 }
 
 const ops = {
-  // Meshes a case; adds per-edge metric lengths and per-element qualities for the colouring.
-  mesh({ case: c, surface = false }, progress) {
-    progress('meshing');
+  // Meshes a case (planar or surface: meshCase takes both): the mesh with per-edge metric
+  // lengths and per-element qualities for the colouring (measured in the core). A planar
+  // run's quality report is a separate job ('report'), which the page asks for once the
+  // mesh is drawn, and skips for the meshes a drag has already left behind.
+  // overlay: also inspect the final control space for the overlay (planar only).
+  mesh({ case: c, surface = false, overlay = false }, { progress, marks, id }) {
+    progress('control space', 0);
+    let lastFraction = -1, lastAt = 0;
+    const onProgress = (fraction) => {
+      const now = performance.now();
+      // A message per stage change or per 2 % (at most every 30 ms): the page shows it.
+      if (stageOf(fraction) !== stageOf(lastFraction) || (fraction - lastFraction >= 0.02 && now - lastAt >= 30)) {
+        lastFraction = fraction;
+        lastAt = now;
+        progress(stageOf(fraction), fraction);
+      }
+      return true;
+    };
+    marks.coreStart = wallNow();
+    const run = am.meshCase(c, { inspectControlSpace: overlay && !surface, measures: true, stats: surface, onProgress });
+    marks.coreEnd = wallNow();
+    const { mesh, measures, timings } = run;
+    lastMeshJob = surface ? null : id;
+    return {
+      mesh,
+      overlay: overlay ? overlayFromInspect(run.controlSpace) : null,
+      measures: { edges: measures.edges, edgeLength: measures.edgeLength ?? null, quality: measures.quality ?? null, vertexH: measures.vertexH ?? null },
+      stats: run.stats,  // null for a planar run: see 'report'
+      core: timings,
+    };
+  },
+  // The quality report of the planar mesh job `of`, which must be the last job run here.
+  report({ of }, { progress }) {
+    if (of !== lastMeshJob) throw Object.assign(new Error(`report: job ${of} is not the last mesh job (${lastMeshJob})`), { code: 'INVALID_ARGUMENT' });
+    progress('quality report', null);
     const t0 = performance.now();
-    const { mesh, stats, controlSpace, vertexMetrics } = runCase(c, surface);
-    const meshMs = performance.now() - t0;
-    progress('measuring');
-    let measures;
-    if (!surface) {
-      // The final control space's metric at the vertices (after the section 3.2 updates),
-      // so the colours measure exactly what the report measures.
-      measures = measure(mesh, mtFromTensors(vertexMetrics));
-      measures.vertexH = smallestSizes(vertexMetrics);
-    } else {
-      // Surface metrics live on the surface: colours wait for the core to report them.
-      measures = { edges: uniqueEdges(mesh.triangles, mesh.quads), edgeLength: null, quality: null, vertexH: null };
-    }
-    return { mesh, stats, overlay: overlayFromInspect(controlSpace), measures, meshMs };
+    const stats = am.caseStats();
+    lastMeshJob = null;
+    return { stats, reportMs: performance.now() - t0 };
   },
   // Text of the mesh in a file format.
   writeMesh({ mesh, format }) {
@@ -130,14 +159,22 @@ function transferables(value, out = []) {
   return out;
 }
 
-async function runJob({ id, op, args }) {
+async function runJob({ id, op, args, postedAt }) {
+  const marks = { posted: postedAt, received: wallNow() };
   await ready;
+  marks.ready = wallNow();
   const t0 = performance.now();
   try {
     if (!(op in ops)) throw Object.assign(new Error(`unknown operation '${op}'`), { code: 'INVALID_ARGUMENT' });
-    const result = ops[op](args ?? {}, (stage) => self.postMessage({ type: 'progress', id, stage }));
+    const hooks = {
+      id,
+      marks,
+      progress: (stage, fraction = null) => self.postMessage({ type: 'progress', id, stage, fraction }),
+    };
+    const result = ops[op](args ?? {}, hooks);
+    marks.resultPosted = wallNow();
     const buffers = [...new Set(transferables(result))];
-    self.postMessage({ type: 'result', id, ok: true, result, workerMs: performance.now() - t0 }, buffers);
+    self.postMessage({ type: 'result', id, ok: true, result, marks, workerMs: performance.now() - t0 }, buffers);
   } catch (e) {
     self.postMessage({ type: 'result', id, ok: false, error: { code: e.code ?? 'INTERNAL', message: e.message } });
   }

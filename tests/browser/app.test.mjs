@@ -191,13 +191,15 @@ test('a new job supersedes a running one (the worker is replaced) and the last i
     a.state.case.controlSpace.hmin = 0.002;
     a.edited(0);
     await a.whenIdle();
-    return { cancelled: a.state.cancelled - cancelledBefore, meshed: a.state.meshedVersion, version: a.state.caseVersion, restartMs: a.state.workerRestartMs, error: a.state.lastError, tris: a.state.lastStats.triangles };
+    return { spareSwaps: a.meshRunner.spareSwaps, cancelled: a.state.cancelled - cancelledBefore, meshed: a.state.meshedVersion, version: a.state.caseVersion, restartMs: a.state.workerRestartMs, error: a.state.lastError, tris: a.state.lastStats.triangles };
   });
   assert.equal(r.error, null);
   assert.ok(r.cancelled >= 1, `cancelled ${r.cancelled}`);
   assert.equal(r.meshed, r.version, 'the mesh on screen is the latest input');
   assert.ok(r.tris < 20000, `the coarse (last) input is on screen: ${r.tris} triangles`);
   assert.ok(r.restartMs.length >= 1);
+  // The spare worker, instantiated ahead of time, took over the cancelled one's place.
+  assert.ok(r.spareSwaps >= 1, `spare swaps ${r.spareSwaps}`);
   console.log(`# worker restart (precompiled module): ${r.restartMs.join(', ')} ms`);
   assert.deepEqual(errors, []);
   await page.close();
@@ -226,10 +228,10 @@ test('the page keeps animating while the core meshes, and the toolbar shows the 
   await settle(page, () => window.anisomeshApp.loadPreset('point-source'));
   const r = await page.evaluate(async () => {
     const a = window.anisomeshApp;
-    // A finer case so that the job lasts long enough to watch.
-    a.state.case.sources[0].h0 = 0.0007;
-    a.state.case.controlSpace.hmin = 0.0007;
-    a.state.case.controlSpace.hmax = 0.012;
+    // A fine case (~130k triangles) so that the job lasts long enough to watch.
+    a.state.case.sources[0].h0 = 0.0004;
+    a.state.case.controlSpace.hmin = 0.0004;
+    a.state.case.controlSpace.hmax = 0.0065;
     a.edited(0);
     let frames = 0, busyFrames = 0, busySeen = false, text = '';
     // Watch the spinner itself (not once per frame: a software-rendered frame can outlast the job).
@@ -254,11 +256,95 @@ test('the page keeps animating while the core meshes, and the toolbar shows the 
     return { frames, busyFrames, ms: performance.now() - t0, busySeen, text, tris: a.state.lastStats.triangles };
   });
   assert.ok(r.busySeen, 'busy indicator shown');
-  assert.match(r.text, /(meshing|measuring)… \d+\.\d s/);
+  assert.match(r.text, /^(starting|control space|boundary|inserting points|improving|finishing|quality report)( \d+ %)? · \d+\.\d s$/);
   assert.ok(r.tris > 20000, `${r.tris} triangles`);
   // The main thread is free during the job: the page keeps rendering frames while the
   // worker meshes (a count, not a rate: frame rates are measured in the bench script).
   assert.ok(r.busyFrames >= 2, `${r.busyFrames} frames drawn while the job ran (${r.frames} in ${Math.round(r.ms)} ms)`);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('a long run shows the core\'s progress (stage and percentage) in the toolbar', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('point-source'));
+  const r = await page.evaluate(async () => {
+    const a = window.anisomeshApp;
+    const firstJob = a.meshRunner.nextId;
+    const texts = [], bar = [];
+    const statusText = document.getElementById('status-text'), progress = document.getElementById('progress');
+    const observer = new MutationObserver(() => {
+      texts.push(statusText.textContent);
+      if (!progress.hidden) bar.push({ now: Number(progress.getAttribute('aria-valuenow')), width: progress.querySelector('.fill').style.width });
+    });
+    observer.observe(document.getElementById('status'), { subtree: true, childList: true, characterData: true, attributes: true });
+    // ~70k triangles: the mesher reports a fraction every 4096 inserted points.
+    a.state.case.sources[0].h0 = 0.0005;
+    a.state.case.controlSpace.hmin = 0.0005;
+    a.state.case.controlSpace.hmax = 0.009;
+    a.edited(0);
+    await a.whenIdle();
+    observer.disconnect();
+    return {
+      log: a.state.progressLog.filter((e) => e.id >= firstJob),
+      texts, bar,
+      barHiddenAfter: progress.hidden,
+      tris: a.state.lastStats.triangles,
+      error: a.state.lastError,
+    };
+  });
+  assert.equal(r.error, null);
+  assert.ok(r.tris > 50000, `${r.tris} triangles`);
+  const stages = r.log.map((e) => e.stage);
+  assert.ok(stages.includes('inserting points'), `stages: ${stages}`);
+  const inserting = r.log.filter((e) => e.stage === 'inserting points');
+  assert.ok(inserting.every((e) => e.fraction > 0 && e.fraction < 1), JSON.stringify(inserting));
+  // Within the job the fraction only grows, and the last stage is the quality report.
+  const fractions = r.log.filter((e) => e.fraction != null).map((e) => e.fraction);
+  assert.ok(fractions.every((f, i) => i === 0 || f >= fractions[i - 1]), `fractions ${fractions}`);
+  assert.equal(stages.at(-1), 'quality report');
+  // The toolbar showed the stage with a percentage, and the bar filled part way.
+  assert.ok(r.texts.some((t) => /^inserting points \d+ % · \d+\.\d s$/.test(t)), `texts: ${r.texts.slice(0, 8)}`);
+  assert.ok(r.bar.some((b) => b.now > 0 && b.now < 100 && parseFloat(b.width) > 0), JSON.stringify(r.bar.slice(0, 5)));
+  assert.equal(r.barHiddenAfter, true, 'the bar goes away when the job is done');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('the control-space overlay is inspected only when shown', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('holes-dr2'));
+  assert.equal(await page.evaluate(() => window.anisomeshApp.state.overlay), null);
+  await settle(page, () => window.anisomeshApp.setView({ controlSpace: true }));
+  const r = await page.evaluate(() => {
+    const a = window.anisomeshApp;
+    return { nodes: a.state.overlay?.nodes.length ?? 0, legend: a.views.controlLegend, text: document.getElementById('legend').textContent };
+  });
+  assert.ok(r.nodes > 0 && r.legend?.count === r.nodes / 5, JSON.stringify(r.legend));
+  assert.match(r.text, /control space h .*nodes/);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('a sources-only change redraws the sources over the cached 2D mesh image', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('holes-dr2'));
+  const r = await page.evaluate(async () => {
+    const a = window.anisomeshApp, v = a.views;
+    const frame = () => new Promise((res) => requestAnimationFrame(() => requestAnimationFrame(res)));
+    await frame();
+    const before = { cached: v.cache2Draws, frames: v.framesRendered, cov: v.coverage('2d') };
+    a.selectSource(a.state.selected === 0 ? 1 : 0);  // the selection colour changes, the mesh does not
+    await frame();
+    const mid = { cached: v.cache2Draws, frames: v.framesRendered };
+    v.fit2D([0, 0, 5, 2]);  // the camera changes: the image is redrawn
+    await frame();
+    return { before, mid, after: { cached: v.cache2Draws, cov: v.coverage('2d') } };
+  });
+  assert.ok(r.mid.frames > r.before.frames, 'a frame was drawn for the selection');
+  assert.equal(r.mid.cached, r.before.cached, 'the mesh image was reused');
+  assert.ok(r.after.cached > r.mid.cached, 'a camera change redraws the mesh image');
+  assert.ok(r.before.cov > 0.05 && r.after.cov > 0.05, JSON.stringify(r));
   assert.deepEqual(errors, []);
   await page.close();
 });

@@ -27,6 +27,45 @@ test('meshCase returns typed arrays that describe a valid planar mesh', () => {
   assert.ok(mesh.edges.length > 0 && mesh.edgeRefs.length === mesh.edges.length / 2);
 });
 
+test('meshCase with stats: false and measures: the mesh at once, the same report from caseStats() after', () => {
+  for (const [name, options] of [['fig7_rect_holes_dr2', {}], ['boundary_layer', { quads: true }]]) {
+    const c = example(name);
+    const full = am.meshCase(c, options);
+    const quick = am.meshCase(c, { ...options, stats: false, measures: true });
+    assert.equal(quick.stats, null, name);
+    assert.deepEqual(quick.mesh.triangles, full.mesh.triangles, name);
+    assert.deepEqual(quick.mesh.quads, full.mesh.quads, name);
+    // Per-edge lengths and per-element qualities measured as the report measures them.
+    const { edges, edgeLength, quality, vertexH } = quick.measures;
+    const s = full.stats;
+    assert.equal(edges.length / 2, s.edges, name);
+    assert.equal(edgeLength.length, s.edges, name);
+    assert.equal(quality.length, s.triangles + s.quads, name);
+    assert.equal(vertexH.length, s.vertices, name);
+    if (options.quads) assert.ok(s.quads > 0, `${name}: quads`);
+    const mean = (a) => a.reduce((x, y) => x + y, 0) / a.length;
+    assert.ok(Math.abs(mean(quality) - s.quality.mean) < 1e-6, `${name}: mean Q ${mean(quality)} vs ${s.quality.mean}`);
+    assert.ok(Math.abs(mean(edgeLength) - s.edgeLength.mean) < 1e-6, `${name}: mean length ${mean(edgeLength)} vs ${s.edgeLength.mean}`);
+    const within = edgeLength.filter((l) => l >= Math.SQRT1_2 && l <= Math.SQRT2).length / edgeLength.length;
+    assert.ok(Math.abs(within - s.edgeLength.fractionWithinSqrt2) < 1e-4, `${name}: ${within} vs ${s.edgeLength.fractionWithinSqrt2}`);
+    assert.ok(vertexH.every((h) => h > 0 && h <= c.controlSpace.hmax * 1.0001), `${name}: sizes within (0, hmax]`);
+    // Sorted distinct pairs a < b.
+    for (let e = 0; e < edges.length; e += 2) {
+      assert.ok(edges[e] < edges[e + 1], name);
+      if (e) assert.ok(edges[e - 2] < edges[e] || (edges[e - 2] === edges[e] && edges[e - 1] < edges[e + 1]), name);
+    }
+    const later = am.caseStats();
+    const strip = ({ pipelineSeconds, timings, ...rest }) => rest;  // times differ between runs
+    assert.deepEqual(strip(later), strip(full.stats), name);
+    assert.deepEqual(Object.keys(later.pipelineSeconds), Object.keys(full.stats.pipelineSeconds), name);
+    assert.ok(quick.timings.runMs > 0 && quick.timings.measuresMs >= 0, name);
+    // The kept run is used up by its report.
+    assert.throws(() => am.caseStats(), { code: 'INVALID_ARGUMENT', message: /stats: false/ });
+  }
+  assert.throws(() => am.meshCase(example('point_source'), { stats: 'no' }), { code: 'INVALID_ARGUMENT', message: /options\.stats/ });
+  assert.throws(() => am.meshCase(example('point_source'), { measures: 1 }), { code: 'INVALID_ARGUMENT', message: /options\.measures/ });
+});
+
 test('the same case gives the same mesh twice (deterministic)', () => {
   const a = am.meshCase(example('fig6_rect_holes_nosmooth')).mesh;
   const b = am.meshCase(example('fig6_rect_holes_nosmooth')).mesh;

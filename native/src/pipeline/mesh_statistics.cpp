@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <cstdint>
 
 #include "anisomesh/mesh/quality.h"
 
@@ -27,24 +27,43 @@ double triangleQuality(const Vec2& a, const Vec2& b, const Vec2& c, const Mat2& 
 
 double largestNeighbourSizeRatio(const Mesh& mesh) {
   std::vector<double> size;
-  std::map<std::pair<int, int>, int> firstOwner;
-  double worst = 1.0;
-  auto visit = [&](int element, const int* v, int n) {
-    for (int k = 0; k < n; ++k) {
-      const std::pair<int, int> key(std::min(v[k], v[(k + 1) % n]), std::max(v[k], v[(k + 1) % n]));
-      auto [it, fresh] = firstOwner.emplace(key, element);
-      if (fresh) continue;
-      const double a = size[size_t(it->second)], b = size[size_t(element)];
-      if (a > 0 && b > 0) worst = std::max(worst, std::max(a, b) / std::min(a, b));
-    }
-  };
+  size.reserve(mesh.triangles.size() + mesh.quads.size());
   for (const auto& t : mesh.triangles)
     size.push_back(std::sqrt(std::abs(signedArea(xy(mesh, t[0]), xy(mesh, t[1]), xy(mesh, t[2])))));
   for (const auto& q : mesh.quads)
     size.push_back(std::sqrt(std::abs(signedArea(xy(mesh, q[0]), xy(mesh, q[1]), xy(mesh, q[2])) +
                                       signedArea(xy(mesh, q[0]), xy(mesh, q[2]), xy(mesh, q[3])))));
+  // (edge, element) pairs sorted by edge then element: each later owner of an edge is
+  // compared with its first (lowest-numbered) owner. A sorted array instead of a map:
+  // several times faster for 100k+ edges.
+  struct Owner {
+    std::uint64_t edge;
+    std::uint32_t element;
+  };
+  std::vector<Owner> owners;
+  owners.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
+  auto visit = [&](int element, const int* v, int n) {
+    for (int k = 0; k < n; ++k) {
+      const auto a = static_cast<std::uint32_t>(std::min(v[k], v[(k + 1) % n]));
+      const auto b = static_cast<std::uint32_t>(std::max(v[k], v[(k + 1) % n]));
+      owners.push_back({(std::uint64_t(a) << 32) | b, static_cast<std::uint32_t>(element)});
+    }
+  };
   for (size_t i = 0; i < mesh.triangles.size(); ++i) visit(int(i), mesh.triangles[i].data(), 3);
   for (size_t i = 0; i < mesh.quads.size(); ++i) visit(int(mesh.triangles.size() + i), mesh.quads[i].data(), 4);
+  std::sort(owners.begin(), owners.end(), [](const Owner& x, const Owner& y) {
+    return x.edge != y.edge ? x.edge < y.edge : x.element < y.element;
+  });
+  double worst = 1.0;
+  for (size_t i = 0; i < owners.size();) {
+    size_t j = i + 1;
+    const double a = size[owners[i].element];
+    for (; j < owners.size() && owners[j].edge == owners[i].edge; ++j) {
+      const double b = size[owners[j].element];
+      if (a > 0 && b > 0) worst = std::max(worst, std::max(a, b) / std::min(a, b));
+    }
+    i = j;
+  }
   return worst;
 }
 

@@ -39,9 +39,8 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
   if (options.maxElements > 0) spec.options.maxElements = options.maxElements;
   BoundaryUpdateOptions updates;
   updates.enabled = options.controlSpaceUpdates;
-  PipelineReport report;
-  run.mesh = meshCase(spec, &report, updates, &run.finalSpace, options.progress);
-  run.stats = pipelineStatsJson(run.mesh, *run.finalSpace, report);
+  run.mesh = meshCase(spec, &run.report, updates, &run.finalSpace, options.progress);
+  if (options.stats) run.stats = pipelineStatsJson(run.mesh, *run.finalSpace, run.report);
   if (options.inspectControlSpace) run.controlSpace = controlSpaceToJson(*run.finalSpace);
   if (options.vertexMetrics) {
     // The metric the mesh was built for, so colourings match the report exactly.
@@ -53,6 +52,11 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
     }
   }
   return run;
+}
+
+nlohmann::json caseRunStats(const CaseRun& run) {
+  if (!run.stats.is_null() || !run.finalSpace) return run.stats;
+  return pipelineStatsJson(run.mesh, *run.finalSpace, run.report);
 }
 
 }  // namespace anisomesh

@@ -15,6 +15,7 @@
 #include "anisomesh/controlspace/adaptive_control_space.h"
 #include "anisomesh/mesh/mesh.h"
 #include "anisomesh/surface/surface_mesh.h"
+#include "anisomesh/pipeline/pipeline.h"
 
 namespace anisomesh {
 
@@ -26,6 +27,7 @@ struct RunCaseOptions {
   bool inspectControlSpace = false;  // also export the final control space (nodes, cells) as JSON
   bool vertexMetrics = false;        // planar: also the final control space's metric at every vertex
   bool controlSpaceGlyphs = false;   // surface: also CaseRun::glyphs (the final control spaces drawn)
+  bool stats = true;                 // planar: false leaves CaseRun::stats null (caseRunStats() later)
   // Called with a fraction in [0, 1] while meshing; returning false cancels (ErrorCode::Cancelled).
   std::function<bool(double)> progress;
 };
@@ -39,6 +41,7 @@ struct CaseRun {
   std::unique_ptr<AdaptiveControlSpace> finalSpace;  // planar: the control space meshed with
   std::vector<double> elementQuality;                // surface: 3D quality per element (triangles, then quads)
   std::vector<ControlSpaceGlyph> glyphs;             // surface: with RunCaseOptions::controlSpaceGlyphs
+  PipelineReport report;                             // planar: stage times and section 3.2 counts
 };
 
 // True when the JSON text is a surface case (it has "patches").
@@ -46,5 +49,9 @@ bool isSurfaceCase(const std::string& jsonText);
 
 // Parses the JSON case text, meshes it and measures the mesh in the case's metric.
 CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options = {});
+
+// The --stats object of a planar run made with RunCaseOptions::stats = false (the same
+// object runCase would have put in CaseRun::stats); a surface run's stats as they are.
+nlohmann::json caseRunStats(const CaseRun& run);
 
 }  // namespace anisomesh
