@@ -39,9 +39,11 @@ constexpr double kAcceptRadius = 0.70710678118654752;  // triangles with metric 
 constexpr int kBucketOffset = 4 * 1100;                // bucket index offset: covers every double exponent
 constexpr double kEstimateFactor = 1.0;                // measured: within ~10% on the layer test cases
 constexpr double kSwapSkipQuality = 0.97;              // pairs whose worse triangle is better are not swapped
-constexpr double kCollapseLength = 0.6;                // shorter edges are collapsed
+constexpr double kCollapseLength = 0.70710678118654752;  // shorter edges are collapsed
 constexpr double kCollapseMaxLength = 1.3;             // ... unless a new edge would be longer
 constexpr double kCollapseMinQuality = 0.4;            // ... or a triangle worse than this (or than before)
+constexpr double kSplitLength = 1.41421356237309505;   // longer inner edges are split at their midpoint
+constexpr double kSplitMinQuality = 0.4;               // ... unless a triangle gets worse than this (and than before)
 constexpr double kSmoothSkipQuality = 0.9;             // balls whose worst triangle is better are not smoothed
 
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
@@ -94,8 +96,10 @@ class Mesher {
   void improve();
   int swapSweep(const std::vector<int>& work, std::vector<int>& next);
   int smoothPass(std::vector<int>& touched);
-  int collapsePass(std::vector<int>& touched);
-  bool tryCollapse(int a, int b, std::vector<int>& touched);
+  int collapsePass(const std::vector<int>* list, std::vector<int>& touched);
+  bool tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touched);
+  int splitPass(const std::vector<int>* list, std::vector<int>& touched);
+  bool trySplit(int t, int i, std::vector<int>& touched);
 
   // ---- metric helpers ----
   void computeCache(int t);
@@ -145,7 +149,7 @@ class Mesher {
   std::vector<TriCache> cache_;
   std::vector<std::uint32_t> stamp_, queued_;
   std::vector<double> tq_;  // triangle metric quality (improvement stage)
-  std::vector<int> colBall_, colRing_;
+  std::vector<int> colBall_, colRing_, colBallB_;
   std::vector<std::uint8_t> vdirty_;  // improvement: vertex whose surroundings changed
 
   double estimate_ = 0.0;
@@ -949,6 +953,9 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     for (const int r : ring) centroid += vx_[r].p;
     centroid /= static_cast<double>(ring.size());
     const Vec2 cands[4] = {target, 0.5 * (p + target), centroid, 0.5 * (p + centroid)};
+    // No ring edge may end up longer than kSplitLength (or than the longest one now).
+    double longest = kSplitLength;
+    for (const int r : ring) longest = std::max(longest, SymMt::average2(vx_[v].m, vx_[r].m).length(p - vx_[r].p));
     int best = -1;
     double bestQ = before;
     for (int ci = 0; ci < 4; ++ci) {
@@ -959,6 +966,10 @@ int Mesher::smoothPass(std::vector<int>& touched) {
         if (after <= bestQ) break;
       }
       if (!(after > bestQ)) continue;
+      bool fits = true;
+      for (size_t k = 0; k < ring.size() && fits; ++k)
+        fits = SymMt::average2(vx_[v].m, vx_[ring[k]].m).length(cand - vx_[ring[k]].p) <= longest;
+      if (!fits) continue;
       bool valid = true;
       for (size_t k = 0; k < ballTri.size() && valid; ++k)
         valid = orient2d(cand, vx_[ring[k]].p, vx_[ring[k + 1 == ring.size() ? 0 : k + 1]].p) > 0.0;
@@ -1062,11 +1073,12 @@ void Mesher::renumberSpatially() {
     for (int i = 0; i < 3; ++i) vtri_[tri_[t].v[i]] = t;
 }
 
-// Collapses inner vertex a onto its neighbour b (edge a-b too short): the two triangles
-// of the edge disappear, the rest of a's ball is re-attached to b. Refused when the link
-// condition fails (would create a duplicate edge), when a triangle would turn or become
-// poor, or when a new edge would be too long.
-bool Mesher::tryCollapse(int a, int b, std::vector<int>& touched) {
+// Collapses inner vertex a onto its neighbour b (edge a-b too short), b staying or, with
+// toMidpoint (b inner too), moving to the edge's midpoint: the two triangles of the edge
+// disappear, the rest of a's ball is re-attached to b. Refused when the link condition
+// fails (would create a duplicate edge), when a triangle would turn or become poor, or
+// when a new edge would be too long.
+bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touched) {
   if (vbnd_[a]) return false;
   std::vector<int>& ball = colBall_;
   std::vector<int>& ring = colRing_;
@@ -1110,19 +1122,57 @@ bool Mesher::tryCollapse(int a, int b, std::vector<int>& touched) {
       if (u == tb) break;
     }
   }
-  // Geometry: the re-attached triangles stay counter-clockwise, fair, with no long edge.
+  // Geometry: the re-attached triangles (and, when b moves, b's own) stay
+  // counter-clockwise, fair, with no long edge.
+  Vec2 pb = vx_[b].p;
+  SymMt mb = vx_[b].m;
+  if (toMidpoint) {
+    pb = 0.5 * (vx_[a].p + vx_[b].p);
+    mb = queryMetric(pb);
+  }
+  auto quality = [&](int r, int c) {
+    return metricTriangleQuality(SymMt::average3(mb, vx_[r].m, vx_[c].m), pb, vx_[r].p, vx_[c].p);
+  };
+  auto tooLong = [&](int r) { return SymMt::average2(mb, vx_[r].m).length(vx_[r].p - pb) > kCollapseMaxLength; };
   double before = std::numeric_limits<double>::infinity();
   for (const int bt : ball) before = std::min(before, tq_[bt]);
-  const Vec2& pb = vx_[b].p;
+  std::vector<int>& ballB = colBallB_;
+  ballB.clear();
+  if (toMidpoint) {  // b is inner: its ball is closed
+    const int s0 = vtri_[b];
+    int u = s0;
+    for (int guard = 0; guard < 1000; ++guard) {
+      const auto& tv = tri_[u].v;
+      const int i = tv[0] == b ? 0 : (tv[1] == b ? 1 : 2);
+      if (tv[next3(i)] != a && tv[prev3(i)] != a) {
+        ballB.push_back(u);
+        before = std::min(before, tq_[u]);
+      }
+      u = tri_[u].n[next3(i)];
+      if (u < 0 || u == s0) break;
+    }
+    if (u != s0) return false;
+  }
+  const double floor = std::min(before, kCollapseMinQuality);
   for (int k = 0; k < deg; ++k) {
     const int r = ring[k];
-    if (r != b && SymMt::average2(vx_[b].m, vx_[r].m).length(vx_[r].p - pb) > kCollapseMaxLength) return false;
+    if (r != b && tooLong(r)) return false;
     if (k == k1 || k == k2) continue;
     const int c = ring[(k + 1) % deg];
     if (orient2d(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
-    if (triQuality(b, r, c) < std::min(before, kCollapseMinQuality)) return false;
+    if (quality(r, c) < floor) return false;
+  }
+  for (const int u : ballB) {
+    const auto& tv = tri_[u].v;
+    const int i = tv[0] == b ? 0 : (tv[1] == b ? 1 : 2);
+    const int r = tv[next3(i)], c = tv[prev3(i)];
+    if (tooLong(r)) return false;
+    if (orient2d(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
+    if (quality(r, c) < floor) return false;
   }
   // Apply.
+  vx_[b].p = pb;
+  vx_[b].m = mb;
   const int T1 = ball[k1], T2 = ball[k2];
   auto relink = [&](int dead, int keep, int other, bool constrained) {
     // In keep, the entry pointing at dead now points at other (with dead's constraint bit).
@@ -1163,6 +1213,14 @@ bool Mesher::tryCollapse(int a, int b, std::vector<int>& touched) {
     ++stamp_[dead];
     freeTris_.push_back(dead);
   }
+  if (toMidpoint) {
+    for (const int u : ballB) {
+      const auto& tv = tri_[u].v;
+      tq_[u] = triQuality(tv[0], tv[1], tv[2]);
+      touched.push_back(u);
+      for (int i = 0; i < 3; ++i) vdirty_[tv[i]] = 1;
+    }
+  }
   for (const int r : ring) vdirty_[r] = 1;
   vtri_[b] = n1a;
   vtri_[x] = n1a;
@@ -1172,25 +1230,110 @@ bool Mesher::tryCollapse(int a, int b, std::vector<int>& touched) {
   return true;
 }
 
-// Collapses edges shorter than kCollapseLength where fronts met (frontal insertion leaves
-// a few there), removing the inner end point.
-int Mesher::collapsePass(std::vector<int>& touched) {
+// Collapses edges shorter than kCollapseLength (fronts meeting leave some), removing an
+// inner end point: onto the midpoint when both ends are inner, else onto the other end.
+// Scans every triangle, or only those in list (whose edges changed since the last scan).
+int Mesher::collapsePass(const std::vector<int>* list, std::vector<int>& touched) {
   int collapsed = 0;
-  const int nt = static_cast<int>(tri_.size());
-  for (int t = 0; t < nt; ++t) {
+  const int n = list ? static_cast<int>(list->size()) : static_cast<int>(tri_.size());
+  for (int k = 0; k < n; ++k) {
+    const int t = list ? (*list)[k] : k;
     if (tri_[t].v[0] < 0) continue;
     for (int i = 0; i < 3; ++i) {
       const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
-      if (u > w || cons(t, i)) continue;  // each edge once (from the side where u < w)
+      if ((!list && u > w) || cons(t, i)) continue;  // full scan: each edge once (from the side where u < w)
       const double len = SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p);
       if (len >= kCollapseLength) continue;
-      if (tryCollapse(u, w, touched) || tryCollapse(w, u, touched)) {
+      const bool inner = !vbnd_[u] && !vbnd_[w];
+      if ((inner && tryCollapse(u, w, true, touched)) || tryCollapse(u, w, false, touched) ||
+          tryCollapse(w, u, false, touched)) {
         ++collapsed;
         break;  // t may be gone
       }
     }
   }
   return collapsed;
+}
+
+// Splits the inner edge opposite vertex i of t at its midpoint: t = (p, u, w) and its
+// neighbour (q, w, u) become four triangles around the new vertex. Refused when a new
+// triangle would not be counter-clockwise or would be poor (below kSplitMinQuality and
+// below the worse of the two triangles).
+bool Mesher::trySplit(int t, int i, std::vector<int>& touched) {
+  const int nb = tri_[t].n[i];
+  const int p = tri_[t].v[i], u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
+  int j = 0;
+  while (tri_[nb].v[j] == u || tri_[nb].v[j] == w) ++j;
+  const int q = tri_[nb].v[j];
+  const Vec2 x = 0.5 * (vx_[u].p + vx_[w].p);
+  if (orient2d(vx_[p].p, vx_[u].p, x) <= 0.0 || orient2d(vx_[p].p, x, vx_[w].p) <= 0.0 ||
+      orient2d(vx_[q].p, vx_[w].p, x) <= 0.0 || orient2d(vx_[q].p, x, vx_[u].p) <= 0.0)
+    return false;
+  const int v = static_cast<int>(vx_.size());
+  vx_.push_back({x, queryMetric(x)});
+  const double floor = std::min(kSplitMinQuality, std::min(tq_[t], tq_[nb]));
+  const double q1 = triQuality(p, u, v), q2 = triQuality(p, v, w), q3 = triQuality(q, w, v), q4 = triQuality(q, v, u);
+  if (!(std::min({q1, q2, q3, q4}) >= floor)) {
+    vx_.pop_back();
+    return false;
+  }
+  vbnd_.push_back(0);
+  vtri_.push_back(t);
+  vdirty_.push_back(1);
+  const int nWP = tri_[t].n[next3(i)], nPU = tri_[t].n[prev3(i)];
+  const bool cWP = cons(t, next3(i)), cPU = cons(t, prev3(i));
+  const int nUQ = tri_[nb].n[next3(j)], nQW = tri_[nb].n[prev3(j)];
+  const bool cUQ = cons(nb, next3(j)), cQW = cons(nb, prev3(j));
+  const int t2 = allocTri(), nb2 = allocTri();
+  if (tq_.size() < tri_.size()) tq_.resize(tri_.size() + 1024, 0.0);
+  tri_[t].v = {p, u, v};
+  tri_[t].n = {nb2, t2, nPU};
+  tri_[t].c = static_cast<std::uint8_t>(cPU ? 4 : 0);
+  tri_[t2].v = {p, v, w};
+  tri_[t2].n = {nb, nWP, t};
+  tri_[t2].c = static_cast<std::uint8_t>(cWP ? 2 : 0);
+  tri_[nb].v = {q, w, v};
+  tri_[nb].n = {t2, nb2, nQW};
+  tri_[nb].c = static_cast<std::uint8_t>(cQW ? 4 : 0);
+  tri_[nb2].v = {q, v, u};
+  tri_[nb2].n = {t, nUQ, nb};
+  tri_[nb2].c = static_cast<std::uint8_t>(cUQ ? 2 : 0);
+  if (nWP >= 0) setNbrAcross(nWP, w, p, t2);
+  if (nUQ >= 0) setNbrAcross(nUQ, u, q, nb2);
+  ++stamp_[t];
+  ++stamp_[nb];
+  tq_[t] = q1;
+  tq_[t2] = q2;
+  tq_[nb] = q3;
+  tq_[nb2] = q4;
+  vtri_[p] = vtri_[u] = t;
+  vtri_[w] = t2;
+  vtri_[q] = nb;
+  vdirty_[p] = vdirty_[u] = vdirty_[w] = vdirty_[q] = 1;
+  for (const int k : {t, t2, nb, nb2}) touched.push_back(k);
+  return true;
+}
+
+// Splits the inner edges longer than kSplitLength (new edges wait for the next pass);
+// every triangle, or only those in list.
+int Mesher::splitPass(const std::vector<int>* list, std::vector<int>& touched) {
+  int split = 0;
+  const int n = list ? static_cast<int>(list->size()) : static_cast<int>(tri_.size());
+  for (int k = 0; k < n; ++k) {
+    const int t = list ? (*list)[k] : k;
+    if (tri_[t].v[0] < 0) continue;
+    for (int i = 0; i < 3; ++i) {
+      const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
+      if ((!list && u > w) || cons(t, i) || tri_[t].n[i] < 0) continue;
+      const double len = SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p);
+      if (len <= kSplitLength) continue;
+      if (trySplit(t, i, touched)) {
+        ++split;
+        break;  // t changed
+      }
+    }
+  }
+  return split;
 }
 
 void Mesher::improve() {
@@ -1214,29 +1357,41 @@ void Mesher::improve() {
       }
     list.resize(k);
   };
+  // Triangles whose edges changed since the last length scan (collapse/split candidates).
+  std::vector<int> scan, changed;
   auto swaps = [&](int sweeps) {
     for (int k = 0; k < sweeps && !work.empty(); ++k) {
       next.clear();
       swapSweep(work, next);
+      changed.insert(changed.end(), next.begin(), next.end());
       dedupe(next);
       work.swap(next);
     }
   };
+  // Adaptation loop: swaps, collapse of short edges, split of long ones, swaps, smoothing;
+  // the first pass looks at every edge, the later ones at the edges that changed.
   for (int pass = 0; pass < opt_.improvementPasses; ++pass) {
     swaps(6);
     work.clear();
-    if (pass == 0) {
-      collapsePass(work);
-      dedupe(work);
-      swaps(6);
-      work.clear();
-    }
-    smoothPass(work);
+    const std::vector<int>* list = pass == 0 ? nullptr : &scan;
+    const int collapsed = collapsePass(list, work);
+    scan.insert(scan.end(), work.begin(), work.end());  // collapsed balls: maybe a long edge now
+    const int split = splitPass(list, work);
+    dedupe(work);
+    changed.insert(changed.end(), work.begin(), work.end());
+    swaps(6);
+    work.clear();
+    const int moved = smoothPass(work);
     // The ball triangles of moved vertices are reconsidered for swaps (the vertex metric
     // changed too, so their cached quality is refreshed).
     dedupe(work);
     for (const int t : work) tq_[t] = triQuality(tri_[t].v[0], tri_[t].v[1], tri_[t].v[2]);
+    changed.insert(changed.end(), work.begin(), work.end());
+    scan.swap(changed);
+    changed.clear();
+    dedupe(scan);
     checkProgress(0.8 + 0.15 * (pass + 1) / opt_.improvementPasses);
+    if (collapsed == 0 && split == 0 && moved == 0) break;  // converged
   }
   if (opt_.improvementPasses > 0) swaps(6);
 }

@@ -47,7 +47,7 @@ struct PlanarMesherOptions {
   bool quads = false;                   // convert to a quad-dominant mesh
   bool allQuads = false;                // then split into an all-quad mesh
   std::int64_t maxElements = 50000000;  // element budget: ElementBudgetExceeded above it
-  int improvementPasses = 3;            // edge swaps + node smoothing rounds in the metric
+  int improvementPasses = 6;            // edge swaps + node smoothing rounds in the metric
   bool boundaryOnly = false;            // stop after the boundary triangulation (section 3.2 checks)
   // Called with a fraction in [0, 1]; returning false cancels the run (ErrorCode::Cancelled).
   std::function<bool(double)> progress;
