@@ -2,8 +2,9 @@
 // exact Delaunay triangulation of the boundary points in a super-box, boundary recovery
 // by edge flips, removal of outside triangles by parity flood fill, frontal-Delaunay
 // insertion of inner nodes in the metric (Rebay-style point placement, Bowyer-Watson
-// cavities judged by each triangle's metric circumcircle), then metric edge swaps,
-// collapse of the short edges left where fronts meet, and node smoothing. Data layout is
+// cavities judged by each triangle's metric circumcircle), then an adaptation loop:
+// metric edge swaps, collapse of short edges (where fronts meet), split of long inner
+// edges, length-bounded node smoothing, each pass on the edges that changed. Data layout is
 // flat arrays of triangle records with neighbour indices; no per-insertion heap
 // allocation on the hot path; the vertices are renumbered along a Hilbert curve before
 // the improvement passes for cache locality.
@@ -14,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <deque>
 #include <limits>
 #include <sstream>
@@ -45,6 +47,7 @@ constexpr double kCollapseMinQuality = 0.4;            // ... or a triangle wors
 constexpr double kSplitLength = 1.41421356237309505;   // longer inner edges are split at their midpoint
 constexpr double kSplitMinQuality = 0.4;               // ... unless a triangle gets worse than this (and than before)
 constexpr double kSmoothSkipQuality = 0.9;             // balls whose worst triangle is better are not smoothed
+constexpr double kSmoothMinGain = 0.005;               // smaller gains of the worst triangle are not taken
 
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
 inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
@@ -96,9 +99,8 @@ class Mesher {
   void improve();
   int swapSweep(const std::vector<int>& work, std::vector<int>& next);
   int smoothPass(std::vector<int>& touched);
-  int collapsePass(const std::vector<int>* list, std::vector<int>& touched);
+  int lengthPass(const std::vector<int>* list, std::vector<int>& touched);
   bool tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touched);
-  int splitPass(const std::vector<int>* list, std::vector<int>& touched);
   bool trySplit(int t, int i, std::vector<int>& touched);
 
   // ---- metric helpers ----
@@ -367,9 +369,17 @@ int Mesher::commitCavity(int v) {
     const int t = newTris_[k];
     if (small) {
       // Edge (b, v) borders the new triangle starting at b; edge (v, a) the one ending at a.
-      for (size_t j = 0; j < nb; ++j) {
-        if (bnd_[j].a == bnd_[k].b) tri_[t].n[0] = newTris_[j];
-        if (bnd_[j].b == bnd_[k].a) tri_[t].n[1] = newTris_[j];
+      const int kb = bnd_[k].b, ka = bnd_[k].a;
+      int found = 0;
+      for (size_t j = 0; j < nb && found != 3; ++j) {
+        if (bnd_[j].a == kb) {
+          tri_[t].n[0] = newTris_[j];
+          found |= 1;
+        }
+        if (bnd_[j].b == ka) {
+          tri_[t].n[1] = newTris_[j];
+          found |= 2;
+        }
       }
     } else {
       tri_[t].n[0] = startAt_[bnd_[k].b];
@@ -754,9 +764,19 @@ void Mesher::insertInnerNodes() {
   std::vector<std::vector<Item>> buckets(2 * kBucketOffset);
   int top = -1;
   auto bucketOf = [](double r2) {
-    int e;
-    const double m = std::frexp(r2, &e);  // r2 = m 2^e, m in [0.5, 1)
-    const int b = 4 * e + static_cast<int>((m - 0.5) * 8.0) + kBucketOffset;
+    // 4 e + floor((m - 0.5) 8) for r2 = m 2^e, m in [0.5, 1): for normal r2 that is the
+    // biased exponent and the two leading fraction bits (what frexp would give, cheaper).
+    std::uint64_t bits;
+    std::memcpy(&bits, &r2, sizeof bits);
+    const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+    int b;
+    if (biased > 0 && biased < 0x7ff && !(bits >> 63)) {
+      b = 4 * (biased - 1022) + static_cast<int>((bits >> 50) & 3u) + kBucketOffset;
+    } else {
+      int e;
+      const double m = std::frexp(r2, &e);
+      b = 4 * e + static_cast<int>((m - 0.5) * 8.0) + kBucketOffset;
+    }
     return std::min(std::max(b, 0), 2 * kBucketOffset - 1);
   };
   const double acc2 = kAcceptRadius * kAcceptRadius;
@@ -918,6 +938,7 @@ int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
 int Mesher::smoothPass(std::vector<int>& touched) {
   int moved = 0;
   std::vector<int> ring, ballTri;
+  std::vector<SymMt> edgeM, triM;
   const int nv = static_cast<int>(vx_.size());
   for (int v = kSuper; v < nv; ++v) {
     if (vbnd_[v] || !vdirty_[v]) continue;  // clean: nothing around it changed since its last visit
@@ -934,18 +955,29 @@ int Mesher::smoothPass(std::vector<int>& touched) {
       if (t < 0 || t == t0) break;
     }
     if (t != t0) continue;
-    const Vec2 p = vx_[v].p;
-    Vec2 target(0.0, 0.0);
-    for (const int r : ring) {
-      const Vec2 dv = p - vx_[r].p;
-      const double len = SymMt::average2(vx_[v].m, vx_[r].m).length(dv);
-      target += len > 0.0 ? Vec2(vx_[r].p + dv / len) : p;
-    }
-    target /= static_cast<double>(ring.size());
     double before = std::numeric_limits<double>::infinity();
     for (const int bt : ballTri) before = std::min(before, tq_[bt]);
     vdirty_[v] = 0;
     if (before >= kSmoothSkipQuality) continue;  // already good: not worth the metric queries
+    const Vec2 p = vx_[v].p;
+    const size_t deg = ring.size();
+    // Metrics of the ring edges and ball triangles (the vertex keeps its metric while the
+    // candidates are judged): computed once, used for every candidate.
+    edgeM.resize(deg);
+    triM.resize(deg);
+    for (size_t k = 0; k < deg; ++k) {
+      edgeM[k] = SymMt::average2(vx_[v].m, vx_[ring[k]].m);
+      triM[k] = SymMt::average3(vx_[v].m, vx_[ring[k]].m, vx_[ring[k + 1 == deg ? 0 : k + 1]].m);
+    }
+    Vec2 target(0.0, 0.0);
+    double longest = kSplitLength;  // no ring edge may end up longer (or longer than the longest now)
+    for (size_t k = 0; k < deg; ++k) {
+      const Vec2 dv = p - vx_[ring[k]].p;
+      const double len = edgeM[k].length(dv);
+      longest = std::max(longest, len);
+      target += len > 0.0 ? Vec2(vx_[ring[k]].p + dv / len) : p;
+    }
+    target /= static_cast<double>(deg);
     // Candidates in order of preference: unit-length target (edge lengths), halfway to it,
     // then the ring centroid (Laplacian; the same in any constant metric) and halfway to
     // it as fallbacks for the worst balls; the first that improves the worst triangle wins.
@@ -953,26 +985,22 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     for (const int r : ring) centroid += vx_[r].p;
     centroid /= static_cast<double>(ring.size());
     const Vec2 cands[4] = {target, 0.5 * (p + target), centroid, 0.5 * (p + centroid)};
-    // No ring edge may end up longer than kSplitLength (or than the longest one now).
-    double longest = kSplitLength;
-    for (const int r : ring) longest = std::max(longest, SymMt::average2(vx_[v].m, vx_[r].m).length(p - vx_[r].p));
     int best = -1;
-    double bestQ = before;
+    double bestQ = before + kSmoothMinGain;  // tiny gains are not worth re-dirtying the ring
     for (int ci = 0; ci < 4; ++ci) {
       const Vec2& cand = cands[ci];
       double after = std::numeric_limits<double>::infinity();
-      for (size_t k = 0; k < ballTri.size(); ++k) {
-        after = std::min(after, triQuality(v, ring[k], ring[k + 1 == ring.size() ? 0 : k + 1], cand));
+      for (size_t k = 0; k < deg; ++k) {
+        after = std::min(after, metricTriangleQuality(triM[k], cand, vx_[ring[k]].p, vx_[ring[k + 1 == deg ? 0 : k + 1]].p));
         if (after <= bestQ) break;
       }
       if (!(after > bestQ)) continue;
       bool fits = true;
-      for (size_t k = 0; k < ring.size() && fits; ++k)
-        fits = SymMt::average2(vx_[v].m, vx_[ring[k]].m).length(cand - vx_[ring[k]].p) <= longest;
+      for (size_t k = 0; k < deg && fits; ++k) fits = edgeM[k].length(cand - vx_[ring[k]].p) <= longest;
       if (!fits) continue;
       bool valid = true;
-      for (size_t k = 0; k < ballTri.size() && valid; ++k)
-        valid = orient2d(cand, vx_[ring[k]].p, vx_[ring[k + 1 == ring.size() ? 0 : k + 1]].p) > 0.0;
+      for (size_t k = 0; k < deg && valid; ++k)
+        valid = orient2d(cand, vx_[ring[k]].p, vx_[ring[k + 1 == deg ? 0 : k + 1]].p) > 0.0;
       if (!valid) continue;
       best = ci;
       bestQ = after;
@@ -1019,16 +1047,26 @@ void Mesher::renumberSpatially() {
     hi = hi.cwiseMax(vx_[v].p);
   }
   const Vec2 ext = (hi - lo).cwiseMax(Vec2(1e-300, 1e-300));
-  std::vector<std::pair<std::uint64_t, int>> keyed;
-  keyed.reserve(nv - first);
+  // Hilbert keys (< 2^32) sorted by a stable two-digit radix sort: ties keep the vertex order.
+  const int n = nv - first;
+  std::vector<std::uint32_t> key(n);
   for (int v = first; v < nv; ++v) {
     const Vec2 f = (vx_[v].p - lo).cwiseQuotient(ext) * 65535.0;
-    keyed.emplace_back(hilbertIndex(static_cast<std::uint32_t>(f.x()), static_cast<std::uint32_t>(f.y())), v);
+    key[v - first] =
+        static_cast<std::uint32_t>(hilbertIndex(static_cast<std::uint32_t>(f.x()), static_cast<std::uint32_t>(f.y())));
   }
-  std::sort(keyed.begin(), keyed.end());
+  std::vector<int> order(n), tmp(n);
+  for (int k = 0; k < n; ++k) tmp[k] = k;
+  for (int shift = 0; shift < 32; shift += 16) {
+    std::vector<int> cnt((1 << 16) + 1, 0);
+    for (int k = 0; k < n; ++k) ++cnt[((key[tmp[k]] >> shift) & 0xffffu) + 1];
+    for (int d = 0; d < (1 << 16); ++d) cnt[d + 1] += cnt[d];
+    for (int k = 0; k < n; ++k) order[cnt[(key[tmp[k]] >> shift) & 0xffffu]++] = tmp[k];
+    order.swap(tmp);
+  }
   std::vector<int> vmap(nv);
   for (int v = 0; v < first; ++v) vmap[v] = v;
-  for (size_t k = 0; k < keyed.size(); ++k) vmap[keyed[k].second] = first + static_cast<int>(k);
+  for (int k = 0; k < n; ++k) vmap[first + tmp[k]] = first + k;
   {
     std::vector<Vtx> x(nv);
     std::vector<std::uint8_t> b(nv);
@@ -1230,31 +1268,6 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
   return true;
 }
 
-// Collapses edges shorter than kCollapseLength (fronts meeting leave some), removing an
-// inner end point: onto the midpoint when both ends are inner, else onto the other end.
-// Scans every triangle, or only those in list (whose edges changed since the last scan).
-int Mesher::collapsePass(const std::vector<int>* list, std::vector<int>& touched) {
-  int collapsed = 0;
-  const int n = list ? static_cast<int>(list->size()) : static_cast<int>(tri_.size());
-  for (int k = 0; k < n; ++k) {
-    const int t = list ? (*list)[k] : k;
-    if (tri_[t].v[0] < 0) continue;
-    for (int i = 0; i < 3; ++i) {
-      const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
-      if ((!list && u > w) || cons(t, i)) continue;  // full scan: each edge once (from the side where u < w)
-      const double len = SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p);
-      if (len >= kCollapseLength) continue;
-      const bool inner = !vbnd_[u] && !vbnd_[w];
-      if ((inner && tryCollapse(u, w, true, touched)) || tryCollapse(u, w, false, touched) ||
-          tryCollapse(w, u, false, touched)) {
-        ++collapsed;
-        break;  // t may be gone
-      }
-    }
-  }
-  return collapsed;
-}
-
 // Splits the inner edge opposite vertex i of t at its midpoint: t = (p, u, w) and its
 // neighbour (q, w, u) become four triangles around the new vertex. Refused when a new
 // triangle would not be counter-clockwise or would be poor (below kSplitMinQuality and
@@ -1314,26 +1327,35 @@ bool Mesher::trySplit(int t, int i, std::vector<int>& touched) {
   return true;
 }
 
-// Splits the inner edges longer than kSplitLength (new edges wait for the next pass);
-// every triangle, or only those in list.
-int Mesher::splitPass(const std::vector<int>* list, std::vector<int>& touched) {
-  int split = 0;
+// Collapses edges shorter than kCollapseLength (fronts meeting leave some), removing an
+// inner end point (onto the midpoint when both ends are inner, else onto the other end),
+// and splits inner edges longer than kSplitLength (new edges wait for the next pass).
+// Scans every triangle, or only those in list (whose edges changed since the last scan).
+int Mesher::lengthPass(const std::vector<int>* list, std::vector<int>& touched) {
+  int changed = 0;
   const int n = list ? static_cast<int>(list->size()) : static_cast<int>(tri_.size());
   for (int k = 0; k < n; ++k) {
     const int t = list ? (*list)[k] : k;
     if (tri_[t].v[0] < 0) continue;
     for (int i = 0; i < 3; ++i) {
       const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
-      if ((!list && u > w) || cons(t, i) || tri_[t].n[i] < 0) continue;
+      if ((!list && u > w) || cons(t, i)) continue;  // full scan: each edge once (from the side where u < w)
       const double len = SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p);
-      if (len <= kSplitLength) continue;
-      if (trySplit(t, i, touched)) {
-        ++split;
-        break;  // t changed
+      bool done = false;
+      if (len < kCollapseLength) {
+        const bool inner = !vbnd_[u] && !vbnd_[w];
+        done = (inner && tryCollapse(u, w, true, touched)) || tryCollapse(u, w, false, touched) ||
+               tryCollapse(w, u, false, touched);
+      } else if (len > kSplitLength && tri_[t].n[i] >= 0) {
+        done = trySplit(t, i, touched);
+      }
+      if (done) {
+        ++changed;
+        break;  // t changed or is gone
       }
     }
   }
-  return split;
+  return changed;
 }
 
 void Mesher::improve() {
@@ -1368,15 +1390,13 @@ void Mesher::improve() {
       work.swap(next);
     }
   };
-  // Adaptation loop: swaps, collapse of short edges, split of long ones, swaps, smoothing;
+  // Adaptation loop: swaps, collapse of short edges and split of long ones, swaps, smoothing;
   // the first pass looks at every edge, the later ones at the edges that changed.
   for (int pass = 0; pass < opt_.improvementPasses; ++pass) {
     swaps(6);
     work.clear();
     const std::vector<int>* list = pass == 0 ? nullptr : &scan;
-    const int collapsed = collapsePass(list, work);
-    scan.insert(scan.end(), work.begin(), work.end());  // collapsed balls: maybe a long edge now
-    const int split = splitPass(list, work);
+    const int resized = lengthPass(list, work);
     dedupe(work);
     changed.insert(changed.end(), work.begin(), work.end());
     swaps(6);
@@ -1391,7 +1411,7 @@ void Mesher::improve() {
     changed.clear();
     dedupe(scan);
     checkProgress(0.8 + 0.15 * (pass + 1) / opt_.improvementPasses);
-    if (collapsed == 0 && split == 0 && moved == 0) break;  // converged
+    if (resized == 0 && moved == 0) break;  // converged
   }
   if (opt_.improvementPasses > 0) swaps(6);
 }
@@ -1454,6 +1474,16 @@ Mesh Mesher::run() {
     }
     checkProgress(0.1);
     t0 = Clock::now();
+    // Room for the expected mesh (the estimate is within ~10%): no reallocation copies.
+    const size_t expect = static_cast<size_t>(std::min(1.15 * estimate_, static_cast<double>(opt_.maxElements))) + 1024;
+    tri_.reserve(expect);
+    forbid_.reserve(expect);
+    stamp_.reserve(expect);
+    queued_.reserve(expect);
+    cache_.reserve(expect);
+    vx_.reserve(expect / 2 + nBoundary_);
+    vbnd_.reserve(expect / 2 + nBoundary_);
+    vtri_.reserve(expect / 2 + nBoundary_);
     insertInnerNodes();
     timings_.insertion = secondsSince(t0);
     t0 = Clock::now();
