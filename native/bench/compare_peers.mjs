@@ -11,8 +11,10 @@
 //   y = 0.5 in the unit square, aspect ratio 100; "shear", a circular shear layer
 //   (radius 0.5, across 0.004, along 0.1, thickness 0.06, as examples/shear_layer.json)
 //   meshed on the annulus 0.3 < r < 0.7. --large is --scale 32 (the 1M+ case).
-import { execFileSync, spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import {
+  closeSync, existsSync, mkdirSync, mkdtempSync, openSync, readFileSync, rmSync, writeFileSync, writeSync,
+} from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -109,15 +111,19 @@ function writeBackground(c, dir) {
   writeFileSync(join(dir, 'bg.sol'), `MeshVersionFormatted 1\nDimension 2\nSolAtVertices\n${m.length}\n1 3\n${m.join('\n')}\nEnd\n`);
   writeFileSync(join(dir, 'bg.mtr'), `${m.length} 3\n${m.join('\n')}\n`);  // BAMG's metric file
   // gmsh: the same boundary polygons as geometry, the metric as a tensor view on the same triangles.
-  const pos = ['View "metric" {'];
+  // Written in chunks: at the 1M scale the view is larger than a JavaScript string may be.
+  const fd = openSync(join(dir, 'bg.pos'), 'w');
+  let chunk = ['View "metric" {'];
   for (const tri of tris) {
     const k = tri.map((i) => i - 1);
     const xyz = k.flatMap((i) => [...pts[i], 0]);
     const val = k.flatMap((i) => { const [a, b, d] = metrics[i]; return [a, b, 0, b, d, 0, 0, 0, 1]; });
-    pos.push(`TT(${xyz.join(',')}){${val.join(',')}};`);
+    chunk.push(`TT(${xyz.join(',')}){${val.join(',')}};`);
+    if (chunk.length >= 10000) { writeSync(fd, chunk.join('\n') + '\n'); chunk = []; }
   }
-  pos.push('};');
-  writeFileSync(join(dir, 'bg.pos'), pos.join('\n'));
+  chunk.push('};');
+  writeSync(fd, chunk.join('\n'));
+  closeSync(fd);
   const geo = [];
   let p = 0, l = 0;
   const loopIds = [];

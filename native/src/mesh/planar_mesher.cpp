@@ -50,6 +50,19 @@ constexpr double kSmoothSkipQuality = 0.9;             // balls whose worst tria
 constexpr double kSmoothMinGain = 0.005;               // smaller gains of the worst triangle are not taken
 
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
+
+// orient2d (predicates.h) with its floating-point filter inlined, the same value: the
+// hot predicate of point location and cavity checks; the exact evaluation stays out of line.
+inline double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+  constexpr double kEps = 1.1102230246251565e-16;  // 2^-53
+  constexpr double kBound = (3.0 + 16.0 * kEps) * kEps;
+  const double detleft = (a.x() - c.x()) * (b.y() - c.y());
+  const double detright = (a.y() - c.y()) * (b.x() - c.x());
+  const double det = detleft - detright;
+  const double bound = kBound * (std::fabs(detleft) + std::fabs(detright));
+  if (det > bound || -det > bound) return det;
+  return orient2d(a, b, c);
+}
 inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
 
 // Metric-space circumcircle of a triangle under its own (vertex-averaged) metric.
@@ -258,7 +271,7 @@ int Mesher::locate(const Vec2& x, int t, bool stopAtConstraints) {
     for (int k = 0; k < 3; ++k) {
       const int i = (r + k) % 3;
       const auto& v = tri_[t].v;
-      if (orient2d(vx_[v[next3(i)]].p, vx_[v[prev3(i)]].p, x) < 0.0) {
+      if (orient(vx_[v[next3(i)]].p, vx_[v[prev3(i)]].p, x) < 0.0) {
         if (stopAtConstraints && cons(t, i)) return -1;
         const int nb = tri_[t].n[i];
         if (nb < 0) return -1;
@@ -302,7 +315,7 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
         const int nb = tri_[t].n[i];
         if (nb >= 0 && tri_[nb].mark == epoch_ && !cons(t, i)) continue;
         const int a = tri_[t].v[next3(i)], b = tri_[t].v[prev3(i)];
-        if (orient2d(vx_[a].p, vx_[b].p, x) <= 0.0) {
+        if (orient(vx_[a].p, vx_[b].p, x) <= 0.0) {
           if (t == t0) return false;
           forbid_[t] = fepoch_;
           ok = false;
@@ -464,8 +477,8 @@ void Mesher::triangulateBoundary() {
     int t = locate(x, last, false);
     if (t < 0) {  // cannot happen inside the super-box; scan as a last resort
       for (int k = 0; k < static_cast<int>(tri_.size()) && t < 0; ++k)
-        if (tri_[k].v[0] >= 0 && orient2d(vx_[tri_[k].v[0]].p, vx_[tri_[k].v[1]].p, x) >= 0 &&
-            orient2d(vx_[tri_[k].v[1]].p, vx_[tri_[k].v[2]].p, x) >= 0 && orient2d(vx_[tri_[k].v[2]].p, vx_[tri_[k].v[0]].p, x) >= 0)
+        if (tri_[k].v[0] >= 0 && orient(vx_[tri_[k].v[0]].p, vx_[tri_[k].v[1]].p, x) >= 0 &&
+            orient(vx_[tri_[k].v[1]].p, vx_[tri_[k].v[2]].p, x) >= 0 && orient(vx_[tri_[k].v[2]].p, vx_[tri_[k].v[0]].p, x) >= 0)
           t = k;
       require(t >= 0, ErrorCode::Internal, "meshPlanarBoundary: point location failed");
     }
@@ -518,7 +531,7 @@ void Mesher::recoverEdge(int a, int b) {
     const auto& v = tri_[cur].v;
     const int i = v[0] == a ? 0 : (v[1] == a ? 1 : 2);
     const int x = v[next3(i)], y = v[prev3(i)];
-    const double ox = orient2d(pa, pb, vx_[x].p), oy = orient2d(pa, pb, vx_[y].p);
+    const double ox = orient(pa, pb, vx_[x].p), oy = orient(pa, pb, vx_[y].p);
     if (ox == 0.0 && (vx_[x].p - pa).dot(pb - pa) > 0.0) onSegmentError(x);
     if (ox < 0.0 && oy > 0.0) {
       u = x;
@@ -545,7 +558,7 @@ void Mesher::recoverEdge(int a, int b) {
     const int z = tri_[nb].v[j];
     cur = nb;
     if (z == b) break;
-    const double oz = orient2d(pa, pb, vx_[z].p);
+    const double oz = orient(pa, pb, vx_[z].p);
     if (oz == 0.0) onSegmentError(z);
     if (oz < 0.0)
       u = z;
@@ -567,13 +580,13 @@ void Mesher::recoverEdge(int a, int b) {
     while (tri_[nb].v[j] == e.first || tri_[nb].v[j] == e.second) ++j;
     const int q = tri_[nb].v[j];
     // t = (p, u, w); flipping gives (p, u, q) and (q, w, p): both must be counter-clockwise.
-    if (orient2d(vx_[p].p, vx_[e.first].p, vx_[q].p) <= 0.0 || orient2d(vx_[q].p, vx_[e.second].p, vx_[p].p) <= 0.0) {
+    if (orient(vx_[p].p, vx_[e.first].p, vx_[q].p) <= 0.0 || orient(vx_[q].p, vx_[e.second].p, vx_[p].p) <= 0.0) {
       crossing.push_back(e);
       continue;
     }
     flip(tt, ti);
     if (p == a || p == b || q == a || q == b) continue;
-    const double op = orient2d(pa, pb, vx_[p].p), oq = orient2d(pa, pb, vx_[q].p);
+    const double op = orient(pa, pb, vx_[p].p), oq = orient(pa, pb, vx_[q].p);
     if ((op < 0.0 && oq > 0.0) || (op > 0.0 && oq < 0.0)) crossing.emplace_back(p, q);
   }
   t = findEdge(a, b, &idx);
@@ -739,11 +752,12 @@ void Mesher::computeCache(int t) {
     return;
   }
   const double b2 = b.squaredNorm(), c2 = cc.squaredNorm();
-  const double ux = (cc.y() * b2 - b.y() * c2) / d, uy = (b.x() * c2 - cc.x() * b2) / d;
+  const double inv = 1.0 / d;  // two divisions instead of four (this runs once per new triangle)
+  const double ux = (cc.y() * b2 - b.y() * c2) * inv, uy = (b.x() * c2 - cc.x() * b2) * inv;
   c.r2 = ux * ux + uy * uy;
-  const Vec2 center = pa + c.m.solve(Vec2(ux, uy));
-  c.cx = center.x();
-  c.cy = center.y();
+  const double idet = 1.0 / c.m.det();  // centre = pa + Mt^-1 u
+  c.cx = pa.x() + (c.m.c * ux - c.m.b * uy) * idet;
+  c.cy = pa.y() + (c.m.a * uy - c.m.b * ux) * idet;
 }
 
 double Mesher::triQuality(int a, int b, int c) const { return triQuality(a, b, c, vx_[a].p); }
@@ -920,7 +934,7 @@ int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
       const double qb = triQuality(q, w, p);
       if (!(qb > before + 1e-6)) continue;
       // Positive metric quality means counter-clockwise in floating point; confirm exactly.
-      if (orient2d(vx_[p].p, vx_[u].p, vx_[q].p) <= 0.0 || orient2d(vx_[q].p, vx_[w].p, vx_[p].p) <= 0.0) continue;
+      if (orient(vx_[p].p, vx_[u].p, vx_[q].p) <= 0.0 || orient(vx_[q].p, vx_[w].p, vx_[p].p) <= 0.0) continue;
       flip(t, i);
       tq_[t] = qa;
       tq_[nb] = qb;
@@ -1000,7 +1014,7 @@ int Mesher::smoothPass(std::vector<int>& touched) {
       if (!fits) continue;
       bool valid = true;
       for (size_t k = 0; k < deg && valid; ++k)
-        valid = orient2d(cand, vx_[ring[k]].p, vx_[ring[k + 1 == deg ? 0 : k + 1]].p) > 0.0;
+        valid = orient(cand, vx_[ring[k]].p, vx_[ring[k + 1 == deg ? 0 : k + 1]].p) > 0.0;
       if (!valid) continue;
       best = ci;
       bestQ = after;
@@ -1197,7 +1211,7 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
     if (r != b && tooLong(r)) return false;
     if (k == k1 || k == k2) continue;
     const int c = ring[(k + 1) % deg];
-    if (orient2d(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
+    if (orient(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
     if (quality(r, c) < floor) return false;
   }
   for (const int u : ballB) {
@@ -1205,7 +1219,7 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
     const int i = tv[0] == b ? 0 : (tv[1] == b ? 1 : 2);
     const int r = tv[next3(i)], c = tv[prev3(i)];
     if (tooLong(r)) return false;
-    if (orient2d(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
+    if (orient(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
     if (quality(r, c) < floor) return false;
   }
   // Apply.
@@ -1279,8 +1293,8 @@ bool Mesher::trySplit(int t, int i, std::vector<int>& touched) {
   while (tri_[nb].v[j] == u || tri_[nb].v[j] == w) ++j;
   const int q = tri_[nb].v[j];
   const Vec2 x = 0.5 * (vx_[u].p + vx_[w].p);
-  if (orient2d(vx_[p].p, vx_[u].p, x) <= 0.0 || orient2d(vx_[p].p, x, vx_[w].p) <= 0.0 ||
-      orient2d(vx_[q].p, vx_[w].p, x) <= 0.0 || orient2d(vx_[q].p, x, vx_[u].p) <= 0.0)
+  if (orient(vx_[p].p, vx_[u].p, x) <= 0.0 || orient(vx_[p].p, x, vx_[w].p) <= 0.0 ||
+      orient(vx_[q].p, vx_[w].p, x) <= 0.0 || orient(vx_[q].p, x, vx_[u].p) <= 0.0)
     return false;
   const int v = static_cast<int>(vx_.size());
   vx_.push_back({x, queryMetric(x)});
