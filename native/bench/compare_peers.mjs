@@ -247,7 +247,7 @@ const header = ['case', 'tool', 'triangles', 'seconds', 'tri/s', 'l in [.71,1.41
 const lines = rows.map((r) => r.note
   ? [r.case, r.tool, '', '', '', '', '', '', '', r.note]
   : [r.case, r.tool, String(r.triangles), f(r.seconds, 3), String(Math.round(r.triangles / r.seconds)),
-    f(100 * r.inA, 1) + '%', f(100 * r.inB, 1) + '%', f(r.qmin, 3), f(r.qmean, 3), String(r.inverted)]);
+    f(100 * r.inA, 2) + '%', f(100 * r.inB, 2) + '%', f(r.qmin, 3), f(r.qmean, 3), String(r.inverted)]);
 const widths = header.map((h, i) => Math.max(h.length, ...lines.map((l) => l[i].length)));
 const fmt = (cells) => '| ' + cells.map((s, i) => s.padEnd(widths[i])).join(' | ') + ' |';
 console.log(fmt(header));
