@@ -2,8 +2,9 @@
 // exact Delaunay triangulation of the boundary points in a super-box, boundary recovery
 // by edge flips, removal of outside triangles by parity flood fill, frontal-Delaunay
 // insertion of inner nodes in the metric (Rebay-style point placement, Bowyer-Watson
-// cavities judged by each triangle's metric circumcircle), then metric edge swaps,
-// collapse of the short edges left where fronts meet, and node smoothing. Data layout is
+// cavities judged by each triangle's metric circumcircle), then an adaptation loop:
+// metric edge swaps, collapse of short edges (where fronts meet), split of long inner
+// edges, length-bounded node smoothing, each pass on the edges that changed. Data layout is
 // flat arrays of triangle records with neighbour indices; no per-insertion heap
 // allocation on the hot path; the vertices are renumbered along a Hilbert curve before
 // the improvement passes for cache locality.
@@ -14,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <deque>
 #include <limits>
 #include <sstream>
@@ -39,12 +41,28 @@ constexpr double kAcceptRadius = 0.70710678118654752;  // triangles with metric 
 constexpr int kBucketOffset = 4 * 1100;                // bucket index offset: covers every double exponent
 constexpr double kEstimateFactor = 1.0;                // measured: within ~10% on the layer test cases
 constexpr double kSwapSkipQuality = 0.97;              // pairs whose worse triangle is better are not swapped
-constexpr double kCollapseLength = 0.6;                // shorter edges are collapsed
+constexpr double kCollapseLength = 0.70710678118654752;  // shorter edges are collapsed
 constexpr double kCollapseMaxLength = 1.3;             // ... unless a new edge would be longer
 constexpr double kCollapseMinQuality = 0.4;            // ... or a triangle worse than this (or than before)
+constexpr double kSplitLength = 1.41421356237309505;   // longer inner edges are split at their midpoint
+constexpr double kSplitMinQuality = 0.4;               // ... unless a triangle gets worse than this (and than before)
 constexpr double kSmoothSkipQuality = 0.9;             // balls whose worst triangle is better are not smoothed
+constexpr double kSmoothMinGain = 0.005;               // smaller gains of the worst triangle are not taken
 
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
+
+// orient2d (predicates.h) with its floating-point filter inlined, the same value: the
+// hot predicate of point location and cavity checks; the exact evaluation stays out of line.
+inline double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+  constexpr double kEps = 1.1102230246251565e-16;  // 2^-53
+  constexpr double kBound = (3.0 + 16.0 * kEps) * kEps;
+  const double detleft = (a.x() - c.x()) * (b.y() - c.y());
+  const double detright = (a.y() - c.y()) * (b.x() - c.x());
+  const double det = detleft - detright;
+  const double bound = kBound * (std::fabs(detleft) + std::fabs(detright));
+  if (det > bound || -det > bound) return det;
+  return orient2d(a, b, c);
+}
 inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
 
 // Metric-space circumcircle of a triangle under its own (vertex-averaged) metric.
@@ -94,8 +112,9 @@ class Mesher {
   void improve();
   int swapSweep(const std::vector<int>& work, std::vector<int>& next);
   int smoothPass(std::vector<int>& touched);
-  int collapsePass(std::vector<int>& touched);
-  bool tryCollapse(int a, int b, std::vector<int>& touched);
+  int lengthPass(const std::vector<int>* list, std::vector<int>& touched);
+  bool tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touched);
+  bool trySplit(int t, int i, std::vector<int>& touched);
 
   // ---- metric helpers ----
   void computeCache(int t);
@@ -145,7 +164,7 @@ class Mesher {
   std::vector<TriCache> cache_;
   std::vector<std::uint32_t> stamp_, queued_;
   std::vector<double> tq_;  // triangle metric quality (improvement stage)
-  std::vector<int> colBall_, colRing_;
+  std::vector<int> colBall_, colRing_, colBallB_;
   std::vector<std::uint8_t> vdirty_;  // improvement: vertex whose surroundings changed
 
   double estimate_ = 0.0;
@@ -252,7 +271,7 @@ int Mesher::locate(const Vec2& x, int t, bool stopAtConstraints) {
     for (int k = 0; k < 3; ++k) {
       const int i = (r + k) % 3;
       const auto& v = tri_[t].v;
-      if (orient2d(vx_[v[next3(i)]].p, vx_[v[prev3(i)]].p, x) < 0.0) {
+      if (orient(vx_[v[next3(i)]].p, vx_[v[prev3(i)]].p, x) < 0.0) {
         if (stopAtConstraints && cons(t, i)) return -1;
         const int nb = tri_[t].n[i];
         if (nb < 0) return -1;
@@ -296,7 +315,7 @@ bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
         const int nb = tri_[t].n[i];
         if (nb >= 0 && tri_[nb].mark == epoch_ && !cons(t, i)) continue;
         const int a = tri_[t].v[next3(i)], b = tri_[t].v[prev3(i)];
-        if (orient2d(vx_[a].p, vx_[b].p, x) <= 0.0) {
+        if (orient(vx_[a].p, vx_[b].p, x) <= 0.0) {
           if (t == t0) return false;
           forbid_[t] = fepoch_;
           ok = false;
@@ -363,9 +382,17 @@ int Mesher::commitCavity(int v) {
     const int t = newTris_[k];
     if (small) {
       // Edge (b, v) borders the new triangle starting at b; edge (v, a) the one ending at a.
-      for (size_t j = 0; j < nb; ++j) {
-        if (bnd_[j].a == bnd_[k].b) tri_[t].n[0] = newTris_[j];
-        if (bnd_[j].b == bnd_[k].a) tri_[t].n[1] = newTris_[j];
+      const int kb = bnd_[k].b, ka = bnd_[k].a;
+      int found = 0;
+      for (size_t j = 0; j < nb && found != 3; ++j) {
+        if (bnd_[j].a == kb) {
+          tri_[t].n[0] = newTris_[j];
+          found |= 1;
+        }
+        if (bnd_[j].b == ka) {
+          tri_[t].n[1] = newTris_[j];
+          found |= 2;
+        }
       }
     } else {
       tri_[t].n[0] = startAt_[bnd_[k].b];
@@ -450,8 +477,8 @@ void Mesher::triangulateBoundary() {
     int t = locate(x, last, false);
     if (t < 0) {  // cannot happen inside the super-box; scan as a last resort
       for (int k = 0; k < static_cast<int>(tri_.size()) && t < 0; ++k)
-        if (tri_[k].v[0] >= 0 && orient2d(vx_[tri_[k].v[0]].p, vx_[tri_[k].v[1]].p, x) >= 0 &&
-            orient2d(vx_[tri_[k].v[1]].p, vx_[tri_[k].v[2]].p, x) >= 0 && orient2d(vx_[tri_[k].v[2]].p, vx_[tri_[k].v[0]].p, x) >= 0)
+        if (tri_[k].v[0] >= 0 && orient(vx_[tri_[k].v[0]].p, vx_[tri_[k].v[1]].p, x) >= 0 &&
+            orient(vx_[tri_[k].v[1]].p, vx_[tri_[k].v[2]].p, x) >= 0 && orient(vx_[tri_[k].v[2]].p, vx_[tri_[k].v[0]].p, x) >= 0)
           t = k;
       require(t >= 0, ErrorCode::Internal, "meshPlanarBoundary: point location failed");
     }
@@ -504,7 +531,7 @@ void Mesher::recoverEdge(int a, int b) {
     const auto& v = tri_[cur].v;
     const int i = v[0] == a ? 0 : (v[1] == a ? 1 : 2);
     const int x = v[next3(i)], y = v[prev3(i)];
-    const double ox = orient2d(pa, pb, vx_[x].p), oy = orient2d(pa, pb, vx_[y].p);
+    const double ox = orient(pa, pb, vx_[x].p), oy = orient(pa, pb, vx_[y].p);
     if (ox == 0.0 && (vx_[x].p - pa).dot(pb - pa) > 0.0) onSegmentError(x);
     if (ox < 0.0 && oy > 0.0) {
       u = x;
@@ -531,7 +558,7 @@ void Mesher::recoverEdge(int a, int b) {
     const int z = tri_[nb].v[j];
     cur = nb;
     if (z == b) break;
-    const double oz = orient2d(pa, pb, vx_[z].p);
+    const double oz = orient(pa, pb, vx_[z].p);
     if (oz == 0.0) onSegmentError(z);
     if (oz < 0.0)
       u = z;
@@ -553,13 +580,13 @@ void Mesher::recoverEdge(int a, int b) {
     while (tri_[nb].v[j] == e.first || tri_[nb].v[j] == e.second) ++j;
     const int q = tri_[nb].v[j];
     // t = (p, u, w); flipping gives (p, u, q) and (q, w, p): both must be counter-clockwise.
-    if (orient2d(vx_[p].p, vx_[e.first].p, vx_[q].p) <= 0.0 || orient2d(vx_[q].p, vx_[e.second].p, vx_[p].p) <= 0.0) {
+    if (orient(vx_[p].p, vx_[e.first].p, vx_[q].p) <= 0.0 || orient(vx_[q].p, vx_[e.second].p, vx_[p].p) <= 0.0) {
       crossing.push_back(e);
       continue;
     }
     flip(tt, ti);
     if (p == a || p == b || q == a || q == b) continue;
-    const double op = orient2d(pa, pb, vx_[p].p), oq = orient2d(pa, pb, vx_[q].p);
+    const double op = orient(pa, pb, vx_[p].p), oq = orient(pa, pb, vx_[q].p);
     if ((op < 0.0 && oq > 0.0) || (op > 0.0 && oq < 0.0)) crossing.emplace_back(p, q);
   }
   t = findEdge(a, b, &idx);
@@ -725,11 +752,12 @@ void Mesher::computeCache(int t) {
     return;
   }
   const double b2 = b.squaredNorm(), c2 = cc.squaredNorm();
-  const double ux = (cc.y() * b2 - b.y() * c2) / d, uy = (b.x() * c2 - cc.x() * b2) / d;
+  const double inv = 1.0 / d;  // two divisions instead of four (this runs once per new triangle)
+  const double ux = (cc.y() * b2 - b.y() * c2) * inv, uy = (b.x() * c2 - cc.x() * b2) * inv;
   c.r2 = ux * ux + uy * uy;
-  const Vec2 center = pa + c.m.solve(Vec2(ux, uy));
-  c.cx = center.x();
-  c.cy = center.y();
+  const double idet = 1.0 / c.m.det();  // centre = pa + Mt^-1 u
+  c.cx = pa.x() + (c.m.c * ux - c.m.b * uy) * idet;
+  c.cy = pa.y() + (c.m.a * uy - c.m.b * ux) * idet;
 }
 
 double Mesher::triQuality(int a, int b, int c) const { return triQuality(a, b, c, vx_[a].p); }
@@ -750,9 +778,19 @@ void Mesher::insertInnerNodes() {
   std::vector<std::vector<Item>> buckets(2 * kBucketOffset);
   int top = -1;
   auto bucketOf = [](double r2) {
-    int e;
-    const double m = std::frexp(r2, &e);  // r2 = m 2^e, m in [0.5, 1)
-    const int b = 4 * e + static_cast<int>((m - 0.5) * 8.0) + kBucketOffset;
+    // 4 e + floor((m - 0.5) 8) for r2 = m 2^e, m in [0.5, 1): for normal r2 that is the
+    // biased exponent and the two leading fraction bits (what frexp would give, cheaper).
+    std::uint64_t bits;
+    std::memcpy(&bits, &r2, sizeof bits);
+    const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+    int b;
+    if (biased > 0 && biased < 0x7ff && !(bits >> 63)) {
+      b = 4 * (biased - 1022) + static_cast<int>((bits >> 50) & 3u) + kBucketOffset;
+    } else {
+      int e;
+      const double m = std::frexp(r2, &e);
+      b = 4 * e + static_cast<int>((m - 0.5) * 8.0) + kBucketOffset;
+    }
     return std::min(std::max(b, 0), 2 * kBucketOffset - 1);
   };
   const double acc2 = kAcceptRadius * kAcceptRadius;
@@ -896,7 +934,7 @@ int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
       const double qb = triQuality(q, w, p);
       if (!(qb > before + 1e-6)) continue;
       // Positive metric quality means counter-clockwise in floating point; confirm exactly.
-      if (orient2d(vx_[p].p, vx_[u].p, vx_[q].p) <= 0.0 || orient2d(vx_[q].p, vx_[w].p, vx_[p].p) <= 0.0) continue;
+      if (orient(vx_[p].p, vx_[u].p, vx_[q].p) <= 0.0 || orient(vx_[q].p, vx_[w].p, vx_[p].p) <= 0.0) continue;
       flip(t, i);
       tq_[t] = qa;
       tq_[nb] = qb;
@@ -914,6 +952,7 @@ int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
 int Mesher::smoothPass(std::vector<int>& touched) {
   int moved = 0;
   std::vector<int> ring, ballTri;
+  std::vector<SymMt> edgeM, triM;
   const int nv = static_cast<int>(vx_.size());
   for (int v = kSuper; v < nv; ++v) {
     if (vbnd_[v] || !vdirty_[v]) continue;  // clean: nothing around it changed since its last visit
@@ -930,18 +969,29 @@ int Mesher::smoothPass(std::vector<int>& touched) {
       if (t < 0 || t == t0) break;
     }
     if (t != t0) continue;
-    const Vec2 p = vx_[v].p;
-    Vec2 target(0.0, 0.0);
-    for (const int r : ring) {
-      const Vec2 dv = p - vx_[r].p;
-      const double len = SymMt::average2(vx_[v].m, vx_[r].m).length(dv);
-      target += len > 0.0 ? Vec2(vx_[r].p + dv / len) : p;
-    }
-    target /= static_cast<double>(ring.size());
     double before = std::numeric_limits<double>::infinity();
     for (const int bt : ballTri) before = std::min(before, tq_[bt]);
     vdirty_[v] = 0;
     if (before >= kSmoothSkipQuality) continue;  // already good: not worth the metric queries
+    const Vec2 p = vx_[v].p;
+    const size_t deg = ring.size();
+    // Metrics of the ring edges and ball triangles (the vertex keeps its metric while the
+    // candidates are judged): computed once, used for every candidate.
+    edgeM.resize(deg);
+    triM.resize(deg);
+    for (size_t k = 0; k < deg; ++k) {
+      edgeM[k] = SymMt::average2(vx_[v].m, vx_[ring[k]].m);
+      triM[k] = SymMt::average3(vx_[v].m, vx_[ring[k]].m, vx_[ring[k + 1 == deg ? 0 : k + 1]].m);
+    }
+    Vec2 target(0.0, 0.0);
+    double longest = kSplitLength;  // no ring edge may end up longer (or longer than the longest now)
+    for (size_t k = 0; k < deg; ++k) {
+      const Vec2 dv = p - vx_[ring[k]].p;
+      const double len = edgeM[k].length(dv);
+      longest = std::max(longest, len);
+      target += len > 0.0 ? Vec2(vx_[ring[k]].p + dv / len) : p;
+    }
+    target /= static_cast<double>(deg);
     // Candidates in order of preference: unit-length target (edge lengths), halfway to it,
     // then the ring centroid (Laplacian; the same in any constant metric) and halfway to
     // it as fallbacks for the worst balls; the first that improves the worst triangle wins.
@@ -950,18 +1000,21 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     centroid /= static_cast<double>(ring.size());
     const Vec2 cands[4] = {target, 0.5 * (p + target), centroid, 0.5 * (p + centroid)};
     int best = -1;
-    double bestQ = before;
+    double bestQ = before + kSmoothMinGain;  // tiny gains are not worth re-dirtying the ring
     for (int ci = 0; ci < 4; ++ci) {
       const Vec2& cand = cands[ci];
       double after = std::numeric_limits<double>::infinity();
-      for (size_t k = 0; k < ballTri.size(); ++k) {
-        after = std::min(after, triQuality(v, ring[k], ring[k + 1 == ring.size() ? 0 : k + 1], cand));
+      for (size_t k = 0; k < deg; ++k) {
+        after = std::min(after, metricTriangleQuality(triM[k], cand, vx_[ring[k]].p, vx_[ring[k + 1 == deg ? 0 : k + 1]].p));
         if (after <= bestQ) break;
       }
       if (!(after > bestQ)) continue;
+      bool fits = true;
+      for (size_t k = 0; k < deg && fits; ++k) fits = edgeM[k].length(cand - vx_[ring[k]].p) <= longest;
+      if (!fits) continue;
       bool valid = true;
-      for (size_t k = 0; k < ballTri.size() && valid; ++k)
-        valid = orient2d(cand, vx_[ring[k]].p, vx_[ring[k + 1 == ring.size() ? 0 : k + 1]].p) > 0.0;
+      for (size_t k = 0; k < deg && valid; ++k)
+        valid = orient(cand, vx_[ring[k]].p, vx_[ring[k + 1 == deg ? 0 : k + 1]].p) > 0.0;
       if (!valid) continue;
       best = ci;
       bestQ = after;
@@ -1008,16 +1061,26 @@ void Mesher::renumberSpatially() {
     hi = hi.cwiseMax(vx_[v].p);
   }
   const Vec2 ext = (hi - lo).cwiseMax(Vec2(1e-300, 1e-300));
-  std::vector<std::pair<std::uint64_t, int>> keyed;
-  keyed.reserve(nv - first);
+  // Hilbert keys (< 2^32) sorted by a stable two-digit radix sort: ties keep the vertex order.
+  const int n = nv - first;
+  std::vector<std::uint32_t> key(n);
   for (int v = first; v < nv; ++v) {
     const Vec2 f = (vx_[v].p - lo).cwiseQuotient(ext) * 65535.0;
-    keyed.emplace_back(hilbertIndex(static_cast<std::uint32_t>(f.x()), static_cast<std::uint32_t>(f.y())), v);
+    key[v - first] =
+        static_cast<std::uint32_t>(hilbertIndex(static_cast<std::uint32_t>(f.x()), static_cast<std::uint32_t>(f.y())));
   }
-  std::sort(keyed.begin(), keyed.end());
+  std::vector<int> order(n), tmp(n);
+  for (int k = 0; k < n; ++k) tmp[k] = k;
+  for (int shift = 0; shift < 32; shift += 16) {
+    std::vector<int> cnt((1 << 16) + 1, 0);
+    for (int k = 0; k < n; ++k) ++cnt[((key[tmp[k]] >> shift) & 0xffffu) + 1];
+    for (int d = 0; d < (1 << 16); ++d) cnt[d + 1] += cnt[d];
+    for (int k = 0; k < n; ++k) order[cnt[(key[tmp[k]] >> shift) & 0xffffu]++] = tmp[k];
+    order.swap(tmp);
+  }
   std::vector<int> vmap(nv);
   for (int v = 0; v < first; ++v) vmap[v] = v;
-  for (size_t k = 0; k < keyed.size(); ++k) vmap[keyed[k].second] = first + static_cast<int>(k);
+  for (int k = 0; k < n; ++k) vmap[first + tmp[k]] = first + k;
   {
     std::vector<Vtx> x(nv);
     std::vector<std::uint8_t> b(nv);
@@ -1062,11 +1125,12 @@ void Mesher::renumberSpatially() {
     for (int i = 0; i < 3; ++i) vtri_[tri_[t].v[i]] = t;
 }
 
-// Collapses inner vertex a onto its neighbour b (edge a-b too short): the two triangles
-// of the edge disappear, the rest of a's ball is re-attached to b. Refused when the link
-// condition fails (would create a duplicate edge), when a triangle would turn or become
-// poor, or when a new edge would be too long.
-bool Mesher::tryCollapse(int a, int b, std::vector<int>& touched) {
+// Collapses inner vertex a onto its neighbour b (edge a-b too short), b staying or, with
+// toMidpoint (b inner too), moving to the edge's midpoint: the two triangles of the edge
+// disappear, the rest of a's ball is re-attached to b. Refused when the link condition
+// fails (would create a duplicate edge), when a triangle would turn or become poor, or
+// when a new edge would be too long.
+bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touched) {
   if (vbnd_[a]) return false;
   std::vector<int>& ball = colBall_;
   std::vector<int>& ring = colRing_;
@@ -1110,19 +1174,57 @@ bool Mesher::tryCollapse(int a, int b, std::vector<int>& touched) {
       if (u == tb) break;
     }
   }
-  // Geometry: the re-attached triangles stay counter-clockwise, fair, with no long edge.
+  // Geometry: the re-attached triangles (and, when b moves, b's own) stay
+  // counter-clockwise, fair, with no long edge.
+  Vec2 pb = vx_[b].p;
+  SymMt mb = vx_[b].m;
+  if (toMidpoint) {
+    pb = 0.5 * (vx_[a].p + vx_[b].p);
+    mb = queryMetric(pb);
+  }
+  auto quality = [&](int r, int c) {
+    return metricTriangleQuality(SymMt::average3(mb, vx_[r].m, vx_[c].m), pb, vx_[r].p, vx_[c].p);
+  };
+  auto tooLong = [&](int r) { return SymMt::average2(mb, vx_[r].m).length(vx_[r].p - pb) > kCollapseMaxLength; };
   double before = std::numeric_limits<double>::infinity();
   for (const int bt : ball) before = std::min(before, tq_[bt]);
-  const Vec2& pb = vx_[b].p;
+  std::vector<int>& ballB = colBallB_;
+  ballB.clear();
+  if (toMidpoint) {  // b is inner: its ball is closed
+    const int s0 = vtri_[b];
+    int u = s0;
+    for (int guard = 0; guard < 1000; ++guard) {
+      const auto& tv = tri_[u].v;
+      const int i = tv[0] == b ? 0 : (tv[1] == b ? 1 : 2);
+      if (tv[next3(i)] != a && tv[prev3(i)] != a) {
+        ballB.push_back(u);
+        before = std::min(before, tq_[u]);
+      }
+      u = tri_[u].n[next3(i)];
+      if (u < 0 || u == s0) break;
+    }
+    if (u != s0) return false;
+  }
+  const double floor = std::min(before, kCollapseMinQuality);
   for (int k = 0; k < deg; ++k) {
     const int r = ring[k];
-    if (r != b && SymMt::average2(vx_[b].m, vx_[r].m).length(vx_[r].p - pb) > kCollapseMaxLength) return false;
+    if (r != b && tooLong(r)) return false;
     if (k == k1 || k == k2) continue;
     const int c = ring[(k + 1) % deg];
-    if (orient2d(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
-    if (triQuality(b, r, c) < std::min(before, kCollapseMinQuality)) return false;
+    if (orient(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
+    if (quality(r, c) < floor) return false;
+  }
+  for (const int u : ballB) {
+    const auto& tv = tri_[u].v;
+    const int i = tv[0] == b ? 0 : (tv[1] == b ? 1 : 2);
+    const int r = tv[next3(i)], c = tv[prev3(i)];
+    if (tooLong(r)) return false;
+    if (orient(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
+    if (quality(r, c) < floor) return false;
   }
   // Apply.
+  vx_[b].p = pb;
+  vx_[b].m = mb;
   const int T1 = ball[k1], T2 = ball[k2];
   auto relink = [&](int dead, int keep, int other, bool constrained) {
     // In keep, the entry pointing at dead now points at other (with dead's constraint bit).
@@ -1163,6 +1265,14 @@ bool Mesher::tryCollapse(int a, int b, std::vector<int>& touched) {
     ++stamp_[dead];
     freeTris_.push_back(dead);
   }
+  if (toMidpoint) {
+    for (const int u : ballB) {
+      const auto& tv = tri_[u].v;
+      tq_[u] = triQuality(tv[0], tv[1], tv[2]);
+      touched.push_back(u);
+      for (int i = 0; i < 3; ++i) vdirty_[tv[i]] = 1;
+    }
+  }
   for (const int r : ring) vdirty_[r] = 1;
   vtri_[b] = n1a;
   vtri_[x] = n1a;
@@ -1172,25 +1282,94 @@ bool Mesher::tryCollapse(int a, int b, std::vector<int>& touched) {
   return true;
 }
 
-// Collapses edges shorter than kCollapseLength where fronts met (frontal insertion leaves
-// a few there), removing the inner end point.
-int Mesher::collapsePass(std::vector<int>& touched) {
-  int collapsed = 0;
-  const int nt = static_cast<int>(tri_.size());
-  for (int t = 0; t < nt; ++t) {
+// Splits the inner edge opposite vertex i of t at its midpoint: t = (p, u, w) and its
+// neighbour (q, w, u) become four triangles around the new vertex. Refused when a new
+// triangle would not be counter-clockwise or would be poor (below kSplitMinQuality and
+// below the worse of the two triangles).
+bool Mesher::trySplit(int t, int i, std::vector<int>& touched) {
+  const int nb = tri_[t].n[i];
+  const int p = tri_[t].v[i], u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
+  int j = 0;
+  while (tri_[nb].v[j] == u || tri_[nb].v[j] == w) ++j;
+  const int q = tri_[nb].v[j];
+  const Vec2 x = 0.5 * (vx_[u].p + vx_[w].p);
+  if (orient(vx_[p].p, vx_[u].p, x) <= 0.0 || orient(vx_[p].p, x, vx_[w].p) <= 0.0 ||
+      orient(vx_[q].p, vx_[w].p, x) <= 0.0 || orient(vx_[q].p, x, vx_[u].p) <= 0.0)
+    return false;
+  const int v = static_cast<int>(vx_.size());
+  vx_.push_back({x, queryMetric(x)});
+  const double floor = std::min(kSplitMinQuality, std::min(tq_[t], tq_[nb]));
+  const double q1 = triQuality(p, u, v), q2 = triQuality(p, v, w), q3 = triQuality(q, w, v), q4 = triQuality(q, v, u);
+  if (!(std::min({q1, q2, q3, q4}) >= floor)) {
+    vx_.pop_back();
+    return false;
+  }
+  vbnd_.push_back(0);
+  vtri_.push_back(t);
+  vdirty_.push_back(1);
+  const int nWP = tri_[t].n[next3(i)], nPU = tri_[t].n[prev3(i)];
+  const bool cWP = cons(t, next3(i)), cPU = cons(t, prev3(i));
+  const int nUQ = tri_[nb].n[next3(j)], nQW = tri_[nb].n[prev3(j)];
+  const bool cUQ = cons(nb, next3(j)), cQW = cons(nb, prev3(j));
+  const int t2 = allocTri(), nb2 = allocTri();
+  if (tq_.size() < tri_.size()) tq_.resize(tri_.size() + 1024, 0.0);
+  tri_[t].v = {p, u, v};
+  tri_[t].n = {nb2, t2, nPU};
+  tri_[t].c = static_cast<std::uint8_t>(cPU ? 4 : 0);
+  tri_[t2].v = {p, v, w};
+  tri_[t2].n = {nb, nWP, t};
+  tri_[t2].c = static_cast<std::uint8_t>(cWP ? 2 : 0);
+  tri_[nb].v = {q, w, v};
+  tri_[nb].n = {t2, nb2, nQW};
+  tri_[nb].c = static_cast<std::uint8_t>(cQW ? 4 : 0);
+  tri_[nb2].v = {q, v, u};
+  tri_[nb2].n = {t, nUQ, nb};
+  tri_[nb2].c = static_cast<std::uint8_t>(cUQ ? 2 : 0);
+  if (nWP >= 0) setNbrAcross(nWP, w, p, t2);
+  if (nUQ >= 0) setNbrAcross(nUQ, u, q, nb2);
+  ++stamp_[t];
+  ++stamp_[nb];
+  tq_[t] = q1;
+  tq_[t2] = q2;
+  tq_[nb] = q3;
+  tq_[nb2] = q4;
+  vtri_[p] = vtri_[u] = t;
+  vtri_[w] = t2;
+  vtri_[q] = nb;
+  vdirty_[p] = vdirty_[u] = vdirty_[w] = vdirty_[q] = 1;
+  for (const int k : {t, t2, nb, nb2}) touched.push_back(k);
+  return true;
+}
+
+// Collapses edges shorter than kCollapseLength (fronts meeting leave some), removing an
+// inner end point (onto the midpoint when both ends are inner, else onto the other end),
+// and splits inner edges longer than kSplitLength (new edges wait for the next pass).
+// Scans every triangle, or only those in list (whose edges changed since the last scan).
+int Mesher::lengthPass(const std::vector<int>* list, std::vector<int>& touched) {
+  int changed = 0;
+  const int n = list ? static_cast<int>(list->size()) : static_cast<int>(tri_.size());
+  for (int k = 0; k < n; ++k) {
+    const int t = list ? (*list)[k] : k;
     if (tri_[t].v[0] < 0) continue;
     for (int i = 0; i < 3; ++i) {
       const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
-      if (u > w || cons(t, i)) continue;  // each edge once (from the side where u < w)
+      if ((!list && u > w) || cons(t, i)) continue;  // full scan: each edge once (from the side where u < w)
       const double len = SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p);
-      if (len >= kCollapseLength) continue;
-      if (tryCollapse(u, w, touched) || tryCollapse(w, u, touched)) {
-        ++collapsed;
-        break;  // t may be gone
+      bool done = false;
+      if (len < kCollapseLength) {
+        const bool inner = !vbnd_[u] && !vbnd_[w];
+        done = (inner && tryCollapse(u, w, true, touched)) || tryCollapse(u, w, false, touched) ||
+               tryCollapse(w, u, false, touched);
+      } else if (len > kSplitLength && tri_[t].n[i] >= 0) {
+        done = trySplit(t, i, touched);
+      }
+      if (done) {
+        ++changed;
+        break;  // t changed or is gone
       }
     }
   }
-  return collapsed;
+  return changed;
 }
 
 void Mesher::improve() {
@@ -1214,29 +1393,39 @@ void Mesher::improve() {
       }
     list.resize(k);
   };
+  // Triangles whose edges changed since the last length scan (collapse/split candidates).
+  std::vector<int> scan, changed;
   auto swaps = [&](int sweeps) {
     for (int k = 0; k < sweeps && !work.empty(); ++k) {
       next.clear();
       swapSweep(work, next);
+      changed.insert(changed.end(), next.begin(), next.end());
       dedupe(next);
       work.swap(next);
     }
   };
+  // Adaptation loop: swaps, collapse of short edges and split of long ones, swaps, smoothing;
+  // the first pass looks at every edge, the later ones at the edges that changed.
   for (int pass = 0; pass < opt_.improvementPasses; ++pass) {
     swaps(6);
     work.clear();
-    if (pass == 0) {
-      collapsePass(work);
-      dedupe(work);
-      swaps(6);
-      work.clear();
-    }
-    smoothPass(work);
+    const std::vector<int>* list = pass == 0 ? nullptr : &scan;
+    const int resized = lengthPass(list, work);
+    dedupe(work);
+    changed.insert(changed.end(), work.begin(), work.end());
+    swaps(6);
+    work.clear();
+    const int moved = smoothPass(work);
     // The ball triangles of moved vertices are reconsidered for swaps (the vertex metric
     // changed too, so their cached quality is refreshed).
     dedupe(work);
     for (const int t : work) tq_[t] = triQuality(tri_[t].v[0], tri_[t].v[1], tri_[t].v[2]);
+    changed.insert(changed.end(), work.begin(), work.end());
+    scan.swap(changed);
+    changed.clear();
+    dedupe(scan);
     checkProgress(0.8 + 0.15 * (pass + 1) / opt_.improvementPasses);
+    if (resized == 0 && moved == 0) break;  // converged
   }
   if (opt_.improvementPasses > 0) swaps(6);
 }
@@ -1299,6 +1488,16 @@ Mesh Mesher::run() {
     }
     checkProgress(0.1);
     t0 = Clock::now();
+    // Room for the expected mesh (the estimate is within ~10%): no reallocation copies.
+    const size_t expect = static_cast<size_t>(std::min(1.15 * estimate_, static_cast<double>(opt_.maxElements))) + 1024;
+    tri_.reserve(expect);
+    forbid_.reserve(expect);
+    stamp_.reserve(expect);
+    queued_.reserve(expect);
+    cache_.reserve(expect);
+    vx_.reserve(expect / 2 + nBoundary_);
+    vbnd_.reserve(expect / 2 + nBoundary_);
+    vtri_.reserve(expect / 2 + nBoundary_);
     insertInnerNodes();
     timings_.insertion = secondsSince(t0);
     t0 = Clock::now();

@@ -7,7 +7,10 @@
 // vertices; its circumcircle, acceptance (metric circumradius <= 1/sqrt2) and the
 // Bowyer-Watson cavity test are evaluated in that metric space. Inner nodes are placed
 // frontally (Rebay): from a front edge, at the distance that makes a unit equilateral
-// triangle in the metric. Then metric-quality edge swaps and smoothing. Topological
+// triangle in the metric. Then an adaptation loop in the metric (MMG/BAMG style): edge
+// swaps maximizing the worse triangle's quality, collapse of edges shorter than 1/sqrt2
+// and split of inner edges longer than sqrt2, node smoothing (metric queried at the new
+// position); boundary points and edges are never moved or split. Topological
 // decisions use exact predicates (predicates.h). Output is deterministic bit for bit.
 //
 // Output: boundary points first (loop by loop, input order, unchanged), then inner
@@ -47,7 +50,7 @@ struct PlanarMesherOptions {
   bool quads = false;                   // convert to a quad-dominant mesh
   bool allQuads = false;                // then split into an all-quad mesh
   std::int64_t maxElements = 50000000;  // element budget: ElementBudgetExceeded above it
-  int improvementPasses = 3;            // edge swaps + node smoothing rounds in the metric
+  int improvementPasses = 4;            // adaptation rounds in the metric: swaps, collapse/split, smoothing
   bool boundaryOnly = false;            // stop after the boundary triangulation (section 3.2 checks)
   // Called with a fraction in [0, 1]; returning false cancels the run (ErrorCode::Cancelled).
   std::function<bool(double)> progress;
