@@ -253,7 +253,7 @@ SymMt BackgroundMeshControlSpace::mtAt(const Vec2& p) const {
 
 Metric BackgroundMeshControlSpace::metricAt(const Vec2& p) const { return toMetric(mtAt(p)); }
 
-std::vector<std::array<int, 2>> BackgroundMeshControlSpace::controlEdges() const {
+std::vector<std::array<int, 2>> BackgroundMeshControlSpace::rawEdges(bool /*structure*/) const {
   std::vector<std::array<int, 2>> edges;
   edges.reserve(tri_.size() * 3 / 2 + 8);
   for (int t = 0; t < elementCount(); ++t)
@@ -263,7 +263,6 @@ std::vector<std::array<int, 2>> BackgroundMeshControlSpace::controlEdges() const
       const int a = tri_[t][(k + 1) % 3], b = tri_[t][(k + 2) % 3];
       edges.push_back({std::min(a, b), std::max(a, b)});
     }
-  std::sort(edges.begin(), edges.end());
   return edges;
 }
 

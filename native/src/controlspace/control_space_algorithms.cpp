@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -48,6 +50,29 @@ class BucketGrid {
     return false;
   }
 
+  // Calls fn(slot) for the slots (indices into items()) of the buckets overlapping b; the
+  // slots of one row of buckets are consecutive, so data stored in slot order is scanned
+  // contiguously.
+  template <class F>
+  void forSlots(const Box2& b, F&& fn) const {
+    int i0, i1, j0, j1;
+    if (!range(b, i0, i1, j0, j1)) return;
+    for (int j = j0; j <= j1; ++j)
+      for (int k = start_[j * side_ + i0], end = start_[j * side_ + i1 + 1]; k < end; ++k) fn(k);
+  }
+  // Same, stopping early when fn returns true; returns whether it did.
+  template <class F>
+  bool anySlot(const Box2& b, F&& fn) const {
+    int i0, i1, j0, j1;
+    if (!range(b, i0, i1, j0, j1)) return false;
+    for (int j = j0; j <= j1; ++j)
+      for (int k = start_[j * side_ + i0], end = start_[j * side_ + i1 + 1]; k < end; ++k)
+        if (fn(k)) return true;
+    return false;
+  }
+  // Item of each slot (bucket by bucket).
+  const std::vector<int>& items() const { return items_; }
+
  private:
   bool range(const Box2& b, int& i0, int& i1, int& j0, int& j1) const {
     if (b.hi.x() < domain_.lo.x() || b.hi.y() < domain_.lo.y() || b.lo.x() > domain_.hi.x() ||
@@ -83,27 +108,6 @@ Box2 pieceBox(const SourcePiece& s, double r) {
   return b;
 }
 
-// CSR adjacency of an edge list over n nodes.
-void edgeAdjacency(const std::vector<std::array<int, 2>>& edges, int n, std::vector<int>& start, std::vector<int>& nbr) {
-  start.assign(n + 1, 0);
-  for (const auto& e : edges) {
-    ++start[e[0] + 1];
-    ++start[e[1] + 1];
-  }
-  for (size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
-  nbr.resize(start.back());
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (const auto& e : edges) {
-    nbr[fill[e[0]]++] = e[1];
-    nbr[fill[e[1]]++] = e[0];
-  }
-}
-
-// Adjacency (CSR) of the free-node graph.
-void adjacency(const AdaptiveControlSpace& cs, std::vector<int>& start, std::vector<int>& nbr) {
-  edgeAdjacency(cs.controlEdges(), cs.nodeCount(), start, nbr);
-}
-
 bool elementNodesDiffer(const AdaptiveControlSpace& cs, const ControlElement& e, double threshold) {
   for (int i = 0; i < e.nodeCount; ++i)
     for (int j = i + 1; j < e.nodeCount; ++j)
@@ -112,6 +116,47 @@ bool elementNodesDiffer(const AdaptiveControlSpace& cs, const ControlElement& e,
 }
 
 }  // namespace
+
+std::vector<std::array<int, 2>> AdaptiveControlSpace::sortedEdges(bool structure) const {
+  std::vector<std::array<int, 2>> edges = rawEdges(structure);
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+void AdaptiveControlSpace::edgeGraph(bool structure, std::vector<int>& start, std::vector<int>& nbr) const {
+  const std::vector<std::array<int, 2>> edges = rawEdges(structure);
+  const int n = nodeCount();
+  start.assign(n + 1, 0);
+  for (const auto& e : edges) {
+    ++start[e[0] + 1];
+    ++start[e[1] + 1];
+  }
+  for (int i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<int> all(start.back());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const auto& e : edges) {
+    all[fill[e[0]]++] = e[1];
+    all[fill[e[1]]++] = e[0];
+  }
+  // Per node: sort the few neighbours (insertion sort) and drop repeats, compacting.
+  nbr.resize(all.size());
+  int out = 0;
+  for (int i = 0; i < n; ++i) {
+    const int b = start[i], e = start[i + 1];
+    for (int k = b + 1; k < e; ++k) {
+      const int v = all[k];
+      int m = k;
+      for (; m > b && all[m - 1] > v; --m) all[m] = all[m - 1];
+      all[m] = v;
+    }
+    start[i] = out;
+    for (int k = b; k < e; ++k)
+      if (k == b || all[k] != all[k - 1]) nbr[out++] = all[k];
+  }
+  start[n] = out;
+  nbr.resize(out);
+}
 
 std::vector<ControlNode> AdaptiveControlSpace::controlNodes() const {
   const std::vector<double> sizes = nodeElementSizes();
@@ -134,44 +179,82 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
     boxes.reserve(pieces.size());
     for (const auto& p : pieces) boxes.push_back(pieceBox(p, p.radius));
     const BucketGrid grid(box, boxes);
+    // The pieces' boxes and target sizes in slot order: the scans read contiguous memory.
+    struct Slot {
+      Box2 box;
+      double targetSize;
+      int piece;
+    };
+    std::vector<Slot> slots;
+    slots.reserve(grid.items().size());
+    for (int k : grid.items()) slots.push_back({boxes[k], pieces[k].targetSize, k});
     cs.refine(
         [&](const ControlElement& e) {
-          return grid.any(e.box, [&](int k) {
-            const SourcePiece& p = pieces[k];
-            return e.size > p.targetSize && segmentBoxDistance(p.a, p.b, e.box) <= p.radius;
+          return grid.anySlot(e.box, [&](int k) {
+            const Slot& sl = slots[k];
+            if (!(e.size > sl.targetSize)) return false;
+            // Boxes apart: the piece is farther than its radius (cheap exact rejection).
+            if (sl.box.hi.x() < e.box.lo.x() || sl.box.lo.x() > e.box.hi.x() || sl.box.hi.y() < e.box.lo.y() ||
+                sl.box.lo.y() > e.box.hi.y())
+              return false;
+            const SourcePiece& p = pieces[sl.piece];
+            return segmentBoxDistance(p.a, p.b, e.box) <= p.radius;
           });
         },
         nullptr);
   }
 
-  // (b) Weighted average of the sources reaching each free node.
+  // (b) Weighted average of the sources reaching each free node. Free nodes are binned,
+  // and their positions and sums kept in bin order (contiguous scans); every node still
+  // accumulates its sources in their order.
   const int n = cs.nodeCount();
   const double minSize = cs.minElementSize();
-  std::vector<Box2> nodeBoxes(n);
-  for (int i = 0; i < n; ++i) nodeBoxes[i] = pointBox(cs.nodePosition(i), 0.0);
+  std::vector<Box2> nodeBoxes;
+  std::vector<int> freeNodes;
+  nodeBoxes.reserve(n);
+  freeNodes.reserve(n);
+  for (int i = 0; i < n; ++i)
+    if (cs.nodeIsFree(i)) {
+      freeNodes.push_back(i);
+      nodeBoxes.push_back(pointBox(cs.nodePosition(i), 0.0));
+    }
   const BucketGrid nodeGrid(box, nodeBoxes);
-  std::vector<SymMt> sum(n, SymMt{0.0, 0.0, 0.0});
-  std::vector<double> wsum(n, 0.0);
+  const std::vector<int>& slotItem = nodeGrid.items();
+  const size_t slots = slotItem.size();
+  std::vector<Vec2> slotPos(slots);
+  for (size_t k = 0; k < slots; ++k) slotPos[k] = cs.nodePosition(freeNodes[slotItem[k]]);
+  std::vector<SymMt> sum(slots, SymMt{0.0, 0.0, 0.0});
+  std::vector<double> wsum(slots, 0.0);
   for (const SourcePiece& p : pieces) {
     const double reach = std::max(p.targetSize, minSize);
     const double soft = 0.25 * reach;
+    const double limit = p.radius + reach;
     const SymMt m = toSymMt(p.metric);
-    nodeGrid.any(pieceBox(p, p.radius + reach), [&](int i) {
-      if (!cs.nodeIsFree(i)) return false;
-      const double d = distanceToPiece(p, cs.nodePosition(i));
-      if (d > p.radius + reach) return false;
+    auto add = [&](size_t k, double d) {
       const double t = std::max(d - p.radius, 0.0) + soft;
       const double w = 1.0 / (t * t);
-      sum[i].a += w * m.a;
-      sum[i].b += w * m.b;
-      sum[i].c += w * m.c;
-      wsum[i] += w;
-      return false;
-    });
+      sum[k].a += w * m.a;
+      sum[k].b += w * m.b;
+      sum[k].c += w * m.c;
+      wsum[k] += w;
+    };
+    if (p.a == p.b) {  // a point: the distance as distanceToPiece() computes it
+      nodeGrid.forSlots(pieceBox(p, limit), [&](int k) {
+        const double dx = p.a.x() - slotPos[k].x(), dy = p.a.y() - slotPos[k].y();
+        const double d = std::sqrt(dx * dx + dy * dy);
+        if (!(d > limit)) add(k, d);
+      });
+    } else {
+      nodeGrid.forSlots(pieceBox(p, limit), [&](int k) {
+        const double d = distanceToPiece(p, slotPos[k]);
+        if (!(d > limit)) add(k, d);
+      });
+    }
   }
-  for (int i = 0; i < n; ++i) {
-    if (wsum[i] <= 0.0) continue;
-    const SymMt avg{sum[i].a / wsum[i], sum[i].b / wsum[i], sum[i].c / wsum[i]};
+  for (size_t k = 0; k < slots; ++k) {
+    if (wsum[k] <= 0.0) continue;
+    const int i = freeNodes[slotItem[k]];
+    const SymMt avg{sum[k].a / wsum[k], sum[k].b / wsum[k], sum[k].c / wsum[k]};
     const Metric m = toMetric(avg);
     cs.setNodeMetric(i, cs.nodeIsInitialized(i) ? intersect(cs.nodeMetric(i), m) : m);
   }
@@ -200,7 +283,7 @@ int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback) {
   int filled = 0;
   if (any) {
     std::vector<int> start, nbr;
-    adjacency(cs, start, nbr);
+    cs.edgeGraph(false, start, nbr);
     // Breadth-first fronts: the unknown free neighbours of the nodes known so far.
     std::vector<int> front, next;
     std::vector<char> inFront(n, 0);
@@ -339,28 +422,119 @@ double gradationSlope(double ratio) {
   return 2.0 * (ratio - 1.0) / (ratio + 1.0);
 }
 
+namespace {
+
+// Entries of the tensor M = Mt Mt of Mt entries m.
+inline SymMt tensorOf(const SymMt& m) { return {m.a * m.a + m.b * m.b, m.b * (m.a + m.c), m.b * m.b + m.c * m.c}; }
+
+// a = min(a, t) for the target t = Mt_b / scale (b2 = tensorOf(b)): metric.cpp's
+// intersect() (simultaneous reduction) on Mt entries, written without trigonometry.
+// With N = Mt_a^-1 M_t Mt_a^-1 and eigenvalues l1 >= l2, the reduction keeps max(l, 1)
+// per eigenvector: Q = I + (l1 - 1) P1 when l2 < 1 < l1, P1 = (N - l2 I) / (l1 - l2)
+// the projector on l1's eigenvector; the result is sqrt(Mt_a Q Mt_a). Leaves a when
+// the largest relative shrink of its sizes, sqrt(l1) - 1, is <= tolerance; returns true
+// when a changed.
+inline bool intersectInto(const SymMt& b, const SymMt& b2, double scale, SymMt& a, double tolerance) {
+  const double inv = 1.0 / ((a.a * a.c - a.b * a.b) * scale);  // Mt_a^-1 / scale = [c -b; -b a] inv
+  const double ia = a.c * inv, ib = -a.b * inv, ic = a.a * inv;
+  const double x00 = ia * b2.a + ib * b2.b, x01 = ia * b2.b + ib * b2.c;
+  const double x10 = ib * b2.a + ic * b2.b, x11 = ib * b2.b + ic * b2.c;
+  const double n00 = x00 * ia + x01 * ib, n01 = x00 * ib + x01 * ic, n11 = x10 * ib + x11 * ic;
+  const double mean = 0.5 * (n00 + n11), half = 0.5 * (n00 - n11);
+  const double r = std::sqrt(half * half + n01 * n01);
+  const double l1 = mean + r, l2 = mean - r;
+  if (std::sqrt(std::max(l1, 0.0)) - 1.0 <= tolerance) return false;
+  SymMt out;
+  if (l2 >= 1.0) {
+    out = {b.a / scale, b.b / scale, b.c / scale};  // the target is inside a
+  } else {
+    const double f = (l1 - 1.0) / (l1 - l2);
+    const double qa = 1.0 + f * (n00 - l2), qb = f * n01, qc = 1.0 + f * (n11 - l2);
+    // m = Mt_a Q Mt_a, then its symmetric square root (as sqrtSpd).
+    const double y00 = a.a * qa + a.b * qb, y01 = a.a * qb + a.b * qc;
+    const double y10 = a.b * qa + a.c * qb, y11 = a.b * qb + a.c * qc;
+    const double m00 = y00 * a.a + y01 * a.b, m01 = y00 * a.b + y01 * a.c, m11 = y10 * a.b + y11 * a.c;
+    const double sd = std::sqrt(std::max(m00 * m11 - m01 * m01, 0.0));
+    const double t = 1.0 / std::sqrt(m00 + m11 + 2.0 * sd);
+    out = {(m00 + sd) * t, m01 * t, (m11 + sd) * t};
+  }
+  if (out.a == a.a && out.b == a.b && out.c == a.c) return false;
+  a = out;
+  return true;
+}
+
+// The core of limitGradation on Mt entries, mi2 = tensorOf(mi), u = pj - pi:
+// mj = min(mj, s mi) with s = 1 + a_max |Mt_i u| (= 1 + a_max d / h_i).
+inline bool limitMt(const SymMt& mi, const SymMt& mi2, const Vec2& u, SymMt& mj, double slope, double tolerance) {
+  const double wx = mi.a * u.x() + mi.b * u.y(), wy = mi.b * u.x() + mi.c * u.y();
+  const double len = std::sqrt(wx * wx + wy * wy);  // metric length of the edge in mi
+  if (!(len > 0.0)) return false;
+  return intersectInto(mi, mi2, 1.0 + slope * len, mj, tolerance);
+}
+
+}  // namespace
+
 bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj, double slope, double tolerance) {
-  const Vec2 u = pj - pi;
-  const double d = u.norm();
-  if (d <= 0.0) return false;
-  const double hi = mi.sizeAlong(u);
-  const double s = 1.0 + slope * d / hi;  // eq. 7 at a = a_max
-  // Cheap test first: mj already inside s mi when the largest eigenvalue of
-  // Mt_j^-1 (M_i / s^2) Mt_j^-1 is <= 1 (no trigonometry, unlike intersect()).
-  const Mat2 ij = mj.transform().inverse();
-  const Mat2 q = ij * mi.tensor() * ij / (s * s);
-  const double half = 0.5 * (q(0, 0) - q(1, 1)), off = 0.5 * (q(0, 1) + q(1, 0));
-  const double lmax = 0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off);
-  // sqrt(lmax) - 1: the largest relative shrink of mj's sizes the limit asks for.
-  if (std::sqrt(std::max(lmax, 0.0)) - 1.0 <= tolerance) return false;
-  const Metric cand = intersect(mj, mi.scaled(s));
-  if (cand.transform() == mj.transform()) return false;
-  mj = cand;
+  const SymMt si = toSymMt(mi);
+  SymMt sj = toSymMt(mj);
+  if (!limitMt(si, tensorOf(si), pj - pi, sj, slope, tolerance)) return false;
+  mj = toMetric(sj);
   return true;
 }
 
 namespace {
 
+// Priority queue of node indices by key (the largest eigenvalue of Mt, i.e. the inverse
+// of the smallest requested size), largest first, in buckets of 1/8 octave: the top bits
+// of the key's IEEE representation, a monotone integer for positive doubles. Within a
+// bucket the last pushed comes first. Pop and push are O(1) (the top only moves up on
+// push and down while buckets are empty).
+class KeyBuckets {
+ public:
+  static int bucketOf(double key) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &key, sizeof bits);
+    return static_cast<int>(bits >> 49);  // sign 0, 11 exponent bits, 3 mantissa bits
+  }
+  void push(int bucket, int node) {
+    if (buckets_.empty()) {
+      base_ = bucket - 64;
+      buckets_.resize(128);
+    }
+    if (bucket < base_) {
+      const int grow = base_ - bucket + 64;
+      buckets_.insert(buckets_.begin(), static_cast<size_t>(grow), std::vector<int>());
+      base_ -= grow;
+      top_ += grow;
+    }
+    const int k = bucket - base_;
+    if (k >= static_cast<int>(buckets_.size())) buckets_.resize(static_cast<size_t>(k) + 64);
+    buckets_[k].push_back(node);
+    top_ = std::max(top_, k);
+    ++size_;
+  }
+  bool empty() const { return size_ == 0; }
+  // Removes and returns the node of the highest bucket (stored in *bucket).
+  int pop(int* bucket) {
+    while (buckets_[top_].empty()) --top_;
+    const int node = buckets_[top_].back();
+    buckets_[top_].pop_back();
+    --size_;
+    *bucket = top_ + base_;
+    return node;
+  }
+
+ private:
+  std::vector<std::vector<int>> buckets_;
+  int base_ = 0, top_ = 0;
+  size_t size_ = 0;
+};
+
+// Largest eigenvalue of Mt: the inverse of the smallest requested size.
+inline double sizeKey(const SymMt& m) {
+  const double half = 0.5 * (m.a - m.c);
+  return 0.5 * (m.a + m.c) + std::sqrt(half * half + m.b * m.b);
+}
 
 // One work-set pass over the graph (start, nbr) from `seeds` (see smoothGradation);
 // nodes it changes get changed[i] = 1.
@@ -368,53 +542,49 @@ int gradationWorkSet(AdaptiveControlSpace& cs, const std::vector<int>& start, co
                      const std::vector<int>& seeds, double slope, double tolerance, std::vector<char>& changed) {
   const int n = cs.nodeCount();
   // Ordered by the node's smallest requested size (smallest first, as in Dijkstra): a
-  // node is mostly final when it is taken, so few nodes are re-queued. Stale heap entries
-  // are skipped by comparing with the node's current key.
-  auto key = [&](int i) {
-    const SymMt& m = cs.nodeMt(i);
-    const double half = 0.5 * (m.a - m.c);
-    return 0.5 * (m.a + m.c) + std::sqrt(half * half + m.b * m.b);  // largest eigenvalue of Mt
-  };
-  using Entry = std::pair<double, int>;
-  auto cmp = [](const Entry& x, const Entry& y) { return x.first < y.first || (x.first == y.first && x.second > y.second); };
-  std::vector<Entry> heap;
-  std::vector<double> current(n, 0.0);
+  // node is mostly final when it is taken, so few nodes are re-queued. Entries whose
+  // bucket is no longer the node's are stale and skipped.
+  KeyBuckets queue;
+  std::vector<int> current(n, 0);
   std::vector<char> queued(n, 0);
-  heap.reserve(seeds.size());
   for (int i : seeds)
     if (!queued[i]) {
       queued[i] = 1;
-      current[i] = key(i);
-      heap.push_back({current[i], i});
+      current[i] = KeyBuckets::bucketOf(sizeKey(cs.nodeMt(i)));
+      queue.push(current[i], i);
     }
-  std::make_heap(heap.begin(), heap.end(), cmp);
   int updates = 0;
-  while (!heap.empty()) {
-    std::pop_heap(heap.begin(), heap.end(), cmp);
-    const Entry top = heap.back();
-    heap.pop_back();
-    const int i = top.second;
-    if (!queued[i] || top.first != current[i]) continue;  // stale entry
+  auto enqueue = [&](int j, const SymMt& mj) {
+    changed[j] = 1;
+    const int b = KeyBuckets::bucketOf(sizeKey(mj));
+    if (!queued[j] || b != current[j]) {
+      current[j] = b;
+      queued[j] = 1;
+      queue.push(b, j);
+    }
+  };
+  while (!queue.empty()) {
+    int bucket;
+    const int i = queue.pop(&bucket);
+    if (!queued[i] || bucket != current[i]) continue;  // stale entry
     queued[i] = 0;
-    const Metric mi = cs.nodeMetric(i);
+    const SymMt mi = cs.nodeMt(i);
+    const SymMt mi2 = tensorOf(mi);
     const Vec2 pi = cs.nodePosition(i);
     for (int k = start[i]; k < start[i + 1]; ++k) {
       const int j = nbr[k];
-      Metric mj = cs.nodeMetric(j);
-      if (limitGradation(mi, pi, mj, cs.nodePosition(j), slope, tolerance)) {
-        cs.setNodeMetric(j, mj);
+      SymMt mj = cs.nodeMt(j);
+      if (limitMt(mi, mi2, cs.nodePosition(j) - pi, mj, slope, tolerance)) {
+        cs.setNodeMt(j, mj);
         ++updates;
-        changed[j] = 1;
-        current[j] = key(j);
-        queued[j] = 1;
-        heap.push_back({current[j], j});
-        std::push_heap(heap.begin(), heap.end(), cmp);
+        enqueue(j, mj);
       }
     }
   }
   return updates;
 }
 
+// Mt of hanging node h from its masters' current values.
 SymMt interpolateHanging(const AdaptiveControlSpace& cs, const AdaptiveControlSpace::HangingNode& h) {
   SymMt r{0.0, 0.0, 0.0};
   for (int j = 0; j < 3; ++j) {
@@ -436,7 +606,7 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
   const auto hanging =
       options.throughHangingNodes ? cs.hangingNodes() : std::vector<AdaptiveControlSpace::HangingNode>{};
   std::vector<int> start, nbr;
-  edgeAdjacency(hanging.empty() ? cs.controlEdges() : cs.structureEdges(), n, start, nbr);
+  cs.edgeGraph(!hanging.empty(), start, nbr);
   std::vector<int> seeds;
   for (int i = 0; i < n; ++i)
     if (!hanging.empty() || cs.nodeIsFree(i)) seeds.push_back(i);
@@ -548,7 +718,7 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
   }
   if (!settled) {
     std::vector<int> fstart, fnbr;
-    edgeAdjacency(cs.controlEdges(), n, fstart, fnbr);
+    cs.edgeGraph(false, fstart, fnbr);
     seeds.clear();
     for (int i = 0; i < n; ++i)
       if (cs.nodeIsFree(i)) seeds.push_back(i);
