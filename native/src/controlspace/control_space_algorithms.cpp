@@ -407,9 +407,50 @@ void intersectControlSpace(AdaptiveControlSpace& cs1, const ControlSpace& cs2, c
         });
       },
       phase1);
-  // Phase 3.
+  // Phase 3: phase 1 again.
   phase1(0, cs1.nodeCount());
   cs1.applyConstraints();
+  if (!options.conservative) return;
+  // Phase 3, conservative: where the interpolation exceeds the exact minimum at sample
+  // points of an element (sizes larger by e), the element's free nodes shrink by 1 + e
+  // (the largest over their elements), so the result errs on the fine side; a few passes
+  // because Mt interpolation is not exactly monotone.
+  const std::vector<std::vector<int>> elements = cs1.elementNodes();
+  for (int pass = 0; pass < 3; ++pass) {
+    std::vector<double> grow(cs1.nodeCount(), 1.0);
+    bool any = false;
+    for (const std::vector<int>& el : elements) {
+      double worst = 1.0;
+      auto check = [&](const Vec2& p) {
+        const Metric r = cs1.metricAt(p);
+        const Metric t = intersect(original->metricAt(p), cs2.metricAt(p));
+        // Largest ratio of r's size to t's over all directions: sqrt(lmax(Mt_r^-1 M_t Mt_r^-1)).
+        const Mat2 ir = r.transform().inverse();
+        const Mat2 q = ir * t.tensor() * ir;
+        const double half = 0.5 * (q(0, 0) - q(1, 1)), off = 0.5 * (q(0, 1) + q(1, 0));
+        worst = std::max(worst, std::sqrt(std::max(0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off), 0.0)));
+      };
+      if (el.size() == 4) {  // leaf: a 4 x 4 grid of interior points
+        const Vec2 lo = cs1.nodePosition(el[0]), hi = cs1.nodePosition(el[2]);
+        for (int a = 0; a < 4; ++a)
+          for (int b = 0; b < 4; ++b)
+            check(Vec2(lo.x() + (a + 0.5) / 4 * (hi.x() - lo.x()), lo.y() + (b + 0.5) / 4 * (hi.y() - lo.y())));
+      } else {  // triangle: the points of barycentric coordinates in quarters, but vertices
+        const Vec2 A = cs1.nodePosition(el[0]), B = cs1.nodePosition(el[1]), C = cs1.nodePosition(el[2]);
+        for (int a = 0; a <= 4; ++a)
+          for (int b = 0; a + b <= 4; ++b)
+            if (a < 4 && b < 4 && a + b > 0) check((a * A + b * B + (4 - a - b) * C) / 4.0);
+        check((A + B + C) / 3.0);
+      }
+      if (worst <= 1.0 + 1e-12) continue;
+      any = true;
+      for (int v : el) grow[v] = std::max(grow[v], worst);
+    }
+    if (!any) break;
+    for (int i = 0; i < cs1.nodeCount(); ++i)
+      if (grow[i] > 1.0 && cs1.nodeIsFree(i)) cs1.setNodeMetric(i, cs1.nodeMetric(i).scaled(1.0 / grow[i]));
+    cs1.applyConstraints();
+  }
 }
 
 void intersectControlSpace(AdaptiveControlSpace& cs1, const AdaptiveControlSpace& cs2, const MinimumOptions& options) {
