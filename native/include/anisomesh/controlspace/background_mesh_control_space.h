@@ -88,6 +88,9 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
   int gridSide_ = 1;
   Vec2 gridInv_;
   std::vector<int> grid_;
+  // True between a refine() batch and the next query (or refine()'s end): the grid is
+  // rebuilt lazily, so batches nobody queries in do not pay for it.
+  mutable bool locatorStale_ = false;
 };
 
 }  // namespace anisomesh
