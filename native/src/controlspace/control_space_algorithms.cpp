@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <string>
 
@@ -468,107 +466,109 @@ namespace {
 // Entries of the tensor M = Mt Mt of Mt entries m.
 inline SymMt tensorOf(const SymMt& m) { return {m.a * m.a + m.b * m.b, m.b * (m.a + m.c), m.b * m.b + m.c * m.c}; }
 
-// a = min(a, t) for the target t = Mt_b / scale (b2 = tensorOf(b)): metric.cpp's
-// intersect() (simultaneous reduction) on Mt entries, written without trigonometry.
-// With N = Mt_a^-1 M_t Mt_a^-1 and eigenvalues l1 >= l2, the reduction keeps max(l, 1)
-// per eigenvector: Q = I + (l1 - 1) P1 when l2 < 1 < l1, P1 = (N - l2 I) / (l1 - l2)
-// the projector on l1's eigenvector; the result is sqrt(Mt_a Q Mt_a). Leaves a when
-// the largest relative shrink of its sizes, sqrt(l1) - 1, is <= tolerance; returns true
-// when a changed.
-inline bool intersectInto(const SymMt& b, const SymMt& b2, double scale, SymMt& a, double tolerance) {
-  const double inv = 1.0 / ((a.a * a.c - a.b * a.b) * scale);  // Mt_a^-1 / scale = [c -b; -b a] inv
+// The shrink limitGradation() asks of a (sqrt(l1) - 1 for the largest eigenvalue l1 of
+// Mt_a^-1 (M_i / s^2) Mt_a^-1, s = 1 + a_max |Mt_i u| = 1 + a_max d / h_i), on Mt entries
+// (mi2 = tensorOf(mi)), or -1 for a zero-length edge: the cheap test in front of it.
+inline double limitShrink(const SymMt& mi, const SymMt& mi2, const Vec2& u, const SymMt& a, double slope) {
+  const double wx = mi.a * u.x() + mi.b * u.y(), wy = mi.b * u.x() + mi.c * u.y();
+  const double len = std::sqrt(wx * wx + wy * wy);
+  if (!(len > 0.0)) return -1.0;
+  const double inv = 1.0 / ((a.a * a.c - a.b * a.b) * (1.0 + slope * len));
   const double ia = a.c * inv, ib = -a.b * inv, ic = a.a * inv;
-  const double x00 = ia * b2.a + ib * b2.b, x01 = ia * b2.b + ib * b2.c;
-  const double x10 = ib * b2.a + ic * b2.b, x11 = ib * b2.b + ic * b2.c;
+  const double x00 = ia * mi2.a + ib * mi2.b, x01 = ia * mi2.b + ib * mi2.c;
+  const double x10 = ib * mi2.a + ic * mi2.b, x11 = ib * mi2.b + ic * mi2.c;
   const double n00 = x00 * ia + x01 * ib, n01 = x00 * ib + x01 * ic, n11 = x10 * ib + x11 * ic;
   const double mean = 0.5 * (n00 + n11), half = 0.5 * (n00 - n11);
-  const double r = std::sqrt(half * half + n01 * n01);
-  const double l1 = mean + r, l2 = mean - r;
-  if (std::sqrt(std::max(l1, 0.0)) - 1.0 <= tolerance) return false;
-  SymMt out;
-  if (l2 >= 1.0) {
-    out = {b.a / scale, b.b / scale, b.c / scale};  // the target is inside a
-  } else {
-    const double f = (l1 - 1.0) / (l1 - l2);
-    const double qa = 1.0 + f * (n00 - l2), qb = f * n01, qc = 1.0 + f * (n11 - l2);
-    // m = Mt_a Q Mt_a, then its symmetric square root (as sqrtSpd).
-    const double y00 = a.a * qa + a.b * qb, y01 = a.a * qb + a.b * qc;
-    const double y10 = a.b * qa + a.c * qb, y11 = a.b * qb + a.c * qc;
-    const double m00 = y00 * a.a + y01 * a.b, m01 = y00 * a.b + y01 * a.c, m11 = y10 * a.b + y11 * a.c;
-    const double sd = std::sqrt(std::max(m00 * m11 - m01 * m01, 0.0));
-    const double t = 1.0 / std::sqrt(m00 + m11 + 2.0 * sd);
-    out = {(m00 + sd) * t, m01 * t, (m11 + sd) * t};
-  }
-  if (out.a == a.a && out.b == a.b && out.c == a.c) return false;
-  a = out;
-  return true;
-}
-
-// The core of limitGradation on Mt entries, mi2 = tensorOf(mi), u = pj - pi:
-// mj = min(mj, s mi) with s = 1 + a_max |Mt_i u| (= 1 + a_max d / h_i).
-inline bool limitMt(const SymMt& mi, const SymMt& mi2, const Vec2& u, SymMt& mj, double slope, double tolerance) {
-  const double wx = mi.a * u.x() + mi.b * u.y(), wy = mi.b * u.x() + mi.c * u.y();
-  const double len = std::sqrt(wx * wx + wy * wy);  // metric length of the edge in mi
-  if (!(len > 0.0)) return false;
-  return intersectInto(mi, mi2, 1.0 + slope * len, mj, tolerance);
+  return std::sqrt(std::max(mean + std::sqrt(half * half + n01 * n01), 0.0)) - 1.0;
 }
 
 }  // namespace
 
 bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj, double slope, double tolerance) {
-  const SymMt si = toSymMt(mi);
-  SymMt sj = toSymMt(mj);
-  if (!limitMt(si, tensorOf(si), pj - pi, sj, slope, tolerance)) return false;
-  mj = toMetric(sj);
+  const Vec2 u = pj - pi;
+  const double d = u.norm();
+  if (d <= 0.0) return false;
+  const double hi = mi.sizeAlong(u);
+  const double s = 1.0 + slope * d / hi;  // eq. 7 at a = a_max
+  // Cheap test first: mj already inside s mi when the largest eigenvalue of
+  // Mt_j^-1 (M_i / s^2) Mt_j^-1 is <= 1 (no trigonometry, unlike intersect()).
+  const Mat2 ij = mj.transform().inverse();
+  const Mat2 q = ij * mi.tensor() * ij / (s * s);
+  const double half = 0.5 * (q(0, 0) - q(1, 1)), off = 0.5 * (q(0, 1) + q(1, 0));
+  const double lmax = 0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off);
+  // sqrt(lmax) - 1: the largest relative shrink of mj's sizes the limit asks for.
+  if (std::sqrt(std::max(lmax, 0.0)) - 1.0 <= tolerance) return false;
+  const Metric cand = intersect(mj, mi.scaled(s));
+  if (cand.transform() == mj.transform()) return false;
+  mj = cand;
   return true;
 }
 
 namespace {
 
-// Priority queue of node indices by key (the largest eigenvalue of Mt, i.e. the inverse
-// of the smallest requested size), largest first, in buckets of 1/8 octave: the top bits
-// of the key's IEEE representation, a monotone integer for positive doubles. Within a
-// bucket the last pushed comes first. Pop and push are O(1) (the top only moves up on
-// push and down while buckets are empty).
-class KeyBuckets {
+// Max-heap of node indices by key (ties: smaller index first) with the position of each
+// node, so a node whose key changes moves in place instead of leaving a stale entry.
+class NodeHeap {
  public:
-  static int bucketOf(double key) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &key, sizeof bits);
-    return static_cast<int>(bits >> 49);  // sign 0, 11 exponent bits, 3 mantissa bits
-  }
-  void push(int bucket, int node) {
-    if (buckets_.empty()) {
-      base_ = bucket - 64;
-      buckets_.resize(128);
+  explicit NodeHeap(int n) : key_(n, 0.0), pos_(n, -1) {}
+  bool empty() const { return heap_.empty(); }
+  // Inserts node i with key k, or moves it to key k when present.
+  void set(int i, double k) {
+    key_[i] = k;
+    if (pos_[i] < 0) {
+      pos_[i] = static_cast<int>(heap_.size());
+      heap_.push_back(i);
     }
-    if (bucket < base_) {
-      const int grow = base_ - bucket + 64;
-      buckets_.insert(buckets_.begin(), static_cast<size_t>(grow), std::vector<int>());
-      base_ -= grow;
-      top_ += grow;
-    }
-    const int k = bucket - base_;
-    if (k >= static_cast<int>(buckets_.size())) buckets_.resize(static_cast<size_t>(k) + 64);
-    buckets_[k].push_back(node);
-    top_ = std::max(top_, k);
-    ++size_;
+    down(up(pos_[i]));
   }
-  bool empty() const { return size_ == 0; }
-  // Removes and returns the node of the highest bucket (stored in *bucket).
-  int pop(int* bucket) {
-    while (buckets_[top_].empty()) --top_;
-    const int node = buckets_[top_].back();
-    buckets_[top_].pop_back();
-    --size_;
-    *bucket = top_ + base_;
-    return node;
+  // Removes and returns the top node.
+  int pop() {
+    const int top = heap_.front();
+    pos_[top] = -1;
+    const int last = heap_.back();
+    heap_.pop_back();
+    if (!heap_.empty()) {
+      heap_[0] = last;
+      pos_[last] = 0;
+      down(0);
+    }
+    return top;
   }
 
  private:
-  std::vector<std::vector<int>> buckets_;
-  int base_ = 0, top_ = 0;
-  size_t size_ = 0;
+  bool before(int a, int b) const { return key_[a] > key_[b] || (key_[a] == key_[b] && a < b); }
+  void place(int at, int i) {
+    heap_[at] = i;
+    pos_[i] = at;
+  }
+  int up(int at) {
+    const int i = heap_[at];
+    while (at > 0) {
+      const int parent = (at - 1) / 2;
+      if (!before(i, heap_[parent])) break;
+      place(at, heap_[parent]);
+      at = parent;
+    }
+    place(at, i);
+    return at;
+  }
+  void down(int at) {
+    const int i = heap_[at];
+    const int size = static_cast<int>(heap_.size());
+    for (;;) {
+      int child = 2 * at + 1;
+      if (child >= size) break;
+      if (child + 1 < size && before(heap_[child + 1], heap_[child])) ++child;
+      if (!before(heap_[child], i)) break;
+      place(at, heap_[child]);
+      at = child;
+    }
+    place(at, i);
+  }
+
+  std::vector<double> key_;
+  std::vector<int> pos_;
+  std::vector<int> heap_;
 };
 
 // Largest eigenvalue of Mt: the inverse of the smallest requested size.
@@ -583,42 +583,32 @@ int gradationWorkSet(AdaptiveControlSpace& cs, const std::vector<int>& start, co
                      const std::vector<int>& seeds, double slope, double tolerance, std::vector<char>& changed) {
   const int n = cs.nodeCount();
   // Ordered by the node's smallest requested size (smallest first, as in Dijkstra): a
-  // node is mostly final when it is taken, so few nodes are re-queued. Entries whose
-  // bucket is no longer the node's are stale and skipped.
-  KeyBuckets queue;
-  std::vector<int> current(n, 0);
-  std::vector<char> queued(n, 0);
-  for (int i : seeds)
-    if (!queued[i]) {
-      queued[i] = 1;
-      current[i] = KeyBuckets::bucketOf(sizeKey(cs.nodeMt(i)));
-      queue.push(current[i], i);
-    }
+  // node is mostly final when it is taken, so few nodes are re-queued.
+  NodeHeap heap(n);
+  for (int i : seeds) heap.set(i, sizeKey(cs.nodeMt(i)));
   int updates = 0;
   auto enqueue = [&](int j, const SymMt& mj) {
     changed[j] = 1;
-    const int b = KeyBuckets::bucketOf(sizeKey(mj));
-    if (!queued[j] || b != current[j]) {
-      current[j] = b;
-      queued[j] = 1;
-      queue.push(b, j);
-    }
+    heap.set(j, sizeKey(mj));
   };
-  while (!queue.empty()) {
-    int bucket;
-    const int i = queue.pop(&bucket);
-    if (!queued[i] || bucket != current[i]) continue;  // stale entry
-    queued[i] = 0;
+  while (!heap.empty()) {
+    const int i = heap.pop();
     const SymMt mi = cs.nodeMt(i);
     const SymMt mi2 = tensorOf(mi);
+    const Metric mim = cs.nodeMetric(i);
     const Vec2 pi = cs.nodePosition(i);
     for (int k = start[i]; k < start[i + 1]; ++k) {
       const int j = nbr[k];
-      SymMt mj = cs.nodeMt(j);
-      if (limitMt(mi, mi2, cs.nodePosition(j) - pi, mj, slope, tolerance)) {
-        cs.setNodeMt(j, mj);
+      const Vec2& pj = cs.nodePosition(j);
+      // Clearly within the limit (margin far above the rounding between the two
+      // computations): skip; otherwise limitGradation() decides and computes, so the
+      // result is the same as with limitGradation() alone.
+      if (limitShrink(mi, mi2, pj - pi, cs.nodeMt(j), slope) < tolerance - 1e-12) continue;
+      Metric mj = cs.nodeMetric(j);
+      if (limitGradation(mim, pi, mj, pj, slope, tolerance)) {
+        cs.setNodeMetric(j, mj);
         ++updates;
-        enqueue(j, mj);
+        enqueue(j, cs.nodeMt(j));
       }
     }
   }

@@ -102,10 +102,10 @@ double gradationSlope(double ratio);
 bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj, double slope,
                     double tolerance = 1e-12);
 
-// Global smoothing (section 2.5.2) with a work-set: all nodes start in the set; nodes
-// with the smallest requested size are taken first (Dijkstra-like order by buckets of
-// 1/8 octave, so most nodes are final when taken) and limit each neighbour along the
-// structure's side edges; a neighbour that changed is re-queued. Tensors only grow (Loewner order: sizes only
+// Global smoothing (section 2.5.2) with a work-set: all nodes start in the set; the node
+// with the smallest requested size is taken first (Dijkstra-like order, so most nodes
+// are final when taken) and limits each neighbour along the structure's side edges; a
+// neighbour that changed is re-queued. Tensors only grow (Loewner order: sizes only
 // shrink) and stay below the finest metric present, so with the tolerance it terminates; at the end every
 // edge satisfies h_j <= h_i + a_max d. Quadtree hanging nodes cannot change on their
 // own: see throughHangingNodes and the comment in the implementation. Returns the
