@@ -80,11 +80,6 @@ class AdaptiveControlSpace : public ControlSpace {
     mt_[i] = toSymMt(m);
     flags_[i] |= kInitialized;
   }
-  // Same with raw Mt entries (symmetric positive definite, not checked).
-  void setNodeMt(int i, const SymMt& m) {
-    mt_[i] = m;
-    flags_[i] |= kInitialized;
-  }
   // Marks node i as not yet reached by any source (its value is a placeholder).
   void clearNodeInitialized(int i) { flags_[i] &= static_cast<std::uint8_t>(~kInitialized); }
 
