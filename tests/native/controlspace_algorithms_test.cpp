@@ -8,6 +8,7 @@
 
 #include "anisomesh/controlspace/background_mesh_control_space.h"
 #include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/controlspace/minimum_control_space.h"
 #include "anisomesh/controlspace/quadtree_control_space.h"
 #include "anisomesh/core/error.h"
 
@@ -215,12 +216,25 @@ TEST(ControlSpaceMinimum, EqualsTheInputThatIsSmallerEverywhere) {
 TEST(ControlSpaceMinimum, BackgroundAndCrossStructureMinimum) {
   auto f1 = [](const Vec2& p) { return Metric::fromSizes(0.4, 0.02 + 0.2 * p.x(), 0.1 - 0.05 * p.y()); };
   auto f2 = [](const Vec2& p) { return Metric::fromSizes(-0.2, 0.05, 0.005 + 0.3 * std::abs(p.x() - 0.6)); };
-  // (first quadtree?, second quadtree?)
-  for (auto [q1, q2] : {std::pair{false, false}, std::pair{true, false}, std::pair{false, true}}) {
-    auto cs1 = makeSpace(q1, 7), cs2 = makeSpace(q2, 7);
+  // (first quadtree?, second quadtree?, worst excess allowed against the exact minimum of
+  // the analytic fields, and against the exact minimum of the two input structures).
+  // Exactness between nodes is impossible for an interpolated structure (see
+  // intersectControlSpace): phase 3 errs on the fine side instead. Measured worst
+  // excesses at these 1000 points (analytic / structures): background-background
+  // 1.1% / 0.15%, quadtree-background 1.1% / 0.85%, background-quadtree 4.2% / 0.0%
+  // (the analytic figures include the inputs' own interpolation error); the paper's
+  // phase 3 alone (conservative = false) gives 3.7% / 7.3%, 13.1% / 12.7%, 11.2% / 5.2%,
+  // and the conservative step makes sizes at most ~11% smaller than the exact minimum.
+  // MinimumControlSpace is the exact minimum.
+  struct Case {
+    bool q1, q2;
+    double vsAnalytic, vsStructures;
+  };
+  for (const Case& c : {Case{false, false, 0.03, 0.02}, Case{true, false, 0.03, 0.02}, Case{false, true, 0.07, 0.02}}) {
+    auto cs1 = makeSpace(c.q1, 7), cs2 = makeSpace(c.q2, 7);
     insertMetricFunction(*cs1, f1, insertion());
     insertMetricFunction(*cs2, f2, insertion());
-    const auto orig = cs1->clone();
+    const std::shared_ptr<const ControlSpace> orig(cs1->clone());
     intersectControlSpace(*cs1, *cs2);
     expectBalanced(*cs1);
     // At the result's nodes: inside both inputs (to rounding).
@@ -231,20 +245,26 @@ TEST(ControlSpaceMinimum, BackgroundAndCrossStructureMinimum) {
       for (int d = 0; d < 8; ++d) {
         const Vec2 v = dir(d * M_PI / 8);
         ASSERT_LE(r.sizeAlong(v), a.sizeAlong(v) * (1 + 1e-6));
-        ASSERT_LE(r.sizeAlong(v), b.sizeAlong(v) * (1 + 1e-6)) << q1 << q2 << " node " << i << " free " << cs1->nodeIsFree(i);
+        ASSERT_LE(r.sizeAlong(v), b.sizeAlong(v) * (1 + 1e-6)) << c.q1 << c.q2 << " node " << i;
       }
     }
-    // Between nodes: interpolations of different structures differ; the result stays close
-    // to the exact minimum of the analytic inputs.
+    // Between nodes: close to the exact minimum of the analytic inputs and of the
+    // structures (MinimumControlSpace).
+    const MinimumControlSpace exact({orig, std::shared_ptr<const ControlSpace>(cs2->clone())});
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    double worst = 0.0;
+    double worstAnalytic = 0.0, worstStructures = 0.0;
     for (int k = 0; k < 1000; ++k) {
       const Vec2 p(u(rng), u(rng));
-      const Metric r = cs1->metricAt(p), exact = intersect(f1(p), f2(p));
-      for (int d = 0; d < 8; ++d) worst = std::max(worst, r.sizeAlong(dir(d * M_PI / 8)) / exact.sizeAlong(dir(d * M_PI / 8)) - 1);
+      const Metric r = cs1->metricAt(p), analytic = intersect(f1(p), f2(p)), structures = exact.metricAt(p);
+      for (int d = 0; d < 8; ++d) {
+        const Vec2 v = dir(d * M_PI / 8);
+        worstAnalytic = std::max(worstAnalytic, r.sizeAlong(v) / analytic.sizeAlong(v) - 1);
+        worstStructures = std::max(worstStructures, r.sizeAlong(v) / structures.sizeAlong(v) - 1);
+      }
     }
-    EXPECT_LT(worst, 0.15) << q1 << q2;
+    EXPECT_LT(worstAnalytic, c.vsAnalytic) << c.q1 << c.q2;
+    EXPECT_LT(worstStructures, c.vsStructures) << c.q1 << c.q2;
   }
 }
 

@@ -165,6 +165,7 @@ void BackgroundMeshControlSpace::bisectImpl(int t) {
 }
 
 void BackgroundMeshControlSpace::rebuildLocator() {
+  locatorStale_ = false;
   const double nt = static_cast<double>(tri_.size());
   gridSide_ = std::clamp(static_cast<int>(std::sqrt(nt / 2.0)), 1, 2048);
   const Vec2 sz = box_.size();
@@ -191,6 +192,9 @@ bool BackgroundMeshControlSpace::triangleContains(int t, const Vec2& p) const {
 }
 
 int BackgroundMeshControlSpace::locateTriangle(const Vec2& p) const {
+  // Stale only inside refine() (exclusive access): the first query of a batch rebuilds
+  // the grid exactly as an eager rebuild after the batch would have.
+  if (locatorStale_) const_cast<BackgroundMeshControlSpace*>(this)->rebuildLocator();
   const Vec2 q = p.allFinite() ? Vec2(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) : box_.lo;
   const int gi = std::clamp(static_cast<int>((q.x() - box_.lo.x()) * gridInv_.x()), 0, gridSide_ - 1);
   const int gj = std::clamp(static_cast<int>((q.y() - box_.lo.y()) * gridInv_.y()), 0, gridSide_ - 1);
@@ -253,7 +257,7 @@ SymMt BackgroundMeshControlSpace::mtAt(const Vec2& p) const {
 
 Metric BackgroundMeshControlSpace::metricAt(const Vec2& p) const { return toMetric(mtAt(p)); }
 
-std::vector<std::array<int, 2>> BackgroundMeshControlSpace::controlEdges() const {
+std::vector<std::array<int, 2>> BackgroundMeshControlSpace::rawEdges(bool /*structure*/) const {
   std::vector<std::array<int, 2>> edges;
   edges.reserve(tri_.size() * 3 / 2 + 8);
   for (int t = 0; t < elementCount(); ++t)
@@ -263,7 +267,6 @@ std::vector<std::array<int, 2>> BackgroundMeshControlSpace::controlEdges() const
       const int a = tri_[t][(k + 1) % 3], b = tri_[t][(k + 2) % 3];
       edges.push_back({std::min(a, b), std::max(a, b)});
     }
-  std::sort(edges.begin(), edges.end());
   return edges;
 }
 
@@ -310,13 +313,14 @@ void BackgroundMeshControlSpace::refine(const ElementPredicate& pred, const NewN
     touchedFlag_.assign(tri_.size(), 0);
     for (int t : split)
       if (!touchedFlag_[t]) bisectImpl(t);  // a touched triangle is already a child: re-checked next batch
-    rebuildLocator();
+    locatorStale_ = true;  // rebuilt by the next query, or at the end
     if (onNewNodes) onNewNodes(nodesBefore, nodeCount());
     work = touched_;
     std::sort(work.begin(), work.end());
   }
   touched_.clear();
   touchedFlag_.clear();
+  if (locatorStale_) rebuildLocator();
 }
 
 std::vector<double> BackgroundMeshControlSpace::nodeElementSizes() const {

@@ -48,6 +48,29 @@ class BucketGrid {
     return false;
   }
 
+  // Calls fn(slot) for the slots (indices into items()) of the buckets overlapping b; the
+  // slots of one row of buckets are consecutive, so data stored in slot order is scanned
+  // contiguously.
+  template <class F>
+  void forSlots(const Box2& b, F&& fn) const {
+    int i0, i1, j0, j1;
+    if (!range(b, i0, i1, j0, j1)) return;
+    for (int j = j0; j <= j1; ++j)
+      for (int k = start_[j * side_ + i0], end = start_[j * side_ + i1 + 1]; k < end; ++k) fn(k);
+  }
+  // Same, stopping early when fn returns true; returns whether it did.
+  template <class F>
+  bool anySlot(const Box2& b, F&& fn) const {
+    int i0, i1, j0, j1;
+    if (!range(b, i0, i1, j0, j1)) return false;
+    for (int j = j0; j <= j1; ++j)
+      for (int k = start_[j * side_ + i0], end = start_[j * side_ + i1 + 1]; k < end; ++k)
+        if (fn(k)) return true;
+    return false;
+  }
+  // Item of each slot (bucket by bucket).
+  const std::vector<int>& items() const { return items_; }
+
  private:
   bool range(const Box2& b, int& i0, int& i1, int& j0, int& j1) const {
     if (b.hi.x() < domain_.lo.x() || b.hi.y() < domain_.lo.y() || b.lo.x() > domain_.hi.x() ||
@@ -83,27 +106,6 @@ Box2 pieceBox(const SourcePiece& s, double r) {
   return b;
 }
 
-// CSR adjacency of an edge list over n nodes.
-void edgeAdjacency(const std::vector<std::array<int, 2>>& edges, int n, std::vector<int>& start, std::vector<int>& nbr) {
-  start.assign(n + 1, 0);
-  for (const auto& e : edges) {
-    ++start[e[0] + 1];
-    ++start[e[1] + 1];
-  }
-  for (size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
-  nbr.resize(start.back());
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (const auto& e : edges) {
-    nbr[fill[e[0]]++] = e[1];
-    nbr[fill[e[1]]++] = e[0];
-  }
-}
-
-// Adjacency (CSR) of the free-node graph.
-void adjacency(const AdaptiveControlSpace& cs, std::vector<int>& start, std::vector<int>& nbr) {
-  edgeAdjacency(cs.controlEdges(), cs.nodeCount(), start, nbr);
-}
-
 bool elementNodesDiffer(const AdaptiveControlSpace& cs, const ControlElement& e, double threshold) {
   for (int i = 0; i < e.nodeCount; ++i)
     for (int j = i + 1; j < e.nodeCount; ++j)
@@ -112,6 +114,47 @@ bool elementNodesDiffer(const AdaptiveControlSpace& cs, const ControlElement& e,
 }
 
 }  // namespace
+
+std::vector<std::array<int, 2>> AdaptiveControlSpace::sortedEdges(bool structure) const {
+  std::vector<std::array<int, 2>> edges = rawEdges(structure);
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+void AdaptiveControlSpace::edgeGraph(bool structure, std::vector<int>& start, std::vector<int>& nbr) const {
+  const std::vector<std::array<int, 2>> edges = rawEdges(structure);
+  const int n = nodeCount();
+  start.assign(n + 1, 0);
+  for (const auto& e : edges) {
+    ++start[e[0] + 1];
+    ++start[e[1] + 1];
+  }
+  for (int i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<int> all(start.back());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const auto& e : edges) {
+    all[fill[e[0]]++] = e[1];
+    all[fill[e[1]]++] = e[0];
+  }
+  // Per node: sort the few neighbours (insertion sort) and drop repeats, compacting.
+  nbr.resize(all.size());
+  int out = 0;
+  for (int i = 0; i < n; ++i) {
+    const int b = start[i], e = start[i + 1];
+    for (int k = b + 1; k < e; ++k) {
+      const int v = all[k];
+      int m = k;
+      for (; m > b && all[m - 1] > v; --m) all[m] = all[m - 1];
+      all[m] = v;
+    }
+    start[i] = out;
+    for (int k = b; k < e; ++k)
+      if (k == b || all[k] != all[k - 1]) nbr[out++] = all[k];
+  }
+  start[n] = out;
+  nbr.resize(out);
+}
 
 std::vector<ControlNode> AdaptiveControlSpace::controlNodes() const {
   const std::vector<double> sizes = nodeElementSizes();
@@ -134,44 +177,82 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
     boxes.reserve(pieces.size());
     for (const auto& p : pieces) boxes.push_back(pieceBox(p, p.radius));
     const BucketGrid grid(box, boxes);
+    // The pieces' boxes and target sizes in slot order: the scans read contiguous memory.
+    struct Slot {
+      Box2 box;
+      double targetSize;
+      int piece;
+    };
+    std::vector<Slot> slots;
+    slots.reserve(grid.items().size());
+    for (int k : grid.items()) slots.push_back({boxes[k], pieces[k].targetSize, k});
     cs.refine(
         [&](const ControlElement& e) {
-          return grid.any(e.box, [&](int k) {
-            const SourcePiece& p = pieces[k];
-            return e.size > p.targetSize && segmentBoxDistance(p.a, p.b, e.box) <= p.radius;
+          return grid.anySlot(e.box, [&](int k) {
+            const Slot& sl = slots[k];
+            if (!(e.size > sl.targetSize)) return false;
+            // Boxes apart: the piece is farther than its radius (cheap exact rejection).
+            if (sl.box.hi.x() < e.box.lo.x() || sl.box.lo.x() > e.box.hi.x() || sl.box.hi.y() < e.box.lo.y() ||
+                sl.box.lo.y() > e.box.hi.y())
+              return false;
+            const SourcePiece& p = pieces[sl.piece];
+            return segmentBoxDistance(p.a, p.b, e.box) <= p.radius;
           });
         },
         nullptr);
   }
 
-  // (b) Weighted average of the sources reaching each free node.
+  // (b) Weighted average of the sources reaching each free node. Free nodes are binned,
+  // and their positions and sums kept in bin order (contiguous scans); every node still
+  // accumulates its sources in their order.
   const int n = cs.nodeCount();
   const double minSize = cs.minElementSize();
-  std::vector<Box2> nodeBoxes(n);
-  for (int i = 0; i < n; ++i) nodeBoxes[i] = pointBox(cs.nodePosition(i), 0.0);
+  std::vector<Box2> nodeBoxes;
+  std::vector<int> freeNodes;
+  nodeBoxes.reserve(n);
+  freeNodes.reserve(n);
+  for (int i = 0; i < n; ++i)
+    if (cs.nodeIsFree(i)) {
+      freeNodes.push_back(i);
+      nodeBoxes.push_back(pointBox(cs.nodePosition(i), 0.0));
+    }
   const BucketGrid nodeGrid(box, nodeBoxes);
-  std::vector<SymMt> sum(n, SymMt{0.0, 0.0, 0.0});
-  std::vector<double> wsum(n, 0.0);
+  const std::vector<int>& slotItem = nodeGrid.items();
+  const size_t slots = slotItem.size();
+  std::vector<Vec2> slotPos(slots);
+  for (size_t k = 0; k < slots; ++k) slotPos[k] = cs.nodePosition(freeNodes[slotItem[k]]);
+  std::vector<SymMt> sum(slots, SymMt{0.0, 0.0, 0.0});
+  std::vector<double> wsum(slots, 0.0);
   for (const SourcePiece& p : pieces) {
     const double reach = std::max(p.targetSize, minSize);
     const double soft = 0.25 * reach;
+    const double limit = p.radius + reach;
     const SymMt m = toSymMt(p.metric);
-    nodeGrid.any(pieceBox(p, p.radius + reach), [&](int i) {
-      if (!cs.nodeIsFree(i)) return false;
-      const double d = distanceToPiece(p, cs.nodePosition(i));
-      if (d > p.radius + reach) return false;
+    auto add = [&](size_t k, double d) {
       const double t = std::max(d - p.radius, 0.0) + soft;
       const double w = 1.0 / (t * t);
-      sum[i].a += w * m.a;
-      sum[i].b += w * m.b;
-      sum[i].c += w * m.c;
-      wsum[i] += w;
-      return false;
-    });
+      sum[k].a += w * m.a;
+      sum[k].b += w * m.b;
+      sum[k].c += w * m.c;
+      wsum[k] += w;
+    };
+    if (p.a == p.b) {  // a point: the distance as distanceToPiece() computes it
+      nodeGrid.forSlots(pieceBox(p, limit), [&](int k) {
+        const double dx = p.a.x() - slotPos[k].x(), dy = p.a.y() - slotPos[k].y();
+        const double d = std::sqrt(dx * dx + dy * dy);
+        if (!(d > limit)) add(k, d);
+      });
+    } else {
+      nodeGrid.forSlots(pieceBox(p, limit), [&](int k) {
+        const double d = distanceToPiece(p, slotPos[k]);
+        if (!(d > limit)) add(k, d);
+      });
+    }
   }
-  for (int i = 0; i < n; ++i) {
-    if (wsum[i] <= 0.0) continue;
-    const SymMt avg{sum[i].a / wsum[i], sum[i].b / wsum[i], sum[i].c / wsum[i]};
+  for (size_t k = 0; k < slots; ++k) {
+    if (wsum[k] <= 0.0) continue;
+    const int i = freeNodes[slotItem[k]];
+    const SymMt avg{sum[k].a / wsum[k], sum[k].b / wsum[k], sum[k].c / wsum[k]};
     const Metric m = toMetric(avg);
     cs.setNodeMetric(i, cs.nodeIsInitialized(i) ? intersect(cs.nodeMetric(i), m) : m);
   }
@@ -200,7 +281,7 @@ int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback) {
   int filled = 0;
   if (any) {
     std::vector<int> start, nbr;
-    adjacency(cs, start, nbr);
+    cs.edgeGraph(false, start, nbr);
     // Breadth-first fronts: the unknown free neighbours of the nodes known so far.
     std::vector<int> front, next;
     std::vector<char> inFront(n, 0);
@@ -324,9 +405,50 @@ void intersectControlSpace(AdaptiveControlSpace& cs1, const ControlSpace& cs2, c
         });
       },
       phase1);
-  // Phase 3.
+  // Phase 3: phase 1 again.
   phase1(0, cs1.nodeCount());
   cs1.applyConstraints();
+  if (!options.conservative) return;
+  // Phase 3, conservative: where the interpolation exceeds the exact minimum at sample
+  // points of an element (sizes larger by e), the element's free nodes shrink by 1 + e
+  // (the largest over their elements), so the result errs on the fine side; a few passes
+  // because Mt interpolation is not exactly monotone.
+  const std::vector<std::vector<int>> elements = cs1.elementNodes();
+  for (int pass = 0; pass < 3; ++pass) {
+    std::vector<double> grow(cs1.nodeCount(), 1.0);
+    bool any = false;
+    for (const std::vector<int>& el : elements) {
+      double worst = 1.0;
+      auto check = [&](const Vec2& p) {
+        const Metric r = cs1.metricAt(p);
+        const Metric t = intersect(original->metricAt(p), cs2.metricAt(p));
+        // Largest ratio of r's size to t's over all directions: sqrt(lmax(Mt_r^-1 M_t Mt_r^-1)).
+        const Mat2 ir = r.transform().inverse();
+        const Mat2 q = ir * t.tensor() * ir;
+        const double half = 0.5 * (q(0, 0) - q(1, 1)), off = 0.5 * (q(0, 1) + q(1, 0));
+        worst = std::max(worst, std::sqrt(std::max(0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off), 0.0)));
+      };
+      if (el.size() == 4) {  // leaf: a 4 x 4 grid of interior points
+        const Vec2 lo = cs1.nodePosition(el[0]), hi = cs1.nodePosition(el[2]);
+        for (int a = 0; a < 4; ++a)
+          for (int b = 0; b < 4; ++b)
+            check(Vec2(lo.x() + (a + 0.5) / 4 * (hi.x() - lo.x()), lo.y() + (b + 0.5) / 4 * (hi.y() - lo.y())));
+      } else {  // triangle: the points of barycentric coordinates in quarters, but vertices
+        const Vec2 A = cs1.nodePosition(el[0]), B = cs1.nodePosition(el[1]), C = cs1.nodePosition(el[2]);
+        for (int a = 0; a <= 4; ++a)
+          for (int b = 0; a + b <= 4; ++b)
+            if (a < 4 && b < 4 && a + b > 0) check((a * A + b * B + (4 - a - b) * C) / 4.0);
+        check((A + B + C) / 3.0);
+      }
+      if (worst <= 1.0 + 1e-12) continue;
+      any = true;
+      for (int v : el) grow[v] = std::max(grow[v], worst);
+    }
+    if (!any) break;
+    for (int i = 0; i < cs1.nodeCount(); ++i)
+      if (grow[i] > 1.0 && cs1.nodeIsFree(i)) cs1.setNodeMetric(i, cs1.nodeMetric(i).scaled(1.0 / grow[i]));
+    cs1.applyConstraints();
+  }
 }
 
 void intersectControlSpace(AdaptiveControlSpace& cs1, const AdaptiveControlSpace& cs2, const MinimumOptions& options) {
@@ -338,6 +460,29 @@ double gradationSlope(double ratio) {
           "gradation ratio dr must be finite and >= 1, got " + std::to_string(ratio));
   return 2.0 * (ratio - 1.0) / (ratio + 1.0);
 }
+
+namespace {
+
+// Entries of the tensor M = Mt Mt of Mt entries m.
+inline SymMt tensorOf(const SymMt& m) { return {m.a * m.a + m.b * m.b, m.b * (m.a + m.c), m.b * m.b + m.c * m.c}; }
+
+// The shrink limitGradation() asks of a (sqrt(l1) - 1 for the largest eigenvalue l1 of
+// Mt_a^-1 (M_i / s^2) Mt_a^-1, s = 1 + a_max |Mt_i u| = 1 + a_max d / h_i), on Mt entries
+// (mi2 = tensorOf(mi)), or -1 for a zero-length edge: the cheap test in front of it.
+inline double limitShrink(const SymMt& mi, const SymMt& mi2, const Vec2& u, const SymMt& a, double slope) {
+  const double wx = mi.a * u.x() + mi.b * u.y(), wy = mi.b * u.x() + mi.c * u.y();
+  const double len = std::sqrt(wx * wx + wy * wy);
+  if (!(len > 0.0)) return -1.0;
+  const double inv = 1.0 / ((a.a * a.c - a.b * a.b) * (1.0 + slope * len));
+  const double ia = a.c * inv, ib = -a.b * inv, ic = a.a * inv;
+  const double x00 = ia * mi2.a + ib * mi2.b, x01 = ia * mi2.b + ib * mi2.c;
+  const double x10 = ib * mi2.a + ic * mi2.b, x11 = ib * mi2.b + ic * mi2.c;
+  const double n00 = x00 * ia + x01 * ib, n01 = x00 * ib + x01 * ic, n11 = x10 * ib + x11 * ic;
+  const double mean = 0.5 * (n00 + n11), half = 0.5 * (n00 - n11);
+  return std::sqrt(std::max(mean + std::sqrt(half * half + n01 * n01), 0.0)) - 1.0;
+}
+
+}  // namespace
 
 bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj, double slope, double tolerance) {
   const Vec2 u = pj - pi;
@@ -361,6 +506,76 @@ bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj
 
 namespace {
 
+// Max-heap of node indices by key (ties: smaller index first) with the position of each
+// node, so a node whose key changes moves in place instead of leaving a stale entry.
+class NodeHeap {
+ public:
+  explicit NodeHeap(int n) : key_(n, 0.0), pos_(n, -1) {}
+  bool empty() const { return heap_.empty(); }
+  // Inserts node i with key k, or moves it to key k when present.
+  void set(int i, double k) {
+    key_[i] = k;
+    if (pos_[i] < 0) {
+      pos_[i] = static_cast<int>(heap_.size());
+      heap_.push_back(i);
+    }
+    down(up(pos_[i]));
+  }
+  // Removes and returns the top node.
+  int pop() {
+    const int top = heap_.front();
+    pos_[top] = -1;
+    const int last = heap_.back();
+    heap_.pop_back();
+    if (!heap_.empty()) {
+      heap_[0] = last;
+      pos_[last] = 0;
+      down(0);
+    }
+    return top;
+  }
+
+ private:
+  bool before(int a, int b) const { return key_[a] > key_[b] || (key_[a] == key_[b] && a < b); }
+  void place(int at, int i) {
+    heap_[at] = i;
+    pos_[i] = at;
+  }
+  int up(int at) {
+    const int i = heap_[at];
+    while (at > 0) {
+      const int parent = (at - 1) / 2;
+      if (!before(i, heap_[parent])) break;
+      place(at, heap_[parent]);
+      at = parent;
+    }
+    place(at, i);
+    return at;
+  }
+  void down(int at) {
+    const int i = heap_[at];
+    const int size = static_cast<int>(heap_.size());
+    for (;;) {
+      int child = 2 * at + 1;
+      if (child >= size) break;
+      if (child + 1 < size && before(heap_[child + 1], heap_[child])) ++child;
+      if (!before(heap_[child], i)) break;
+      place(at, heap_[child]);
+      at = child;
+    }
+    place(at, i);
+  }
+
+  std::vector<double> key_;
+  std::vector<int> pos_;
+  std::vector<int> heap_;
+};
+
+// Largest eigenvalue of Mt: the inverse of the smallest requested size.
+inline double sizeKey(const SymMt& m) {
+  const double half = 0.5 * (m.a - m.c);
+  return 0.5 * (m.a + m.c) + std::sqrt(half * half + m.b * m.b);
+}
 
 // One work-set pass over the graph (start, nbr) from `seeds` (see smoothGradation);
 // nodes it changes get changed[i] = 1.
@@ -368,53 +583,39 @@ int gradationWorkSet(AdaptiveControlSpace& cs, const std::vector<int>& start, co
                      const std::vector<int>& seeds, double slope, double tolerance, std::vector<char>& changed) {
   const int n = cs.nodeCount();
   // Ordered by the node's smallest requested size (smallest first, as in Dijkstra): a
-  // node is mostly final when it is taken, so few nodes are re-queued. Stale heap entries
-  // are skipped by comparing with the node's current key.
-  auto key = [&](int i) {
-    const SymMt& m = cs.nodeMt(i);
-    const double half = 0.5 * (m.a - m.c);
-    return 0.5 * (m.a + m.c) + std::sqrt(half * half + m.b * m.b);  // largest eigenvalue of Mt
-  };
-  using Entry = std::pair<double, int>;
-  auto cmp = [](const Entry& x, const Entry& y) { return x.first < y.first || (x.first == y.first && x.second > y.second); };
-  std::vector<Entry> heap;
-  std::vector<double> current(n, 0.0);
-  std::vector<char> queued(n, 0);
-  heap.reserve(seeds.size());
-  for (int i : seeds)
-    if (!queued[i]) {
-      queued[i] = 1;
-      current[i] = key(i);
-      heap.push_back({current[i], i});
-    }
-  std::make_heap(heap.begin(), heap.end(), cmp);
+  // node is mostly final when it is taken, so few nodes are re-queued.
+  NodeHeap heap(n);
+  for (int i : seeds) heap.set(i, sizeKey(cs.nodeMt(i)));
   int updates = 0;
+  auto enqueue = [&](int j, const SymMt& mj) {
+    changed[j] = 1;
+    heap.set(j, sizeKey(mj));
+  };
   while (!heap.empty()) {
-    std::pop_heap(heap.begin(), heap.end(), cmp);
-    const Entry top = heap.back();
-    heap.pop_back();
-    const int i = top.second;
-    if (!queued[i] || top.first != current[i]) continue;  // stale entry
-    queued[i] = 0;
-    const Metric mi = cs.nodeMetric(i);
+    const int i = heap.pop();
+    const SymMt mi = cs.nodeMt(i);
+    const SymMt mi2 = tensorOf(mi);
+    const Metric mim = cs.nodeMetric(i);
     const Vec2 pi = cs.nodePosition(i);
     for (int k = start[i]; k < start[i + 1]; ++k) {
       const int j = nbr[k];
+      const Vec2& pj = cs.nodePosition(j);
+      // Clearly within the limit (margin far above the rounding between the two
+      // computations): skip; otherwise limitGradation() decides and computes, so the
+      // result is the same as with limitGradation() alone.
+      if (limitShrink(mi, mi2, pj - pi, cs.nodeMt(j), slope) < tolerance - 1e-12) continue;
       Metric mj = cs.nodeMetric(j);
-      if (limitGradation(mi, pi, mj, cs.nodePosition(j), slope, tolerance)) {
+      if (limitGradation(mim, pi, mj, pj, slope, tolerance)) {
         cs.setNodeMetric(j, mj);
         ++updates;
-        changed[j] = 1;
-        current[j] = key(j);
-        queued[j] = 1;
-        heap.push_back({current[j], j});
-        std::push_heap(heap.begin(), heap.end(), cmp);
+        enqueue(j, cs.nodeMt(j));
       }
     }
   }
   return updates;
 }
 
+// Mt of hanging node h from its masters' current values.
 SymMt interpolateHanging(const AdaptiveControlSpace& cs, const AdaptiveControlSpace::HangingNode& h) {
   SymMt r{0.0, 0.0, 0.0};
   for (int j = 0; j < 3; ++j) {
@@ -436,7 +637,7 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
   const auto hanging =
       options.throughHangingNodes ? cs.hangingNodes() : std::vector<AdaptiveControlSpace::HangingNode>{};
   std::vector<int> start, nbr;
-  edgeAdjacency(hanging.empty() ? cs.controlEdges() : cs.structureEdges(), n, start, nbr);
+  cs.edgeGraph(!hanging.empty(), start, nbr);
   std::vector<int> seeds;
   for (int i = 0; i < n; ++i)
     if (!hanging.empty() || cs.nodeIsFree(i)) seeds.push_back(i);
@@ -548,7 +749,7 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
   }
   if (!settled) {
     std::vector<int> fstart, fnbr;
-    edgeAdjacency(cs.controlEdges(), n, fstart, fnbr);
+    cs.edgeGraph(false, fstart, fnbr);
     seeds.clear();
     for (int i = 0; i < n; ++i)
       if (cs.nodeIsFree(i)) seeds.push_back(i);

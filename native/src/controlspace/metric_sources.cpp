@@ -61,6 +61,7 @@ double segmentPointDistance(const Vec2& a, const Vec2& b, const Vec2& p) {
 }  // namespace
 
 double segmentBoxDistance(const Vec2& a, const Vec2& b, const Box2& box) {
+  if (a == b) return pointBoxDistance(a, box);  // a point: no clipping or corners needed
   if (segmentMeetsBox(a, b, box)) return 0.0;
   double d = std::min(pointBoxDistance(a, box), pointBoxDistance(b, box));
   const Vec2 corners[4] = {box.lo, {box.hi.x(), box.lo.y()}, box.hi, {box.lo.x(), box.hi.y()}};

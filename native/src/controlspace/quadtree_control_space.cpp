@@ -347,9 +347,6 @@ void QuadtreeControlSpace::applyConstraints() {
   }
 }
 
-std::vector<std::array<int, 2>> QuadtreeControlSpace::controlEdges() const { return sideEdges(true); }
-
-std::vector<std::array<int, 2>> QuadtreeControlSpace::structureEdges() const { return sideEdges(false); }
 
 std::vector<AdaptiveControlSpace::HangingNode> QuadtreeControlSpace::hangingNodes() const {
   rebuildConstraints();
@@ -360,9 +357,11 @@ std::vector<AdaptiveControlSpace::HangingNode> QuadtreeControlSpace::hangingNode
   return out;
 }
 
-std::vector<std::array<int, 2>> QuadtreeControlSpace::sideEdges(bool freeOnly) const {
+std::vector<std::array<int, 2>> QuadtreeControlSpace::rawEdges(bool structure) const {
   rebuildConstraints();
+  const bool freeOnly = !structure;
   std::vector<std::array<int, 2>> edges;
+  edges.reserve(static_cast<size_t>(leafCount_) * (nodesPerLeaf_ == 4 ? 5 : 9));
   for (int c = 0; c < cellCount(); ++c) {
     if (child_[c] >= 0) continue;
     const int s = cellSpan(level_[c]);
@@ -390,8 +389,6 @@ std::vector<std::array<int, 2>> QuadtreeControlSpace::sideEdges(bool freeOnly) c
       }
     }
   }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   return edges;
 }
 

@@ -87,10 +87,16 @@ class AdaptiveControlSpace : public ControlSpace {
   virtual void applyConstraints() {}
   // Pairs (i < j) of free nodes adjacent along the structure's edges, sorted: the graph
   // of gradation smoothing and extrapolation.
-  virtual std::vector<std::array<int, 2>> controlEdges() const = 0;
+  std::vector<std::array<int, 2>> controlEdges() const { return sortedEdges(false); }
   // Pairs (i < j) of nodes adjacent along element sides, hanging nodes included, sorted
   // (the edges of the structure as drawn; equals controlEdges() without hanging nodes).
-  virtual std::vector<std::array<int, 2>> structureEdges() const { return controlEdges(); }
+  std::vector<std::array<int, 2>> structureEdges() const { return sortedEdges(true); }
+  // The same pairs (i < j) unsorted, possibly repeated: controlEdges() (structure false)
+  // or structureEdges() (true) before sorting.
+  virtual std::vector<std::array<int, 2>> rawEdges(bool structure) const = 0;
+  // Adjacency (CSR) of controlEdges() or structureEdges(): the neighbours of node i are
+  // nbr[start[i]] .. nbr[start[i + 1] - 1], increasing (no global sort of the edges).
+  void edgeGraph(bool structure, std::vector<int>& start, std::vector<int>& nbr) const;
   // A hanging node: Mt(node) = sum_k weights[k] Mt(masters[k]).
   struct HangingNode {
     int node;
@@ -119,6 +125,9 @@ class AdaptiveControlSpace : public ControlSpace {
   // All nodes with their metrics and local element sizes (free nodes only: hanging ones
   // carry no information of their own). Used as discrete sources by the minimum.
   std::vector<ControlNode> controlNodes() const;
+
+ private:
+  std::vector<std::array<int, 2>> sortedEdges(bool structure) const;
 
  protected:
   static constexpr std::uint8_t kInitialized = 1;

@@ -47,7 +47,7 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
   // True when p lies in the closed triangle t.
   bool triangleContains(int t, const Vec2& p) const;
 
-  std::vector<std::array<int, 2>> controlEdges() const override;
+  std::vector<std::array<int, 2>> rawEdges(bool structure) const override;
   int elementCount() const override { return static_cast<int>(tri_.size()); }
   std::vector<std::vector<int>> elementNodes() const override;
   void refine(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) override;
@@ -88,6 +88,9 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
   int gridSide_ = 1;
   Vec2 gridInv_;
   std::vector<int> grid_;
+  // True between a refine() batch and the next query (or refine()'s end): the grid is
+  // rebuilt lazily, so batches nobody queries in do not pay for it.
+  mutable bool locatorStale_ = false;
 };
 
 }  // namespace anisomesh

@@ -49,8 +49,7 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   int locateLeaf(const Vec2& p) const;
 
   void applyConstraints() override;
-  std::vector<std::array<int, 2>> controlEdges() const override;
-  std::vector<std::array<int, 2>> structureEdges() const override;
+  std::vector<std::array<int, 2>> rawEdges(bool structure) const override;
   std::vector<HangingNode> hangingNodes() const override;
   int elementCount() const override { return leafCount_; }
   std::vector<std::vector<int>> elementNodes() const override;
@@ -107,7 +106,6 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   void growMap();
   void splitLeafImpl(int cell);
   void rebuildConstraints() const;
-  std::vector<std::array<int, 2>> sideEdges(bool freeOnly) const;
   ControlElement elementOf(int cell) const;
 
   QuadtreeOptions options_;
