@@ -512,6 +512,8 @@ class NodeHeap {
  public:
   explicit NodeHeap(int n) : key_(n, 0.0), pos_(n, -1) {}
   bool empty() const { return heap_.empty(); }
+  // The node pop() would return now (the heap must not be empty).
+  int top() const { return heap_.front(); }
   // Inserts node i with key k, or moves it to key k when present.
   void set(int i, double k) {
     key_[i] = k;
@@ -593,6 +595,20 @@ int gradationWorkSet(AdaptiveControlSpace& cs, const std::vector<int>& start, co
   };
   while (!heap.empty()) {
     const int i = heap.pop();
+    // The walk goes in size order, so node i and its neighbours lie anywhere in memory:
+    // request their data (and the next candidate's adjacency) together instead of
+    // waiting on one cache miss after another. Timing only; results are unchanged.
+    for (int k = start[i]; k < start[i + 1]; ++k) {
+      __builtin_prefetch(&cs.nodePosition(nbr[k]));
+      __builtin_prefetch(&cs.nodeMt(nbr[k]));
+    }
+    if (!heap.empty()) {
+      const int next = heap.top();
+      __builtin_prefetch(&start[next]);
+      __builtin_prefetch(&nbr[start[next]]);
+      __builtin_prefetch(&cs.nodeMt(next));
+      __builtin_prefetch(&cs.nodePosition(next));
+    }
     const SymMt mi = cs.nodeMt(i);
     const SymMt mi2 = tensorOf(mi);
     const Metric mim = cs.nodeMetric(i);
