@@ -4,4 +4,5 @@
 #include "anisomesh/core/types.h"
 #include "anisomesh/metric/metric.h"
 #include "anisomesh/controlspace/control_space.h"
+#include "anisomesh/controlspace/minimum_control_space.h"
 #include "anisomesh/mesh/mesh.h"
