@@ -83,6 +83,11 @@ const registry = typeof FinalizationRegistry === 'function' ? new FinalizationRe
 /** A control space being inspected or edited; free it with dispose(). */
 class ControlSpace {
   #handle;
+  /** The embind handle, for minimumControlSpace() (internal). */
+  static handleOf(cs) {
+    if (!(cs instanceof ControlSpace)) throw argError('expected a ControlSpace from createControlSpace() or minimumControlSpace()');
+    return cs.#live();
+  }
   constructor(handle) {
     this.#handle = handle;
     registry?.register(this, handle, this);
@@ -254,6 +259,29 @@ export function wrapCore(core) {
         throw e;
       }
       return new ControlSpace(handle);
+    },
+    /** The exact minimum (intersection) of two or more control spaces, evaluated per query. */
+    minimumControlSpace(...spaces) {
+      if (spaces.length < 2) throw argError('minimumControlSpace: expected at least two control spaces');
+      let acc = null;
+      try {
+        for (let i = 1; i < spaces.length; ++i) {
+          const handle = new core.ControlSpaceHandle();
+          try {
+            const first = acc ? ControlSpace.handleOf(acc) : ControlSpace.handleOf(spaces[0]);
+            unwrap(handle.buildMinimum(first, ControlSpace.handleOf(spaces[i])));
+          } catch (e) {
+            handle.delete();
+            throw e;
+          }
+          acc?.dispose();  // the new minimum shares what it needs
+          acc = new ControlSpace(handle);
+        }
+      } catch (e) {
+        acc?.dispose();
+        throw e;
+      }
+      return acc;
     },
   });
 }

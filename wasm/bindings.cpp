@@ -508,6 +508,17 @@ class ControlSpaceHandle {
       return out;
     });
   }
+  // The exact minimum of two built control spaces (MinimumControlSpace): the inputs are
+  // shared, so disposing them later leaves this one valid.
+  val buildMinimum(const ControlSpaceHandle& a, const ControlSpaceHandle& b) {
+    return guarded([&] {
+      require(a.cs_ != nullptr && b.cs_ != nullptr, ErrorCode::InvalidArgument, "minimum of a control space that is not built");
+      cs_ = std::make_shared<MinimumControlSpace>(std::vector<std::shared_ptr<const ControlSpace>>{a.cs_, b.cs_});
+      val out = val::object();
+      out.set("ok", true);
+      return out;
+    });
+  }
   // Metrics at n points (xy interleaved): Float64Array of m11, m12, m22 per point.
   val metricsAt(val xy) {
     return guarded([&] {
@@ -540,7 +551,8 @@ class ControlSpaceHandle {
   val toVtk() {
     return guarded([&] {
       const auto* a = dynamic_cast<const AdaptiveControlSpace*>(cs_.get());
-      require(a != nullptr, ErrorCode::InvalidArgument, "only an adaptive control space (quadtree or background mesh) exports to VTK");
+      require(a != nullptr, ErrorCode::InvalidArgument,
+              "only an adaptive control space (quadtree or background mesh) exports to VTK, not a minimum");
       val out = val::object();
       out.set("text", controlSpaceToVtk(*a));
       return out;
@@ -548,7 +560,7 @@ class ControlSpaceHandle {
   }
 
  private:
-  std::unique_ptr<ControlSpace> cs_;
+  std::shared_ptr<const ControlSpace> cs_;
 };
 
 std::string version() { return "0.1.0"; }
@@ -585,6 +597,7 @@ EMSCRIPTEN_BINDINGS(anisomesh) {
   emscripten::class_<ControlSpaceHandle>("ControlSpaceHandle")
       .constructor<>()
       .function("build", &ControlSpaceHandle::build)
+      .function("buildMinimum", &ControlSpaceHandle::buildMinimum)
       .function("metricsAt", &ControlSpaceHandle::metricsAt)
       .function("inspect", &ControlSpaceHandle::inspect)
       .function("toVtk", &ControlSpaceHandle::toVtk);

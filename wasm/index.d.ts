@@ -177,6 +177,13 @@ export interface Anisomesh {
   evaluateExpression(text: string, u?: number, v?: number, options?: { variables?: [string, string] }): number;
   /** Builds a case's control space (its controlSpace, sources and domain). */
   createControlSpace(c: Case | string): ControlSpace;
+  /**
+   * The exact minimum (metric intersection) of two or more control spaces, evaluated at each
+   * query: its unit ellipse lies inside every input's. The inputs stay owned by the caller
+   * (disposing them does not invalidate the result); inspect() samples it on a grid; toVtk()
+   * throws (it has no structure of its own).
+   */
+  minimumControlSpace(...spaces: ControlSpace[]): ControlSpace;
 }
 
 /** Loads the WebAssembly core (once; later calls return the same instance). */

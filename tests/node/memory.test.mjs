@@ -24,7 +24,12 @@ test('1,000 mesh-and-dispose cycles leave the heap flat', { timeout: 300000 }, (
     am.caseStats();                                          // ...and freed by it
     const cs = am.createControlSpace(square);
     cs.metricsAt(new Float64Array([0.5, 0.5]));
+    const other = am.createControlSpace(square);
+    const both = am.minimumControlSpace(cs, other);  // shares its inputs: freed with the last owner
     cs.dispose();
+    other.dispose();
+    both.metricsAt(new Float64Array([0.5, 0.5]));
+    both.dispose();
     am.writeMesh(mesh, i % 2 ? 'vtk' : 'mesh');
     try { am.meshCase({ domain: 'bad' }); } catch { /* error paths must free too */ }
     try { am.metric({ h1: -1, h2: 1 }); } catch { /* ditto */ }

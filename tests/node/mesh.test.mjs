@@ -113,6 +113,40 @@ test('control space: queries, inspection, dispose', () => {
   assert.throws(() => cs.metricAt([0, 0]), { code: 'INVALID_ARGUMENT', message: /after dispose/ });
 });
 
+test('minimumControlSpace: the exact intersection of the inputs at random points, valid after they are disposed', () => {
+  const a = am.createControlSpace(example('point_source'));
+  const b = am.createControlSpace(example('boundary_layer'));
+  const c = am.createControlSpace(example('expression_field'));
+  const min = am.minimumControlSpace(a, b, c);
+  // Deterministic pseudo-random points in the unit square (inside every input's box).
+  let seed = 7;
+  const rand = () => ((seed = (seed * 1103515245 + 12345) % 2147483648) / 2147483648);
+  const xy = new Float64Array(2 * 2000).map(() => 0.02 + 0.96 * rand());
+  const [ma, mb, mc, mm] = [a, b, c, min].map((cs) => cs.metricsAt(xy));
+  // Size along direction d: 1 / sqrt(d^T M d). The minimum's is <= every input's.
+  const size = (m, i, t) => 1 / Math.sqrt(m[3 * i] * Math.cos(t) ** 2 + 2 * m[3 * i + 1] * Math.cos(t) * Math.sin(t) + m[3 * i + 2] * Math.sin(t) ** 2);
+  let equalToAnInput = 0;
+  for (let i = 0; i < xy.length / 2; i++) {
+    for (let k = 0; k < 16; k++) {
+      const t = (k * Math.PI) / 16;
+      for (const m of [ma, mb, mc]) assert.ok(size(mm, i, t) <= size(m, i, t) * (1 + 1e-9), `point ${i}, angle ${t}`);
+    }
+    // And it is the intersection computed pairwise by the metric helper.
+    const pick = (m) => ({ m11: m[3 * i], m12: m[3 * i + 1], m22: m[3 * i + 2] });
+    const exact = am.intersectMetrics(am.intersectMetrics(pick(ma), pick(mb)), pick(mc));
+    assert.ok(Math.abs(exact.m11 - mm[3 * i]) <= 1e-9 * exact.m11 && Math.abs(exact.m22 - mm[3 * i + 2]) <= 1e-9 * exact.m22, `point ${i}`);
+    if ([ma, mb, mc].some((m) => m[3 * i] === mm[3 * i] && m[3 * i + 1] === mm[3 * i + 1] && m[3 * i + 2] === mm[3 * i + 2])) equalToAnInput++;
+  }
+  assert.ok(equalToAnInput > 0, 'where one input is the smallest, the minimum is that input');
+  a.dispose(); b.dispose(); c.dispose();
+  assert.deepEqual(min.metricsAt(xy.subarray(0, 20)), mm.subarray(0, 30));
+  assert.equal(min.inspect({ sampleGrid: 8 }).samples.length, 64);  // no structure: sampled on a grid
+  assert.throws(() => min.toVtk(), { code: 'INVALID_ARGUMENT', message: /adaptive/ });
+  min.dispose();
+  assert.throws(() => am.minimumControlSpace(min), { code: 'INVALID_ARGUMENT' });
+  assert.throws(() => am.minimumControlSpace({}, {}), { code: 'INVALID_ARGUMENT', message: /ControlSpace/ });
+});
+
 test('bad input becomes AnisomeshError naming the problem; the module keeps working', () => {
   const check = (fn, code, message) => assert.throws(fn, (e) => {
     assert.ok(e instanceof AnisomeshError, String(e));
