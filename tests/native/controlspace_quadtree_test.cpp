@@ -7,17 +7,13 @@
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/controlspace/quadtree_control_space.h"
 #include "anisomesh/core/error.h"
+#include "controlspace_test_util.h"
 
 using namespace anisomesh;
 
 namespace {
 
-Box2 box(double x0, double y0, double x1, double y1) {
-  Box2 b;
-  b.lo = Vec2(x0, y0);
-  b.hi = Vec2(x1, y1);
-  return b;
-}
+using anisomesh::test_util::box;
 
 // A tree refined irregularly around a point (deep leaves next to coarse ones).
 QuadtreeControlSpace irregularTree(QuadtreeInterpolation interp) {
