@@ -148,6 +148,34 @@ test('bad input shows an inline error next to its control, keeps the mesh, and r
   await page.close();
 });
 
+test('a surface preset with quads draws its quads in both views', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('sphere'));
+  const triangleOnly = await page.evaluate(() => window.anisomeshApp.state.lastStats.triangles);
+  await settle(page, () => { const a = window.anisomeshApp; a.state.case.options.quads = true; a.edited(0); });
+  const r = await page.evaluate(() => {
+    const a = window.anisomeshApp;
+    const m = a.views.mesh;
+    return {
+      error: a.state.lastError,
+      stats: a.state.lastStats,
+      drawnQuads: m.quads.length / 4,
+      surface: m.dimension === 3,
+      cov2: a.coverage('2d'),
+      cov3: a.coverage('3d'),
+    };
+  });
+  assert.equal(r.error, null, JSON.stringify(r.error));
+  assert.ok(r.surface);
+  assert.ok(r.stats.quads > 0, `quads: ${r.stats.quads}`);
+  assert.equal(r.drawnQuads, r.stats.quads);
+  assert.ok(r.stats.triangles < triangleOnly, `${r.stats.triangles} triangles left of ${triangleOnly}`);
+  assert.ok(r.cov2 > 0.05 && r.cov3 > 0.05, `coverage ${r.cov2} ${r.cov3}`);
+  assert.equal(await statValue(page, 'quads'), String(r.stats.quads));
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
 test('the state is kept in the URL and a shared link restores it', async () => {
   const { page, errors } = await openPage(env.browser, env.url);
   await settle(page, () => window.anisomeshApp.loadPreset('point-source'));
