@@ -55,6 +55,9 @@ constexpr double kSplitLength = 1.41421356237309505;   // longer inner edges are
 constexpr double kSplitMinQuality = 0.4;               // ... unless a triangle gets worse than this (and than before)
 constexpr double kSmoothSkipQuality = 0.9;             // balls whose worst triangle is better are not smoothed
 constexpr double kSmoothMinGain = 0.005;               // smaller gains of the worst triangle are not taken
+// Smoothing makes no ring edge shorter than this (unless it already is): a little above
+// 1/sqrt2, as the vertex-averaged Mt overestimates the length integral in a graded metric.
+constexpr double kSmoothMinLength = 0.715;
 
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
 
@@ -1004,9 +1007,9 @@ int Mesher::smoothPass(std::vector<int>& touched) {
       target += len > 0.0 ? Vec2(vx_[ring[k]].p + dv / len) : p;
     }
     target /= static_cast<double>(deg);
-    // Nor may a ring edge end up shorter than kCollapseLength (or than the shortest now):
+    // Nor may a ring edge end up shorter than kSmoothMinLength (or than the shortest now):
     // smoothing would otherwise leave short edges that no later pass collapses.
-    double shortest = kCollapseLength;
+    double shortest = kSmoothMinLength;
     for (size_t k = 0; k < deg; ++k) shortest = std::min(shortest, edgeM[k].length(p - vx_[ring[k]].p));
     // Candidates in order of preference: unit-length target (edge lengths), halfway to it,
     // then the ring centroid (Laplacian; the same in any constant metric) and halfway to
