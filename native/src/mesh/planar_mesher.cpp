@@ -1000,17 +1000,17 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     }
     Vec2 target(0.0, 0.0);
     double longest = kSplitLength;  // no ring edge may end up longer (or longer than the longest now)
+    // Nor shorter than kSmoothMinLength (or than the shortest now): smoothing would
+    // otherwise leave short edges that no later pass collapses.
+    double shortest = kSmoothMinLength;
     for (size_t k = 0; k < deg; ++k) {
       const Vec2 dv = p - vx_[ring[k]].p;
       const double len = edgeM[k].length(dv);
       longest = std::max(longest, len);
+      shortest = std::min(shortest, len);
       target += len > 0.0 ? Vec2(vx_[ring[k]].p + dv / len) : p;
     }
     target /= static_cast<double>(deg);
-    // Nor may a ring edge end up shorter than kSmoothMinLength (or than the shortest now):
-    // smoothing would otherwise leave short edges that no later pass collapses.
-    double shortest = kSmoothMinLength;
-    for (size_t k = 0; k < deg; ++k) shortest = std::min(shortest, edgeM[k].length(p - vx_[ring[k]].p));
     // Candidates in order of preference: unit-length target (edge lengths), halfway to it,
     // then the ring centroid (Laplacian; the same in any constant metric) and halfway to
     // it as fallbacks for the worst balls; the first that improves the worst triangle wins.
