@@ -57,9 +57,11 @@ TEST(MeshAnisotropic, BoundaryLayerAspectRatio100) {
   EXPECT_NEAR(boundaryLayer({0.3, 0.5}).aspectRatio(), 100.0, 1e-9);
   Mesh m;
   const QualityReport r = meshAndReport(cs, "boundary layer", &m);
-  EXPECT_GE(r.edgesWithinSqrt2, 0.98);
-  EXPECT_GE(r.qualityMean, 0.93);
-  EXPECT_GE(r.qualityMin, 0.4);
+  // With the final short-edge collapses and smoothing that never shortens an edge below
+  // 1/sqrt2: 0.994 of the edges, mean Q 0.957, min Q 0.796.
+  EXPECT_GE(r.edgesWithinSqrt2, 0.99);
+  EXPECT_GE(r.qualityMean, 0.95);
+  EXPECT_GE(r.qualityMin, 0.7);
   Mesh again;
   meshAndReport(cs, "boundary layer (again)", &again);
   EXPECT_TRUE(sameMesh(m, again));

@@ -44,10 +44,20 @@ constexpr double kSwapSkipQuality = 0.97;              // pairs whose worse tria
 constexpr double kCollapseLength = 0.70710678118654752;  // shorter edges are collapsed
 constexpr double kCollapseMaxLength = 1.3;             // ... unless a new edge would be longer
 constexpr double kCollapseMinQuality = 0.4;            // ... or a triangle worse than this (or than before)
+// Final short-edge rounds (after the adaptation loop): the edges still shorter than
+// kCollapseLength are collapsed where the merged vertex can sit at unit length from its
+// ring, new edges up to kFinalCollapseMaxLength (just under sqrt2) but no triangle below
+// kFinalCollapseMinQuality (or below the worst one before).
+constexpr double kFinalCollapseMaxLength = 1.41;
+constexpr double kFinalCollapseMinQuality = 0.75;
+constexpr int kFinalCollapseRounds = 2;
 constexpr double kSplitLength = 1.41421356237309505;   // longer inner edges are split at their midpoint
 constexpr double kSplitMinQuality = 0.4;               // ... unless a triangle gets worse than this (and than before)
 constexpr double kSmoothSkipQuality = 0.9;             // balls whose worst triangle is better are not smoothed
 constexpr double kSmoothMinGain = 0.005;               // smaller gains of the worst triangle are not taken
+// Smoothing makes no ring edge shorter than this (unless it already is): a little above
+// 1/sqrt2, as the vertex-averaged Mt overestimates the length integral in a graded metric.
+constexpr double kSmoothMinLength = 0.715;
 
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
 
@@ -114,6 +124,7 @@ class Mesher {
   int smoothPass(std::vector<int>& touched);
   int lengthPass(const std::vector<int>* list, std::vector<int>& touched);
   bool tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touched);
+  int shortEdgePass(const std::vector<int>* list, std::vector<int>& touched);
   bool trySplit(int t, int i, std::vector<int>& touched);
 
   // ---- metric helpers ----
@@ -165,6 +176,10 @@ class Mesher {
   std::vector<std::uint32_t> stamp_, queued_;
   std::vector<double> tq_;  // triangle metric quality (improvement stage)
   std::vector<int> colBall_, colRing_, colBallB_;
+  // tryCollapse limits; colOptimal_: a midpoint collapse puts the merged vertex at the point
+  // its ring sees at unit metric length (as smoothing does) instead of the midpoint.
+  double colMaxLength_ = kCollapseMaxLength, colMinQuality_ = kCollapseMinQuality;
+  bool colOptimal_ = false;
   std::vector<std::uint8_t> vdirty_;  // improvement: vertex whose surroundings changed
 
   double estimate_ = 0.0;
@@ -985,10 +1000,14 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     }
     Vec2 target(0.0, 0.0);
     double longest = kSplitLength;  // no ring edge may end up longer (or longer than the longest now)
+    // Nor shorter than kSmoothMinLength (or than the shortest now): smoothing would
+    // otherwise leave short edges that no later pass collapses.
+    double shortest = kSmoothMinLength;
     for (size_t k = 0; k < deg; ++k) {
       const Vec2 dv = p - vx_[ring[k]].p;
       const double len = edgeM[k].length(dv);
       longest = std::max(longest, len);
+      shortest = std::min(shortest, len);
       target += len > 0.0 ? Vec2(vx_[ring[k]].p + dv / len) : p;
     }
     target /= static_cast<double>(deg);
@@ -1010,7 +1029,10 @@ int Mesher::smoothPass(std::vector<int>& touched) {
       }
       if (!(after > bestQ)) continue;
       bool fits = true;
-      for (size_t k = 0; k < deg && fits; ++k) fits = edgeM[k].length(cand - vx_[ring[k]].p) <= longest;
+      for (size_t k = 0; k < deg && fits; ++k) {
+        const double l = edgeM[k].length(cand - vx_[ring[k]].p);
+        fits = l <= longest && l >= shortest;
+      }
       if (!fits) continue;
       bool valid = true;
       for (size_t k = 0; k < deg && valid; ++k)
@@ -1185,7 +1207,7 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
   auto quality = [&](int r, int c) {
     return metricTriangleQuality(SymMt::average3(mb, vx_[r].m, vx_[c].m), pb, vx_[r].p, vx_[c].p);
   };
-  auto tooLong = [&](int r) { return SymMt::average2(mb, vx_[r].m).length(vx_[r].p - pb) > kCollapseMaxLength; };
+  auto tooLong = [&](int r) { return SymMt::average2(mb, vx_[r].m).length(vx_[r].p - pb) > colMaxLength_; };
   double before = std::numeric_limits<double>::infinity();
   for (const int bt : ball) before = std::min(before, tq_[bt]);
   std::vector<int>& ballB = colBallB_;
@@ -1204,8 +1226,29 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
       if (u < 0 || u == s0) break;
     }
     if (u != s0) return false;
+    if (colOptimal_) {
+      // The mean over the merged ring (a's and b's) of the points at unit metric length
+      // from each ring vertex towards the midpoint.
+      const Vec2 pm = pb;
+      Vec2 target(0.0, 0.0);
+      int count = 0;
+      auto add = [&](int r) {
+        const Vec2 d = pm - vx_[r].p;
+        const double len = SymMt::average2(mb, vx_[r].m).length(d);
+        target += len > 0.0 ? Vec2(vx_[r].p + d / len) : pm;
+        ++count;
+      };
+      for (const int r : ring)
+        if (r != b) add(r);
+      for (const int bt : ballB) {
+        const auto& tv = tri_[bt].v;
+        add(tv[next3(tv[0] == b ? 0 : (tv[1] == b ? 1 : 2))]);
+      }
+      pb = target / static_cast<double>(count);
+      mb = queryMetric(pb);
+    }
   }
-  const double floor = std::min(before, kCollapseMinQuality);
+  const double floor = std::min(before, colMinQuality_);
   for (int k = 0; k < deg; ++k) {
     const int r = ring[k];
     if (r != b && tooLong(r)) return false;
@@ -1372,6 +1415,44 @@ int Mesher::lengthPass(const std::vector<int>* list, std::vector<int>& touched) 
   return changed;
 }
 
+// Final rounds over every edge still shorter than kCollapseLength (the adaptation loop's
+// collapses keep new edges under kCollapseMaxLength, which leaves some where fronts
+// met): collapse onto the unit-length point of the merged ring, else the midpoint, else
+// either end, with new edges up to kFinalCollapseMaxLength and no triangle below
+// kFinalCollapseMinQuality (or below the worst one before).
+// Scans every triangle, or only those in list (whose edges changed since the last scan).
+int Mesher::shortEdgePass(const std::vector<int>* list, std::vector<int>& touched) {
+  colMaxLength_ = kFinalCollapseMaxLength;
+  colMinQuality_ = kFinalCollapseMinQuality;
+  int changed = 0;
+  const int n = list ? static_cast<int>(list->size()) : static_cast<int>(tri_.size());
+  for (int k = 0; k < n; ++k) {
+    const int t = list ? (*list)[k] : k;
+    if (tri_[t].v[0] < 0) continue;
+    for (int i = 0; i < 3; ++i) {
+      const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
+      if ((!list && u > w) || cons(t, i)) continue;  // full scan: each edge once (from the side where u < w)
+      if (!(SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p) < kCollapseLength)) continue;
+      const bool inner = !vbnd_[u] && !vbnd_[w];
+      bool done = false;
+      if (inner) {
+        colOptimal_ = true;
+        done = tryCollapse(u, w, true, touched);
+        colOptimal_ = false;
+      }
+      done = done || (inner && tryCollapse(u, w, true, touched)) || tryCollapse(u, w, false, touched) ||
+             tryCollapse(w, u, false, touched);
+      if (done) {
+        ++changed;
+        break;  // t changed or is gone
+      }
+    }
+  }
+  colMaxLength_ = kCollapseMaxLength;
+  colMinQuality_ = kCollapseMinQuality;
+  return changed;
+}
+
 void Mesher::improve() {
   vdirty_.assign(vx_.size(), 1);
   const int nt = static_cast<int>(tri_.size());
@@ -1428,6 +1509,25 @@ void Mesher::improve() {
     if (resized == 0 && moved == 0) break;  // converged
   }
   if (opt_.improvementPasses > 0) swaps(6);
+  // Final short-edge rounds, each followed by swaps and a smoothing of the changed balls;
+  // the first round scans every edge, the next ones the edges that changed.
+  for (int round = 0; round < kFinalCollapseRounds && opt_.improvementPasses > 0; ++round) {
+    work.clear();
+    changed.clear();
+    const int collapsed = shortEdgePass(round == 0 ? nullptr : &scan, work);
+    if (collapsed == 0) break;
+    dedupe(work);
+    changed.insert(changed.end(), work.begin(), work.end());
+    swaps(6);
+    work.clear();
+    smoothPass(work);
+    dedupe(work);
+    for (const int t : work) tq_[t] = triQuality(tri_[t].v[0], tri_[t].v[1], tri_[t].v[2]);
+    changed.insert(changed.end(), work.begin(), work.end());
+    swaps(6);
+    scan.swap(changed);
+    dedupe(scan);
+  }
 }
 
 // ---------------------------------------------------------------------------------

@@ -10,7 +10,9 @@
 // triangle in the metric. Then an adaptation loop in the metric (MMG/BAMG style): edge
 // swaps maximizing the worse triangle's quality, collapse of edges shorter than 1/sqrt2
 // and split of inner edges longer than sqrt2, node smoothing (metric queried at the new
-// position); boundary points and edges are never moved or split. Topological
+// position, no edge made longer than sqrt2 or shorter than 1/sqrt2), then final rounds
+// collapsing the edges still shorter than 1/sqrt2 (merged vertex at unit length from its
+// ring); boundary points and edges are never moved or split. Topological
 // decisions use exact predicates (predicates.h). Output is deterministic bit for bit.
 //
 // Output: boundary points first (loop by loop, input order, unchanged), then inner
