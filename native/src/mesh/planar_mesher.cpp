@@ -122,6 +122,8 @@ class Mesher {
   void improve();
   int swapSweep(const std::vector<int>& work, std::vector<int>& next);
   int smoothPass(std::vector<int>& touched);
+  template <class EdgeOp>
+  int scanEdges(const std::vector<int>* list, EdgeOp&& op);
   int lengthPass(const std::vector<int>* list, std::vector<int>& touched);
   bool tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touched);
   int shortEdgePass(const std::vector<int>* list, std::vector<int>& touched);
@@ -1384,11 +1386,12 @@ bool Mesher::trySplit(int t, int i, std::vector<int>& touched) {
   return true;
 }
 
-// Collapses edges shorter than kCollapseLength (fronts meeting leave some), removing an
-// inner end point (onto the midpoint when both ends are inner, else onto the other end),
-// and splits inner edges longer than kSplitLength (new edges wait for the next pass).
-// Scans every triangle, or only those in list (whose edges changed since the last scan).
-int Mesher::lengthPass(const std::vector<int>* list, std::vector<int>& touched) {
+// Calls op(t, i, u, w) on the unconstrained edges (u, w) opposite vertex i of every live
+// triangle t, or of those in list; a full scan visits each edge once (from the side where
+// u < w). op returns true when it changed the mesh around t, which ends t's scan.
+// Returns how many calls changed the mesh.
+template <class EdgeOp>
+int Mesher::scanEdges(const std::vector<int>* list, EdgeOp&& op) {
   int changed = 0;
   const int n = list ? static_cast<int>(list->size()) : static_cast<int>(tri_.size());
   for (int k = 0; k < n; ++k) {
@@ -1396,23 +1399,30 @@ int Mesher::lengthPass(const std::vector<int>* list, std::vector<int>& touched) 
     if (tri_[t].v[0] < 0) continue;
     for (int i = 0; i < 3; ++i) {
       const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
-      if ((!list && u > w) || cons(t, i)) continue;  // full scan: each edge once (from the side where u < w)
-      const double len = SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p);
-      bool done = false;
-      if (len < kCollapseLength) {
-        const bool inner = !vbnd_[u] && !vbnd_[w];
-        done = (inner && tryCollapse(u, w, true, touched)) || tryCollapse(u, w, false, touched) ||
-               tryCollapse(w, u, false, touched);
-      } else if (len > kSplitLength && tri_[t].n[i] >= 0) {
-        done = trySplit(t, i, touched);
-      }
-      if (done) {
+      if ((!list && u > w) || cons(t, i)) continue;
+      if (op(t, i, u, w)) {
         ++changed;
         break;  // t changed or is gone
       }
     }
   }
   return changed;
+}
+
+// Collapses edges shorter than kCollapseLength (fronts meeting leave some), removing an
+// inner end point (onto the midpoint when both ends are inner, else onto the other end),
+// and splits inner edges longer than kSplitLength (new edges wait for the next pass).
+// Scans every triangle, or only those in list (whose edges changed since the last scan).
+int Mesher::lengthPass(const std::vector<int>* list, std::vector<int>& touched) {
+  return scanEdges(list, [&](int t, int i, int u, int w) {
+    const double len = SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p);
+    if (len < kCollapseLength) {
+      const bool inner = !vbnd_[u] && !vbnd_[w];
+      return (inner && tryCollapse(u, w, true, touched)) || tryCollapse(u, w, false, touched) ||
+             tryCollapse(w, u, false, touched);
+    }
+    return len > kSplitLength && tri_[t].n[i] >= 0 && trySplit(t, i, touched);
+  });
 }
 
 // Final rounds over every edge still shorter than kCollapseLength (the adaptation loop's
@@ -1424,30 +1434,18 @@ int Mesher::lengthPass(const std::vector<int>* list, std::vector<int>& touched) 
 int Mesher::shortEdgePass(const std::vector<int>* list, std::vector<int>& touched) {
   colMaxLength_ = kFinalCollapseMaxLength;
   colMinQuality_ = kFinalCollapseMinQuality;
-  int changed = 0;
-  const int n = list ? static_cast<int>(list->size()) : static_cast<int>(tri_.size());
-  for (int k = 0; k < n; ++k) {
-    const int t = list ? (*list)[k] : k;
-    if (tri_[t].v[0] < 0) continue;
-    for (int i = 0; i < 3; ++i) {
-      const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
-      if ((!list && u > w) || cons(t, i)) continue;  // full scan: each edge once (from the side where u < w)
-      if (!(SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p) < kCollapseLength)) continue;
-      const bool inner = !vbnd_[u] && !vbnd_[w];
-      bool done = false;
-      if (inner) {
-        colOptimal_ = true;
-        done = tryCollapse(u, w, true, touched);
-        colOptimal_ = false;
-      }
-      done = done || (inner && tryCollapse(u, w, true, touched)) || tryCollapse(u, w, false, touched) ||
-             tryCollapse(w, u, false, touched);
-      if (done) {
-        ++changed;
-        break;  // t changed or is gone
-      }
+  const int changed = scanEdges(list, [&](int, int, int u, int w) {
+    if (!(SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p) < kCollapseLength)) return false;
+    const bool inner = !vbnd_[u] && !vbnd_[w];
+    bool done = false;
+    if (inner) {
+      colOptimal_ = true;
+      done = tryCollapse(u, w, true, touched);
+      colOptimal_ = false;
     }
-  }
+    return done || (inner && tryCollapse(u, w, true, touched)) || tryCollapse(u, w, false, touched) ||
+           tryCollapse(w, u, false, touched);
+  });
   colMaxLength_ = kCollapseMaxLength;
   colMinQuality_ = kCollapseMinQuality;
   return changed;
