@@ -16,12 +16,7 @@ using namespace anisomesh;
 
 namespace {
 
-Box2 unitBox() {
-  Box2 b;
-  b.lo = Vec2(0.0, 0.0);
-  b.hi = Vec2(1.0, 1.0);
-  return b;
-}
+Box2 unitBox() { return Box2{Vec2(0.0, 0.0), Vec2(1.0, 1.0)}; }
 
 Metric boundaryLayer(const Vec2& p) {
   return Metric::fromSizes(0.0, 0.1, 0.001 + 0.1 * std::abs(p.y() - 0.5));

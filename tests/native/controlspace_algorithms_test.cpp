@@ -16,12 +16,7 @@ using namespace anisomesh;
 
 namespace {
 
-Box2 unitBox() {
-  Box2 b;
-  b.lo = Vec2(0.0, 0.0);
-  b.hi = Vec2(1.0, 1.0);
-  return b;
-}
+Box2 unitBox() { return Box2{Vec2(0.0, 0.0), Vec2(1.0, 1.0)}; }
 
 std::unique_ptr<AdaptiveControlSpace> makeSpace(bool quadtree, int maxLevel = 9,
                                                 std::optional<Metric> initial = std::nullopt) {

@@ -16,10 +16,7 @@ namespace {
 
 using anisomesh::test_util::box;
 
-Metric boundaryLayer(const Vec2& p) {
-  const double hn = 0.001 + 0.1 * std::abs(p.y() - 0.5);
-  return Metric::fromSizes(0.0, 0.1, hn);
-}
+using anisomesh::test_util::boundaryLayer;
 
 // Conformity: every interior edge is shared by exactly two triangles with matching
 // neighbour links, all triangles counter-clockwise, total area = box area.
@@ -147,15 +144,7 @@ TEST(ControlSpaceBackground, AdaptsToAnisotropicBoundaryLayer) {
     c.threshold = 0.3;
     c.sampleThreshold = 0.05;
     insertMetricFunction(bg, boundaryLayer, c);
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> u(0.0, 1.0), ang(0.0, 2 * M_PI);
-    double worst = 0.0;
-    for (int k = 0; k < 10000; ++k) {
-      const Vec2 p(u(rng), u(rng));
-      const Vec2 d(std::cos(ang(rng)), std::sin(ang(rng)));
-      const double l = bg.metricAt(p).length(d), la = boundaryLayer(p).length(d);
-      worst = std::max(worst, std::abs(l / la - 1.0));
-    }
+    const double worst = anisomesh::test_util::worstLengthError(bg, boundaryLayer);
     EXPECT_LT(worst, 0.1) << "triangles " << bg.elementCount();
     EXPECT_GT(bg.metricAt(Vec2(0.3, 0.5)).aspectRatio(), 90.0);
     expectValidTriangulation(bg);

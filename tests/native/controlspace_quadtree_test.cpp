@@ -65,10 +65,7 @@ double maxFieldError(const QuadtreeControlSpace& qt, int kind, int samples) {
   return err;
 }
 
-Metric boundaryLayer(const Vec2& p) {
-  const double hn = 0.001 + 0.1 * std::abs(p.y() - 0.5);
-  return Metric::fromSizes(0.0, 0.1, hn);
-}
+using anisomesh::test_util::boundaryLayer;
 
 }  // namespace
 
@@ -191,15 +188,7 @@ TEST(ControlSpaceQuadtree, AdaptsToAnisotropicBoundaryLayer) {
     c.sampleThreshold = 0.05;
     insertMetricFunction(qt, boundaryLayer, c);
     EXPECT_TRUE(qt.isBalanced());
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> u(0.0, 1.0), ang(0.0, 2 * M_PI);
-    double worst = 0.0;
-    for (int k = 0; k < 10000; ++k) {
-      const Vec2 p(u(rng), u(rng));
-      const Vec2 d(std::cos(ang(rng)), std::sin(ang(rng)));
-      const double l = qt.metricAt(p).length(d), la = boundaryLayer(p).length(d);
-      worst = std::max(worst, std::abs(l / la - 1.0));
-    }
+    const double worst = anisomesh::test_util::worstLengthError(qt, boundaryLayer);
     EXPECT_LT(worst, 0.1) << "leaves " << qt.elementCount();
     // Strong anisotropy is captured at the layer.
     EXPECT_GT(qt.metricAt(Vec2(0.3, 0.5)).aspectRatio(), 90.0);

@@ -5,6 +5,8 @@
 #include "anisomesh/core/error.h"
 #include "anisomesh/geometry/discretize.h"
 
+#include "geometry_test_util.h"
+
 using namespace anisomesh;
 
 namespace {
@@ -15,14 +17,7 @@ AnalyticControlSpace gradedInX() {
   return AnalyticControlSpace(bigBox(), [](const Vec2& p) { return Metric::isotropic(0.05 + 0.1 * std::abs(p.x())); });
 }
 
-Contour rectangle(double x0, double y0, double x1, double y1) {
-  Contour c;
-  c.add(std::make_shared<LineCurve>(Vec2(x0, y0), Vec2(x1, y0), 1));
-  c.add(std::make_shared<LineCurve>(Vec2(x1, y0), Vec2(x1, y1), 2));
-  c.add(std::make_shared<LineCurve>(Vec2(x1, y1), Vec2(x0, y1), 3));
-  c.add(std::make_shared<LineCurve>(Vec2(x0, y1), Vec2(x0, y0), 4));
-  return c;
-}
+using anisomesh::test_util::rectangle;
 
 }  // namespace
 

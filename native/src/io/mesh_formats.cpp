@@ -13,6 +13,7 @@ namespace {
 
 using io_detail::appendInt;
 using io_detail::appendNumber;
+using io_detail::appendXyzLine;
 using io_detail::TokenStream;
 
 void setPlanarIfFlat(Mesh* mesh) {
@@ -44,12 +45,7 @@ std::string writeVtk(const Mesh& mesh) {
   std::string out = "# vtk DataFile Version 3.0\nanisomesh\nASCII\nDATASET UNSTRUCTURED_GRID\n";
   out += "POINTS " + std::to_string(mesh.points.size()) + " double\n";
   for (const Vec3& p : mesh.points) {
-    appendNumber(&out, p.x());
-    out.push_back(' ');
-    appendNumber(&out, p.y());
-    out.push_back(' ');
-    appendNumber(&out, p.z());
-    out.push_back('\n');
+    appendXyzLine(&out, p);
   }
   const size_t cells = mesh.edges.size() + mesh.triangles.size() + mesh.quads.size();
   const size_t size = 3 * mesh.edges.size() + 4 * mesh.triangles.size() + 5 * mesh.quads.size();
@@ -177,12 +173,7 @@ std::string writeObj(const Mesh& mesh) {
   std::string out = "# anisomesh\n";
   for (const Vec3& p : mesh.points) {
     out += "v ";
-    appendNumber(&out, p.x());
-    out.push_back(' ');
-    appendNumber(&out, p.y());
-    out.push_back(' ');
-    appendNumber(&out, p.z());
-    out.push_back('\n');
+    appendXyzLine(&out, p);
   }
   auto element = [&out](const char* tag, const int* v, int n) {
     out += tag;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/types.h"
 
 namespace anisomesh {
 namespace io_detail {
@@ -137,6 +138,16 @@ inline void appendNumber(std::string* out, double v) {
   char buf[32];
   const int n = std::snprintf(buf, sizeof buf, "%.17g", v);
   out->append(buf, size_t(n));
+}
+
+// Appends "x y z\n" (each as appendNumber writes it).
+inline void appendXyzLine(std::string* out, const Vec3& p) {
+  appendNumber(out, p.x());
+  out->push_back(' ');
+  appendNumber(out, p.y());
+  out->push_back(' ');
+  appendNumber(out, p.z());
+  out->push_back('\n');
 }
 
 inline void appendInt(std::string* out, long long v) { out->append(std::to_string(v)); }

@@ -459,19 +459,35 @@ inline double powInt(double x, int n, bool negative) {
 
 inline double exp(double x) { return detail::expKernel(x, 0.0); }
 
-inline double log(double x) {
+namespace detail {
+// log and log2 of x <= 0, NaN or +inf (then true, with the result in *out).
+inline bool logSpecialCase(double x, double* out) {
   if (!(x > 0.0)) {
-    if (x == 0.0) return -HUGE_VAL;
-    return std::nan("");  // x < 0 or NaN
+    *out = x == 0.0 ? -HUGE_VAL : std::nan("");  // x < 0 or NaN
+    return true;
   }
-  if (std::isinf(x)) return x;
-  int e;
-  double m = detail::frexpBits(x, &e);
+  if (std::isinf(x)) {
+    *out = x;
+    return true;
+  }
+  return false;
+}
+// x = 2^e (1 + f) with 1 + f in [sqrt(1/2), sqrt(2)); returns f.
+inline double logReduce(double x, int* e) {
+  double m = frexpBits(x, e);
   if (m < 0.70710678118654752) {
     m *= 2.0;
-    --e;
+    --*e;
   }
-  const double f = m - 1.0;
+  return m - 1.0;
+}
+}  // namespace detail
+
+inline double log(double x) {
+  double special;
+  if (detail::logSpecialCase(x, &special)) return special;
+  int e;
+  const double f = detail::logReduce(x, &e);
   const double s = f / (2.0 + f);
   const double z = s * s;
   const double r = detail::logSeries(z);
@@ -481,19 +497,11 @@ inline double log(double x) {
 }
 
 inline double log2(double x) {
-  if (!(x > 0.0)) {
-    if (x == 0.0) return -HUGE_VAL;
-    return std::nan("");
-  }
-  if (std::isinf(x)) return x;
+  double special;
+  if (detail::logSpecialCase(x, &special)) return special;
   int e;
-  double m = detail::frexpBits(x, &e);
-  if (m < 0.70710678118654752) {
-    m *= 2.0;
-    --e;
-  }
   // log(1+f) = hi + lo with hi truncated to 21 bits so that hi * kIvHi (33 bits) is exact.
-  const double f = m - 1.0;
+  const double f = detail::logReduce(x, &e);
   const double s = f / (2.0 + f);
   const double z = s * s;
   const double r = detail::logSeries(z);
