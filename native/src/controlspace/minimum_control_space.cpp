@@ -23,14 +23,6 @@ MinimumControlSpace::MinimumControlSpace(std::vector<std::shared_ptr<const Contr
           "minimum control space inputs have no common rectangle");
 }
 
-bool metricInside(const Metric& a, const Metric& b) {
-  // a inside b when every eigenvalue of Mt_b^-1 M_a Mt_b^-1 is >= 1 (as in intersect()).
-  const Mat2 ib = b.transform().inverse();
-  const Mat2 q = ib * a.tensor() * ib;
-  const double half = 0.5 * (q(0, 0) - q(1, 1)), off = 0.5 * (q(0, 1) + q(1, 0));
-  return 0.5 * (q(0, 0) + q(1, 1)) - std::sqrt(half * half + off * off) >= 1.0;
-}
-
 Metric MinimumControlSpace::metricAt(const Vec2& p) const {
   const size_t k = inputs_.size();
   if (k == 1) return inputs_.front()->metricAt(p);

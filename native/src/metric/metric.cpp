@@ -125,6 +125,12 @@ Metric intersect(const Metric& a, const Metric& b) {
   return Metric::fromTransformUnchecked(sqrtSpd(m));
 }
 
+bool metricInside(const Metric& a, const Metric& b) {
+  // Same test as intersect(b, a)'s first branch.
+  const Mat2 ib = b.transform().inverse();
+  return symEigen(ib * a.tensor() * ib).l2 >= 1.0;
+}
+
 Metric interpolate(const Metric& a, const Metric& b, double t) {
   return Metric::fromTransformUnchecked((1.0 - t) * a.transform() + t * b.transform());
 }

@@ -31,7 +31,4 @@ class MinimumControlSpace : public ControlSpace {
   Box2 bounds_;
 };
 
-// True when a's unit ball lies inside b's (a requests sizes <= b's in every direction).
-bool metricInside(const Metric& a, const Metric& b);
-
 }  // namespace anisomesh

@@ -63,6 +63,10 @@ Mat2 sqrtSpd(const Mat2& m);
 // by simultaneous reduction (per common eigenvector, the larger metric value).
 Metric intersect(const Metric& a, const Metric& b);
 
+// True when a's unit ball lies inside b's (a requests sizes <= b's in every direction):
+// exactly when intersect(b, a) returns a unchanged.
+bool metricInside(const Metric& a, const Metric& b);
+
 // Linear interpolation of Mt: (1 - t) Mt_a + t Mt_b, t in [0, 1].
 Metric interpolate(const Metric& a, const Metric& b, double t);
 
