@@ -238,99 +238,31 @@ MeshFormat formatFromName(const std::string& name) {
   throw Error(ErrorCode::InvalidArgument, "unknown mesh format '" + name + "' (expected mesh, vtk or obj)");
 }
 
-// Distinct element edges (a < b pairs), sorted as the core's quality report sorts them.
-std::vector<std::uint32_t> uniqueEdges(const Mesh& mesh) {
-  std::vector<std::uint64_t> keys;
-  keys.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
-  auto add = [&](int a, int b) {
-    if (a > b) std::swap(a, b);
-    keys.push_back((std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b));
-  };
-  for (const auto& t : mesh.triangles)
-    for (int i = 0; i < 3; ++i) add(t[i], t[(i + 1) % 3]);
-  for (const auto& q : mesh.quads)
-    for (int i = 0; i < 4; ++i) add(q[i], q[(i + 1) % 4]);
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  std::vector<std::uint32_t> out(2 * keys.size());
-  for (size_t i = 0; i < keys.size(); ++i) {
-    out[2 * i] = std::uint32_t(keys[i] >> 32);
-    out[2 * i + 1] = std::uint32_t(keys[i] & 0xffffffffu);
+// Per-edge metric lengths, per-element metric qualities (triangles, then quads) and the
+// smallest requested size per vertex, as the quality report measures them (for the
+// colouring, the histograms and the lifted 3D view), with the distinct edges; without a
+// control space (surface runs) only the edges.
+val meshMeasures(const Mesh& mesh, const ControlSpace* cs) {
+  ElementMeasures items;
+  if (cs)
+    measureQuality(mesh, *cs, &items);
+  else
+    items.edges = distinctElementEdges(mesh);
+  std::vector<std::uint32_t> edges(2 * items.edges.size());
+  for (size_t e = 0; e < items.edges.size(); ++e) {
+    edges[2 * e] = std::uint32_t(items.edges[e][0]);
+    edges[2 * e + 1] = std::uint32_t(items.edges[e][1]);
   }
-  return out;
-}
-
-// Per-edge metric lengths and per-element metric qualities (triangles, then quads) for
-// the colouring and the histograms, with the formulas of mesh/quality.cpp (Mt averaged
-// over an edge's / element's vertices) so they agree with the quality report; and the
-// smallest requested size per vertex (for the lifted 3D view). Planar runs only.
-val meshMeasures(const Mesh& mesh, const ControlSpace& cs, const std::vector<std::uint32_t>& edges) {
-  const size_t nv = mesh.points.size();
-  std::vector<Vec2> uv(nv);
-  std::vector<double> mt(3 * nv);
-  std::vector<float> vertexH(nv);
-  for (size_t i = 0; i < nv; ++i) {
-    uv[i] = mesh.params.size() == nv ? mesh.params[i] : Vec2(mesh.points[i].head<2>());
-    const Metric m = cs.metricAt(uv[i]);
-    const Mat2& t = m.transform();
-    mt[3 * i] = t(0, 0);
-    mt[3 * i + 1] = 0.5 * (t(0, 1) + t(1, 0));
-    mt[3 * i + 2] = t(1, 1);
-    const Mat2 M = m.tensor();
-    const double a = M(0, 0), b = M(0, 1), c = M(1, 1);
-    vertexH[i] = float(1.0 / std::sqrt(0.5 * (a + c) + std::hypot(0.5 * (a - c), b)));
-  }
-  const size_t ne = edges.size() / 2;
-  std::vector<float> edgeLength(ne);
-  for (size_t e = 0; e < ne; ++e) {
-    const size_t a = edges[2 * e], b = edges[2 * e + 1];
-    const double ma = 0.5 * (mt[3 * a] + mt[3 * b]), mb = 0.5 * (mt[3 * a + 1] + mt[3 * b + 1]),
-                 mc = 0.5 * (mt[3 * a + 2] + mt[3 * b + 2]);
-    const double dx = uv[b].x() - uv[a].x(), dy = uv[b].y() - uv[a].y();
-    edgeLength[e] = float(std::hypot(ma * dx + mb * dy, mb * dx + mc * dy));
-  }
-  const size_t nt = mesh.triangles.size(), nq = mesh.quads.size();
-  std::vector<float> quality(nt + nq);
-  for (size_t t = 0; t < nt; ++t) {
-    const auto& v = mesh.triangles[t];
-    double a = 0, b = 0, c = 0;
-    for (int k = 0; k < 3; ++k) {
-      a += mt[3 * v[k]] / 3;
-      b += mt[3 * v[k] + 1] / 3;
-      c += mt[3 * v[k] + 2] / 3;
-    }
-    double ex[3], ey[3];
-    for (int j = 0; j < 3; ++j) {
-      const Vec2 d = uv[v[(j + 1) % 3]] - uv[v[j]];
-      ex[j] = a * d.x() + b * d.y();
-      ey[j] = b * d.x() + c * d.y();
-    }
-    const double cross = ex[0] * -ey[2] - ey[0] * -ex[2];
-    const double sum = ex[0] * ex[0] + ey[0] * ey[0] + ex[1] * ex[1] + ey[1] * ey[1] + ex[2] * ex[2] + ey[2] * ey[2];
-    quality[t] = float(sum > 0 ? 2 * std::sqrt(3.0) * cross / sum : 0.0);
-  }
-  for (size_t q = 0; q < nq; ++q) {
-    const auto& v = mesh.quads[q];
-    double a = 0, b = 0, c = 0;
-    for (int k = 0; k < 4; ++k) {
-      a += 0.25 * mt[3 * v[k]];
-      b += 0.25 * mt[3 * v[k] + 1];
-      c += 0.25 * mt[3 * v[k] + 2];
-    }
-    double qq = 1;
-    for (int j = 0; j < 4; ++j) {
-      const Vec2 d1 = uv[v[(j + 1) & 3]] - uv[v[j]], d2 = uv[v[(j + 3) & 3]] - uv[v[j]];
-      const double e1x = a * d1.x() + b * d1.y(), e1y = b * d1.x() + c * d1.y();
-      const double e2x = a * d2.x() + b * d2.y(), e2y = b * d2.x() + c * d2.y();
-      const double sum = e1x * e1x + e1y * e1y + e2x * e2x + e2y * e2y;
-      qq = std::min(qq, sum > 0 ? 2 * (e1x * e2y - e1y * e2x) / sum : 0.0);
-    }
-    quality[nt + q] = float(qq);
-  }
+  auto asFloat = [](const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); };
   val out = val::object();
-  out.set("edgeLength", typedCopy(edgeLength.data(), edgeLength.size()));
-  out.set("quality", typedCopy(quality.data(), quality.size()));
-  out.set("vertexH", typedCopy(vertexH.data(), vertexH.size()));
+  out.set("edges", typedCopy(edges.data(), edges.size()));
+  if (cs) {
+    const std::vector<float> edgeLength = asFloat(items.edgeLength), quality = asFloat(items.quality),
+                             vertexH = asFloat(items.vertexMinSize);
+    out.set("edgeLength", typedCopy(edgeLength.data(), edgeLength.size()));
+    out.set("quality", typedCopy(quality.data(), quality.size()));
+    out.set("vertexH", typedCopy(vertexH.data(), vertexH.size()));
+  }
   return out;
 }
 
@@ -370,10 +302,7 @@ val meshCaseJson(std::string jsonText, val options) {
     out.set("vertexMetrics", run.vertexMetrics.empty() ? val::null() : typedCopy(run.vertexMetrics.data(), run.vertexMetrics.size()));
     const double t2 = emscripten_get_now();
     if (measures) {
-      const std::vector<std::uint32_t> edges = uniqueEdges(run.mesh);
-      val m = run.finalSpace ? meshMeasures(run.mesh, *run.finalSpace, edges) : val::object();
-      m.set("edges", typedCopy(edges.data(), edges.size()));
-      out.set("measures", m);
+      out.set("measures", meshMeasures(run.mesh, run.finalSpace.get()));
     }
     const double t3 = emscripten_get_now();
     // Milliseconds: the case run (parse, control space, section 3.2 rounds, meshing, and

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -36,6 +37,38 @@ TEST(MeshQuality, ReportOnAHandMadeMesh) {
   EXPECT_TRUE(j["quality"].contains("histogram"));
   EXPECT_TRUE(j["edgeLength"].contains("fractionWithinSqrt2"));
   EXPECT_TRUE(j["timings"].contains("insertion"));
+}
+
+// The per-item measures are what the report summarizes: same edges, same means, the
+// hand-made mesh's known values item by item, the smallest requested size per vertex.
+TEST(MeshQuality, PerItemMeasuresAgreeWithTheReport) {
+  Mesh m;
+  const double h = std::sqrt(3.0) / 2.0;
+  m.params = {{0, 0}, {1, 0}, {0.5, h}, {2, 0}, {3, 0}, {3, 1}, {2, 1}};
+  for (const auto& p : m.params) m.points.emplace_back(p.x(), p.y(), 0.0);
+  m.triangles = {{0, 1, 2}, {0, 1, 3}, {1, 0, 2}};
+  m.quads = {{3, 4, 5, 6}};
+  UniformControlSpace cs({{-1, -1}, {4, 2}}, Metric::fromSizes(0.0, 0.5, 0.25));
+  ElementMeasures items;
+  const QualityReport r = measureQuality(m, cs, &items);
+  ASSERT_EQ(items.edges.size(), static_cast<size_t>(r.edges));
+  EXPECT_EQ(items.edges, distinctElementEdges(m));
+  for (size_t e = 0; e + 1 < items.edges.size(); ++e) {
+    EXPECT_LT(items.edges[e][0], items.edges[e][1]);
+    EXPECT_LT(items.edges[e], items.edges[e + 1]);
+  }
+  ASSERT_EQ(items.edgeLength.size(), items.edges.size());
+  ASSERT_EQ(items.quality.size(), 4u);
+  const double lmean = std::accumulate(items.edgeLength.begin(), items.edgeLength.end(), 0.0) / items.edgeLength.size();
+  EXPECT_NEAR(lmean, r.edgeLengthMean, 1e-12);
+  EXPECT_NEAR(std::accumulate(items.quality.begin(), items.quality.end(), 0.0) / 4, r.qualityMean, 1e-12);
+  EXPECT_NEAR(items.quality[2], r.triangleQualityMin, 1e-12);  // the inverted triangle
+  // Edge 0-1 (length 1 along x, size 0.5 along x): metric length 2.
+  const auto it = std::find(items.edges.begin(), items.edges.end(), std::array<int, 2>{0, 1});
+  ASSERT_NE(it, items.edges.end());
+  EXPECT_NEAR(items.edgeLength[it - items.edges.begin()], 2.0, 1e-12);
+  ASSERT_EQ(items.vertexMinSize.size(), 7u);
+  for (double s : items.vertexMinSize) EXPECT_NEAR(s, 0.25, 1e-12);
 }
 
 // Edge lengths are measured in the metric: a mesh built for h = 0.1 measured against

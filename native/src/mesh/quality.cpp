@@ -19,19 +19,8 @@ void addToHistogram(QualityReport& r, double q) {
 
 }  // namespace
 
-QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace) {
-  QualityReport r;
-  const int nv = mesh.vertexCount();
-  r.vertices = nv;
-  r.triangles = static_cast<int>(mesh.triangles.size());
-  r.quads = static_cast<int>(mesh.quads.size());
-  std::vector<Vec2> uv(nv);
-  for (int v = 0; v < nv; ++v)
-    uv[v] = mesh.params.size() == static_cast<size_t>(nv) ? mesh.params[v] : Vec2(mesh.points[v].x(), mesh.points[v].y());
-  std::vector<SymMt> mt(nv);
-  for (int v = 0; v < nv; ++v) mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
-
-  // Distinct edges of all elements.
+std::vector<std::array<int, 2>> distinctElementEdges(const Mesh& mesh) {
+  // Packed (a, b) keys sort as the pairs do.
   std::vector<std::uint64_t> keys;
   keys.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
   auto addEdge = [&](int a, int b) {
@@ -44,23 +33,55 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace)
     for (int i = 0; i < 4; ++i) addEdge(q[i], q[(i + 1) % 4]);
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  r.edges = static_cast<int>(keys.size());
+  std::vector<std::array<int, 2>> edges(keys.size());
+  for (size_t i = 0; i < keys.size(); ++i)
+    edges[i] = {static_cast<int>(keys[i] >> 32), static_cast<int>(keys[i] & 0xffffffffu)};
+  return edges;
+}
+
+QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace, ElementMeasures* perItem) {
+  QualityReport r;
+  const int nv = mesh.vertexCount();
+  r.vertices = nv;
+  r.triangles = static_cast<int>(mesh.triangles.size());
+  r.quads = static_cast<int>(mesh.quads.size());
+  std::vector<Vec2> uv(nv);
+  for (int v = 0; v < nv; ++v)
+    uv[v] = mesh.params.size() == static_cast<size_t>(nv) ? mesh.params[v] : Vec2(mesh.points[v].x(), mesh.points[v].y());
+  std::vector<SymMt> mt(nv);
+  for (int v = 0; v < nv; ++v) mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
+
+  const std::vector<std::array<int, 2>> edges = distinctElementEdges(mesh);
+  r.edges = static_cast<int>(edges.size());
+  if (perItem) {
+    perItem->edges = edges;
+    perItem->edgeLength.resize(edges.size());
+    perItem->quality.clear();
+    perItem->quality.reserve(mesh.triangles.size() + mesh.quads.size());
+    perItem->vertexMinSize.resize(nv);
+    // 1 / the largest eigenvalue of Mt.
+    for (int v = 0; v < nv; ++v) {
+      const SymMt& m = mt[v];
+      perItem->vertexMinSize[v] = 1.0 / (0.5 * (m.a + m.c) + std::hypot(0.5 * (m.a - m.c), m.b));
+    }
+  }
   double lsum = 0.0;
   int in1 = 0, in2 = 0;
-  r.edgeLengthMin = keys.empty() ? 0.0 : std::numeric_limits<double>::infinity();
-  for (const auto k : keys) {
-    const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffffu);
+  r.edgeLengthMin = edges.empty() ? 0.0 : std::numeric_limits<double>::infinity();
+  for (size_t e = 0; e < edges.size(); ++e) {
+    const int a = edges[e][0], b = edges[e][1];
     const double l = SymMt::average2(mt[a], mt[b]).length(uv[b] - uv[a]);
+    if (perItem) perItem->edgeLength[e] = l;
     lsum += l;
     r.edgeLengthMin = std::min(r.edgeLengthMin, l);
     r.edgeLengthMax = std::max(r.edgeLengthMax, l);
     if (l >= std::sqrt(0.5) && l <= std::sqrt(2.0)) ++in1;
     if (l >= 0.6 && l <= 1.3) ++in2;
   }
-  if (!keys.empty()) {
-    r.edgeLengthMean = lsum / keys.size();
-    r.edgesWithinSqrt2 = static_cast<double>(in1) / keys.size();
-    r.edgesWithin06_13 = static_cast<double>(in2) / keys.size();
+  if (!edges.empty()) {
+    r.edgeLengthMean = lsum / edges.size();
+    r.edgesWithinSqrt2 = static_cast<double>(in1) / edges.size();
+    r.edgesWithin06_13 = static_cast<double>(in2) / edges.size();
   }
 
   double qsum = 0.0, tsum = 0.0, qdsum = 0.0;
@@ -74,6 +95,7 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace)
     else if (o == 0.0 || q < 1e-3)
       ++r.degenerate;
     r.triangleQualityMin = std::min(r.triangleQualityMin, q);
+    if (perItem) perItem->quality.push_back(q);
     tsum += q;
     addToHistogram(r, q);
   }
@@ -98,6 +120,7 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace)
     else if (flat || q < 1e-3)
       ++r.degenerate;
     r.quadQualityMin = std::min(r.quadQualityMin, q);
+    if (perItem) perItem->quality.push_back(q);
     qdsum += q;
     addToHistogram(r, q);
   }

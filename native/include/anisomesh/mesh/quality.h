@@ -38,8 +38,20 @@ struct QualityReport {
   MesherTimings timings;  // filled by the caller from PlanarMesherOptions::timings
 };
 
-// Measures mesh in the metric of controlSpace (queried once per vertex at its params, or xy).
-QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace);
+// The distinct edges of all triangles and quads (a < b), sorted.
+std::vector<std::array<int, 2>> distinctElementEdges(const Mesh& mesh);
+
+// What the report summarizes, item by item (for colouring and histograms).
+struct ElementMeasures {
+  std::vector<std::array<int, 2>> edges;  // distinct element edges (a < b), sorted
+  std::vector<double> edgeLength;         // metric length of each edge
+  std::vector<double> quality;            // metric quality of each triangle, then each quad
+  std::vector<double> vertexMinSize;      // smallest requested size at each vertex
+};
+
+// Measures mesh in the metric of controlSpace (queried once per vertex at its params, or
+// xy); with perItem, also keeps the per-edge, per-element and per-vertex values.
+QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace, ElementMeasures* perItem = nullptr);
 
 // Metric area of every triangle (det of the vertex-averaged Mt times the area), in the
 // order of mesh.triangles: the paper's boundary-proximity check (section 3.2) flags
