@@ -17,9 +17,13 @@ struct CliRun {
 };
 
 // A temporary path unique to the running test (ctest runs tests in parallel processes).
+// Parametrized tests' names hold '/', which must not become directories.
 inline std::string tmp(const std::string& name) {
-  return ::testing::TempDir() + "anisomesh_" + ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name() +
-         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + name;
+  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string id = std::string(info->test_suite_name()) + "_" + info->name();
+  for (char& c : id)
+    if (c == '/') c = '_';
+  return ::testing::TempDir() + "anisomesh_" + id + "_" + name;
 }
 
 // Path of an example case.
