@@ -4,9 +4,9 @@
 // result fields; on failure { error: CODE, message }. The JS wrapper (api.js) turns
 // the latter into an AnisomeshError, so no C++ exception ever crosses the boundary
 // and the module stays usable after bad input.
+#include <emscripten.h>
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
-#include <emscripten.h>
 #include <malloc.h>
 
 #include <algorithm>
@@ -55,7 +55,8 @@ val guarded(F&& f) {
 
 double number(const val& obj, const char* key) {
   const val v = obj[key];
-  if (!v.isNumber()) throw Error(ErrorCode::InvalidArgument, std::string("metric field '") + key + "' must be a number");
+  if (!v.isNumber())
+    throw Error(ErrorCode::InvalidArgument, std::string("metric field '") + key + "' must be a number");
   return v.as<double>();
 }
 
@@ -288,7 +289,8 @@ val meshCaseJson(std::string jsonText, val options) {
     const bool measures = options["measures"].isTrue();
     if (options["quads"].isTrue() || options["quads"].isFalse()) o.quads = options["quads"].isTrue();
     if (options["allQuads"].isTrue() || options["allQuads"].isFalse()) o.allQuads = options["allQuads"].isTrue();
-    if (options["maxElements"].isNumber()) o.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
+    if (options["maxElements"].isNumber())
+      o.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
     if (options["controlSpaceUpdates"].isFalse()) o.controlSpaceUpdates = false;
     const val onProgress = options["onProgress"];
     if (onProgress.typeOf().as<std::string>() == "function")
@@ -298,8 +300,10 @@ val meshCaseJson(std::string jsonText, val options) {
     val out = val::object();
     out.set("mesh", meshToJs(run.mesh));
     out.set("stats", run.stats.is_null() ? val::null() : val(run.stats.dump()));
-    out.set("controlSpace", o.inspectControlSpace && !run.controlSpace.is_null() ? val(run.controlSpace.dump()) : val::null());
-    out.set("vertexMetrics", run.vertexMetrics.empty() ? val::null() : typedCopy(run.vertexMetrics.data(), run.vertexMetrics.size()));
+    out.set("controlSpace",
+            o.inspectControlSpace && !run.controlSpace.is_null() ? val(run.controlSpace.dump()) : val::null());
+    out.set("vertexMetrics",
+            run.vertexMetrics.empty() ? val::null() : typedCopy(run.vertexMetrics.data(), run.vertexMetrics.size()));
     const double t2 = emscripten_get_now();
     if (measures) {
       out.set("measures", meshMeasures(run.mesh, run.finalSpace.get()));
@@ -325,7 +329,8 @@ val meshCaseJson(std::string jsonText, val options) {
 val caseStats() {
   return guarded([&] {
     CaseRun& run = lastRun();
-    require(run.finalSpace != nullptr, ErrorCode::InvalidArgument, "caseStats: no meshCase run with stats: false to report on");
+    require(run.finalSpace != nullptr, ErrorCode::InvalidArgument,
+            "caseStats: no meshCase run with stats: false to report on");
     const double t0 = emscripten_get_now();
     nlohmann::json stats = caseRunStats(run);
     val out = val::object();
@@ -339,8 +344,10 @@ val caseStats() {
 val writeMeshText(val mesh, std::string format) {
   return guarded([&] {
     val out = val::object();
-    if (format == "svg") out.set("text", writeSvg(meshFromJs(mesh)));
-    else out.set("text", writeMeshString(meshFromJs(mesh), formatFromName(format)));
+    if (format == "svg")
+      out.set("text", writeSvg(meshFromJs(mesh)));
+    else
+      out.set("text", writeMeshString(meshFromJs(mesh), formatFromName(format)));
     return out;
   });
 }
@@ -389,14 +396,15 @@ val remeshJs(val mesh, val metrics, val options) {
   return guarded([&] {
     const Mesh input = meshFromJs(mesh);
     const std::vector<Metric> m = metricsFromFlat(emscripten::convertJSArrayToNumberVector<double>(metrics));
-    require(m.size() == input.points.size(), ErrorCode::InvalidArgument,
-            "metrics: " + std::to_string(m.size()) + " tensors for " + std::to_string(input.points.size()) +
-                " vertices");
+    require(
+        m.size() == input.points.size(), ErrorCode::InvalidArgument,
+        "metrics: " + std::to_string(m.size()) + " tensors for " + std::to_string(input.points.size()) + " vertices");
     RemeshOptions o;
     if (options.hasOwnProperty("hmin")) o.hmin = options["hmin"].as<double>();
     if (options.hasOwnProperty("hmax")) o.hmax = options["hmax"].as<double>();
     if (options.hasOwnProperty("hgrad")) o.hgrad = options["hgrad"].as<double>();
-    if (options.hasOwnProperty("maxElements")) o.mesher.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
+    if (options.hasOwnProperty("maxElements"))
+      o.mesher.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
     PipelineReport report;
     std::unique_ptr<AdaptiveControlSpace> cs;
     const Mesh out = remesh(input, m, o, &report, &cs);
@@ -441,7 +449,8 @@ class ControlSpaceHandle {
   // shared, so disposing them later leaves this one valid.
   val buildMinimum(const ControlSpaceHandle& a, const ControlSpaceHandle& b) {
     return guarded([&] {
-      require(a.cs_ != nullptr && b.cs_ != nullptr, ErrorCode::InvalidArgument, "minimum of a control space that is not built");
+      require(a.cs_ != nullptr && b.cs_ != nullptr, ErrorCode::InvalidArgument,
+              "minimum of a control space that is not built");
       cs_ = std::make_shared<MinimumControlSpace>(std::vector<std::shared_ptr<const ControlSpace>>{a.cs_, b.cs_});
       val out = val::object();
       out.set("ok", true);

@@ -9,8 +9,8 @@
 
 #include "anisomesh/controlspace/background_mesh_control_space.h"
 #include "anisomesh/controlspace/control_space_algorithms.h"
-#include "anisomesh/controlspace/query_cache.h"
 #include "anisomesh/controlspace/quadtree_control_space.h"
+#include "anisomesh/controlspace/query_cache.h"
 
 using namespace anisomesh;
 
@@ -18,9 +18,7 @@ namespace {
 
 Box2 unitBox() { return Box2{Vec2(0.0, 0.0), Vec2(1.0, 1.0)}; }
 
-Metric boundaryLayer(const Vec2& p) {
-  return Metric::fromSizes(0.0, 0.1, 0.001 + 0.1 * std::abs(p.y() - 0.5));
-}
+Metric boundaryLayer(const Vec2& p) { return Metric::fromSizes(0.0, 0.1, 0.001 + 0.1 * std::abs(p.y() - 0.5)); }
 
 ContinuousInsertionOptions insertion() {
   ContinuousInsertionOptions c;
@@ -105,12 +103,11 @@ void BM_ControlSpaceQuery(benchmark::State& state) {
     const auto* qt = static_cast<const QuadtreeControlSpace*>(cs);
     state.counters["bytes_per_node"] = static_cast<double>(qt->memoryBytes()) / qt->nodeCount();
   }
-  if (kind == 3) state.counters["bytes_per_node"] = static_cast<double>(s.background->memoryBytes()) / s.background->nodeCount();
+  if (kind == 3)
+    state.counters["bytes_per_node"] = static_cast<double>(s.background->memoryBytes()) / s.background->nodeCount();
   if (cached) state.counters["hit_rate"] = static_cast<double>(cached->hits()) / (cached->hits() + cached->misses());
 }
-BENCHMARK(BM_ControlSpaceQuery)
-    ->ArgNames({"kind", "cache", "path"})
-    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}, {0, 1}});
+BENCHMARK(BM_ControlSpaceQuery)->ArgNames({"kind", "cache", "path"})->ArgsProduct({{0, 1, 2, 3}, {0, 1}, {0, 1}});
 
 std::vector<MetricSource> radialSources(int n) {
   std::mt19937 rng(5);
@@ -174,7 +171,8 @@ void BM_ControlSpaceSmoothing(benchmark::State& state) {
   for (int i = 0; i < base->nodeCount(); ++i) {
     const Vec2 p = base->nodePosition(i);
     const Metric layer = Metric::fromSizes(0.0, 0.2, std::min(0.001 + std::abs(p.y() - 0.5), 0.2));
-    base->setNodeMetric(i, intersect(layer, Metric::isotropic(std::min(0.002 + 3.0 * (p - Vec2(0.25, 0.25)).norm(), 0.2))));
+    base->setNodeMetric(
+        i, intersect(layer, Metric::isotropic(std::min(0.002 + 3.0 * (p - Vec2(0.25, 0.25)).norm(), 0.2))));
   }
   base->applyConstraints();
   for (auto _ : state) {

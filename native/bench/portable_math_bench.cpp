@@ -44,20 +44,20 @@ void run2(benchmark::State& state, double lo, double hi, double lo2, double hi2)
   state.SetItemsProcessed(state.iterations());
 }
 
-#define PM_BENCH1(name, lo, hi)                                                            \
-  double std_##name(double x) { return std::name(x); }                                     \
-  void BM_Std_##name(benchmark::State& s) { run1<std_##name>(s, lo, hi); }                 \
+#define PM_BENCH1(name, lo, hi)                                                                          \
+  double std_##name(double x) { return std::name(x); }                                                   \
+  void BM_Std_##name(benchmark::State& s) { run1<std_##name>(s, lo, hi); }                               \
   void BM_Pm_##name(benchmark::State& s) { run1<static_cast<double (*)(double)>(pm::name)>(s, lo, hi); } \
-  BENCHMARK(BM_Std_##name);                                                                \
+  BENCHMARK(BM_Std_##name);                                                                              \
   BENCHMARK(BM_Pm_##name);
 
-#define PM_BENCH2(name, lo, hi, lo2, hi2)                                                  \
-  double std_##name(double x, double y) { return std::name(x, y); }                        \
-  void BM_Std_##name(benchmark::State& s) { run2<std_##name>(s, lo, hi, lo2, hi2); }       \
-  void BM_Pm_##name(benchmark::State& s) {                                                 \
-    run2<static_cast<double (*)(double, double)>(pm::name)>(s, lo, hi, lo2, hi2);          \
-  }                                                                                        \
-  BENCHMARK(BM_Std_##name);                                                                \
+#define PM_BENCH2(name, lo, hi, lo2, hi2)                                            \
+  double std_##name(double x, double y) { return std::name(x, y); }                  \
+  void BM_Std_##name(benchmark::State& s) { run2<std_##name>(s, lo, hi, lo2, hi2); } \
+  void BM_Pm_##name(benchmark::State& s) {                                           \
+    run2<static_cast<double (*)(double, double)>(pm::name)>(s, lo, hi, lo2, hi2);    \
+  }                                                                                  \
+  BENCHMARK(BM_Std_##name);                                                          \
   BENCHMARK(BM_Pm_##name);
 
 PM_BENCH1(exp, -20.0, 20.0)

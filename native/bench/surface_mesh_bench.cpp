@@ -23,7 +23,8 @@ SurfacePatch p2WithHoles() {
   p.domain.outer.add(std::make_shared<LineCurve>(c1, b.hi, 2));
   p.domain.outer.add(std::make_shared<LineCurve>(b.hi, c3, 3));
   p.domain.outer.add(std::make_shared<LineCurve>(c3, b.lo, 4));
-  for (const auto& h : {std::make_pair(Vec2(-4, 3), 1.5), std::make_pair(Vec2(3, -4), 2.0), std::make_pair(Vec2(5, 5), 1.0)}) {
+  for (const auto& h :
+       {std::make_pair(Vec2(-4, 3), 1.5), std::make_pair(Vec2(3, -4), 2.0), std::make_pair(Vec2(5, 5), 1.0)}) {
     Contour hole;
     hole.add(std::make_shared<ArcCurve>(ArcCurve::circle(h.first, h.second, 5)));
     p.domain.holes.push_back(hole);
@@ -46,7 +47,8 @@ void BM_SurfaceMeshP2Holes(benchmark::State& state) {
     benchmark::DoNotOptimize(m.triangles.data());
   }
   state.counters["triangles"] = r.triangles;
-  state.counters["triangles_per_s"] = benchmark::Counter(double(r.triangles) * double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["triangles_per_s"] =
+      benchmark::Counter(double(r.triangles) * double(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["curvature_evals"] = double(r.curvatureEvaluations);
   state.counters["curvature_s"] = r.curvatureSeconds;
   state.counters["cs_queries"] = double(r.controlSpaceQueries);

@@ -54,7 +54,8 @@ double parseNumber(const std::string& option, const char* text) {
 long long parseCount(const std::string& option, const char* text) {
   char* end = nullptr;
   const long long v = std::strtoll(text, &end, 10);
-  if (end == text || *end != '\0' || v <= 0) throw UsageError{option + " expects a positive integer, got '" + text + "'"};
+  if (end == text || *end != '\0' || v <= 0)
+    throw UsageError{option + " expects a positive integer, got '" + text + "'"};
   return v;
 }
 
@@ -89,8 +90,8 @@ void requireOutput(const std::string& out) {
 
 // How .svg pictures are drawn (mesh command options).
 struct SvgChoice {
-  bool uv = false;            // --svg-uv: surface meshes in the parameter plane
-  bool controlSpace = false;  // --svg-control-space: surface control spaces drawn over the mesh
+  bool uv = false;                         // --svg-uv: surface meshes in the parameter plane
+  bool controlSpace = false;               // --svg-control-space: surface control spaces drawn over the mesh
   double azimuth = -1.1, elevation = 0.6;  // --svg-view AZ,EL (degrees in, radians here)
 };
 
@@ -102,7 +103,8 @@ void writeOutput(const std::string& path, const CaseRun& run, const SvgChoice& c
   SvgOptions o;
   o.width = 900;
   o.strokeWidth = 0.3;
-  if (run.finalSpace) o.elementValues = elementQualities(mesh, *run.finalSpace);
+  if (run.finalSpace)
+    o.elementValues = elementQualities(mesh, *run.finalSpace);
   else if (run.elementQuality.size() == size_t(mesh.elementCount()) && run.glyphs.empty())
     o.elementValues = run.elementQuality;  // (plain elements under control-space glyphs)
   o.view3d = mesh.dimension == 3 && !choice.uv;
@@ -110,7 +112,8 @@ void writeOutput(const std::string& path, const CaseRun& run, const SvgChoice& c
   o.elevation = choice.elevation;
   for (const auto& g : run.glyphs) {
     o.overlay.emplace_back();
-    if (o.view3d) o.overlay.back() = g.xyz;
+    if (o.view3d)
+      o.overlay.back() = g.xyz;
     else
       for (const Vec2& p : g.uv) o.overlay.back().emplace_back(p.x(), p.y(), 0.0);
   }
@@ -125,29 +128,40 @@ int runMesh(int argc, char** argv) {
   SvgChoice svg;
   while (!args.done()) {
     const std::string a = args.next();
-    if (a == "-o" || a == "--output") output = args.value(a);
-    else if (a == "--svg-uv") svg.uv = true;
-    else if (a == "--svg-control-space") svg.controlSpace = true;
+    if (a == "-o" || a == "--output")
+      output = args.value(a);
+    else if (a == "--svg-uv")
+      svg.uv = true;
+    else if (a == "--svg-control-space")
+      svg.controlSpace = true;
     else if (a == "--svg-view") {
       const std::string v = args.value(a);
       char* end = nullptr;
       const double az = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != ',') throw UsageError{a + " expects AZIMUTH,ELEVATION in degrees, got '" + v + "'"};
+      if (end == v.c_str() || *end != ',')
+        throw UsageError{a + " expects AZIMUTH,ELEVATION in degrees, got '" + v + "'"};
       const char* rest = end + 1;
       const double el = std::strtod(rest, &end);
       if (end == rest || *end != '\0' || !std::isfinite(az) || !std::isfinite(el))
         throw UsageError{a + " expects AZIMUTH,ELEVATION in degrees, got '" + v + "'"};
       svg.azimuth = az * 0.017453292519943295;
       svg.elevation = el * 0.017453292519943295;
-    }
-    else if (a == "--quads") quads = true;
-    else if (a == "--all-quads") allQuads = true;
-    else if (a == "--stats") stats = true;
-    else if (a == "--no-updates") updates = false;
-    else if (a == "--max-elements") maxElements = parseCount(a, args.value(a));
-    else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option '" + a + "' for mesh"};
-    else if (input.empty()) input = a;
-    else throw UsageError{"unexpected argument '" + a + "'"};
+    } else if (a == "--quads")
+      quads = true;
+    else if (a == "--all-quads")
+      allQuads = true;
+    else if (a == "--stats")
+      stats = true;
+    else if (a == "--no-updates")
+      updates = false;
+    else if (a == "--max-elements")
+      maxElements = parseCount(a, args.value(a));
+    else if (!a.empty() && a[0] == '-')
+      throw UsageError{"unknown option '" + a + "' for mesh"};
+    else if (input.empty())
+      input = a;
+    else
+      throw UsageError{"unexpected argument '" + a + "'"};
   }
   if (input.empty()) throw UsageError{"missing CASE.json"};
   requireOutput(output);
@@ -172,16 +186,26 @@ int runRemesh(int argc, char** argv) {
   RemeshOptions options;
   while (!args.done()) {
     const std::string a = args.next();
-    if (a == "-o" || a == "--output") output = args.value(a);
-    else if (a == "-sol" || a == "--sol") sol = args.value(a);
-    else if (a == "-hgrad" || a == "--hgrad") options.hgrad = parseNumber(a, args.value(a));
-    else if (a == "-hmin" || a == "--hmin") options.hmin = parseNumber(a, args.value(a));
-    else if (a == "-hmax" || a == "--hmax") options.hmax = parseNumber(a, args.value(a));
-    else if (a == "--stats") stats = true;
-    else if (a == "--max-elements") options.mesher.maxElements = parseCount(a, args.value(a));
-    else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option '" + a + "' for remesh"};
-    else if (input.empty()) input = a;
-    else throw UsageError{"unexpected argument '" + a + "'"};
+    if (a == "-o" || a == "--output")
+      output = args.value(a);
+    else if (a == "-sol" || a == "--sol")
+      sol = args.value(a);
+    else if (a == "-hgrad" || a == "--hgrad")
+      options.hgrad = parseNumber(a, args.value(a));
+    else if (a == "-hmin" || a == "--hmin")
+      options.hmin = parseNumber(a, args.value(a));
+    else if (a == "-hmax" || a == "--hmax")
+      options.hmax = parseNumber(a, args.value(a));
+    else if (a == "--stats")
+      stats = true;
+    else if (a == "--max-elements")
+      options.mesher.maxElements = parseCount(a, args.value(a));
+    else if (!a.empty() && a[0] == '-')
+      throw UsageError{"unknown option '" + a + "' for remesh"};
+    else if (input.empty())
+      input = a;
+    else
+      throw UsageError{"unexpected argument '" + a + "'"};
   }
   if (input.empty()) throw UsageError{"missing IN.mesh"};
   if (sol.empty()) throw UsageError{"missing -sol IN.sol"};

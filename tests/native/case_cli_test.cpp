@@ -79,15 +79,18 @@ TEST(CaseCli, InvalidDomainExit1BeforeMeshing) {
 TEST(CaseCli, RemeshBadInputsExit1) {
   const std::string mesh = tmp("in.mesh"), sol = tmp("in.sol"), out = tmp("remesh_out.mesh");
   std::remove(out.c_str());
-  writeFile(mesh, "MeshVersionFormatted 2\nDimension 2\nVertices\n3\n0 0 0\n1 0 0\n0 1 0\nTriangles\n1\n1 2 3 0\nEnd\n");
+  writeFile(mesh,
+            "MeshVersionFormatted 2\nDimension 2\nVertices\n3\n0 0 0\n1 0 0\n0 1 0\nTriangles\n1\n1 2 3 0\nEnd\n");
   writeFile(sol, "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n2\n1 1\n0.1\n0.1\nEnd\n");
   const CliRun mismatch = run("remesh " + mesh + " -sol " + sol + " -o " + out);
   EXPECT_EQ(mismatch.code, 1);
-  EXPECT_NE(mismatch.err.find("the solution has 2 values but the mesh has 3 vertices"), std::string::npos) << mismatch.err;
+  EXPECT_NE(mismatch.err.find("the solution has 2 values but the mesh has 3 vertices"), std::string::npos)
+      << mismatch.err;
   writeFile(mesh, "MeshVersionFormatted 2\nDimension 2\nVertices\n3\n0 0 0\n1 0\n");
   const CliRun bad = run("remesh " + mesh + " -sol " + sol + " -o " + out);
   EXPECT_EQ(bad.code, 1);
-  EXPECT_NE(bad.err.find("error PARSE_ERROR: Medit mesh line 6: expected the reference of vertex 2"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("error PARSE_ERROR: Medit mesh line 6: expected the reference of vertex 2"), std::string::npos)
+      << bad.err;
   EXPECT_EQ(run("remesh /nonexistent.mesh -sol " + sol + " -o " + out).code, 1);
   EXPECT_FALSE(exists(out));
 }

@@ -2,12 +2,12 @@
 
 #include <cmath>
 
+#include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/geometry/discretize.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/pipeline/case_control_space.h"
-#include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/pipeline/mesh_metric_field.h"
 #include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/pipeline/remesh_geometry.h"
@@ -18,10 +18,12 @@ namespace {
 
 CaseSpec caseWith(const std::string& controlSpace, const std::string& sources) {
   return parseCaseJson(R"({"domain": {"outer": [{"type": "polyline", "points": [[0,0],[10,0],[10,5],[0,5],[0,0]]}]},
-                          "controlSpace": )" + controlSpace + R"(, "sources": )" + sources + "}");
+                          "controlSpace": )" +
+                       controlSpace + R"(, "sources": )" + sources + "}");
 }
 
-const char* kRadial = R"([{"type": "radial", "center": [5, 2.5], "metric": {"alpha": 0, "h1": 0.05, "h2": 0.2}, "radius": 0.5}])";
+const char* kRadial =
+    R"([{"type": "radial", "center": [5, 2.5], "metric": {"alpha": 0, "h1": 0.05, "h2": 0.2}, "radius": 0.5}])";
 
 // A 2x2 square split into 8 triangles around a centre-less grid, refs on the boundary.
 Mesh squareMesh() {
@@ -155,7 +157,8 @@ TEST(CaseControlSpace, ExpressionField) {
   }
   // A size that is not positive somewhere: InvalidMetric naming the source.
   try {
-    buildCaseControlSpace(caseWith(R"({"hmax": 1})", R"([{"type": "analytic", "field": "expression", "h1": "x - 5"}])"));
+    buildCaseControlSpace(
+        caseWith(R"({"hmax": 1})", R"([{"type": "analytic", "field": "expression", "h1": "x - 5"}])"));
     FAIL();
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ErrorCode::InvalidMetric);
@@ -174,7 +177,8 @@ TEST(MeshMetricField, InterpolatesLinearlyAndClampsOutside) {
   const Mesh m = squareMesh();
   // Mt linear in x: sizes 0.1 at x = 0, 0.1 / (1 + x) ... via Mt = (10 + 5x) I.
   std::vector<Metric> metrics;
-  for (const Vec3& p : m.points) metrics.push_back(Metric::fromTransform(Mat2::Identity() * (10 + 5 * p.x() + 2 * p.y())));
+  for (const Vec3& p : m.points)
+    metrics.push_back(Metric::fromTransform(Mat2::Identity() * (10 + 5 * p.x() + 2 * p.y())));
   const TriangleMeshMetricField f(m, metrics);
   for (const Vec2& q : {Vec2(0.3, 0.2), Vec2(1.7, 1.1), Vec2(1.0, 1.0), Vec2(2, 2), Vec2(0.01, 1.99)}) {
     const double expected = 10 + 5 * q.x() + 2 * q.y();

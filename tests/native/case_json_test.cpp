@@ -31,7 +31,8 @@ void expectError(const std::string& text, ErrorCode code, const std::string& fra
 // kMinimal with one more top-level entry.
 std::string withTop(const std::string& entry) {
   return R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1}]},
-            "controlSpace": {"hmax": 0.1}, )" + entry + "}";
+            "controlSpace": {"hmax": 0.1}, )" +
+         entry + "}";
 }
 
 }  // namespace
@@ -117,28 +118,33 @@ TEST(CaseJson, MissingFieldsNamePath) {
               "controlSpace: missing field");
   expectError(R"({"domain": {"outer": [{"type": "line", "p1": [0, 0]}]}, "controlSpace": {"hmax": 1}})",
               ErrorCode::ParseError, "domain.outer[0].p2: missing field");
-  expectError(withTop(R"("sources": [{"type": "radial", "center": [0, 0], "metric": {"h1": 1}}])"), ErrorCode::ParseError,
-              "sources[0].radius: missing field");
+  expectError(withTop(R"("sources": [{"type": "radial", "center": [0, 0], "metric": {"h1": 1}}])"),
+              ErrorCode::ParseError, "sources[0].radius: missing field");
   expectError(R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1}]}, "controlSpace": {}})",
               ErrorCode::ParseError, "controlSpace.hmax: missing field");
 }
 
 TEST(CaseJson, WrongTypesNamePath) {
-  expectError(withTop(R"("sources": [{"type": "point"}, {"type": "analytic", "field": "point", "center": [0, 0], "h0": 1, "growth": 0},
+  expectError(
+      withTop(
+          R"("sources": [{"type": "point"}, {"type": "analytic", "field": "point", "center": [0, 0], "h0": 1, "growth": 0},
                                      {"type": "radial", "center": [0, 0], "metric": {"h1": 1}, "radius": "big"}])"),
-              ErrorCode::ParseError, "sources[0].type: unknown source type 'point'");
+      ErrorCode::ParseError, "sources[0].type: unknown source type 'point'");
   expectError(withTop(R"("sources": [{"type": "analytic", "field": "point", "center": [0, 0], "h0": 1, "growth": 0},
                                      {"type": "analytic", "field": "point", "center": [0, 0], "h0": 1, "growth": 0},
                                      {"type": "radial", "center": [0, 0], "metric": {"h1": 1}, "radius": "big"}])"),
               ErrorCode::ParseError, "sources[2].radius: expected a number, got string");
-  expectError(R"({"domain": {"outer": [{"type": "line", "p1": [0, 0, 0], "p2": [1, 0]}]}, "controlSpace": {"hmax": 1}})",
-              ErrorCode::ParseError, "domain.outer[0].p1: expected a point [x, y]");
+  expectError(
+      R"({"domain": {"outer": [{"type": "line", "p1": [0, 0, 0], "p2": [1, 0]}]}, "controlSpace": {"hmax": 1}})",
+      ErrorCode::ParseError, "domain.outer[0].p1: expected a point [x, y]");
   expectError(R"({"domain": {"outer": {"type": "line"}}, "controlSpace": {"hmax": 1}})", ErrorCode::ParseError,
               "domain.outer: expected an array of curves");
   expectError(withTop(R"("options": {"quads": 1})"), ErrorCode::ParseError, "options.quads: expected true or false");
-  expectError(withTop(R"("options": {"maxElements": 1.5})"), ErrorCode::ParseError, "options.maxElements: expected an integer");
-  expectError(R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1, "ref": "a"}]}, "controlSpace": {"hmax": 1}})",
-              ErrorCode::ParseError, "domain.outer[0].ref: expected an integer");
+  expectError(withTop(R"("options": {"maxElements": 1.5})"), ErrorCode::ParseError,
+              "options.maxElements: expected an integer");
+  expectError(
+      R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1, "ref": "a"}]}, "controlSpace": {"hmax": 1}})",
+      ErrorCode::ParseError, "domain.outer[0].ref: expected an integer");
   expectError(R"({"domain": {"outer": [], "holes": 3}, "controlSpace": {"hmax": 1}})", ErrorCode::ParseError,
               "domain.outer: expected at least one curve");
 }
@@ -150,25 +156,32 @@ TEST(CaseJson, UnknownNamesAreRejected) {
               ErrorCode::ParseError, "sources[0].raduis: unknown field");
   expectError(withTop(R"("sources": [{"type": "analytic", "field": "vortex"}])"), ErrorCode::ParseError,
               "sources[0].field: unknown analytic field 'vortex'");
-  expectError(R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1}]}, "controlSpace": {"hmax": 1, "kind": "octree"}})",
-              ErrorCode::ParseError, "controlSpace.kind: expected \"quadtree\" or \"background\"");
-  expectError(R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1}]}, "controlSpace": {"hmax": 1, "interpolation": "cubic"}})",
-              ErrorCode::ParseError, "controlSpace.interpolation");
+  expectError(
+      R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1}]}, "controlSpace": {"hmax": 1, "kind": "octree"}})",
+      ErrorCode::ParseError, "controlSpace.kind: expected \"quadtree\" or \"background\"");
+  expectError(
+      R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1}]}, "controlSpace": {"hmax": 1, "interpolation": "cubic"}})",
+      ErrorCode::ParseError, "controlSpace.interpolation");
 }
 
 TEST(CaseJson, ValuesOutOfRange) {
-  expectError(R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": -1}]}, "controlSpace": {"hmax": 1}})",
-              ErrorCode::InvalidArgument, "domain.outer[0].radius: must be positive");
-  expectError(R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1}]}, "controlSpace": {"hmax": 1, "gradation": 0.5}})",
-              ErrorCode::InvalidArgument, "controlSpace.gradation: must be >= 1 or null");
-  expectError(R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1}]}, "controlSpace": {"hmax": 1, "hmin": 2}})",
-              ErrorCode::InvalidArgument, "controlSpace.hmin: must be in [0, hmax]");
+  expectError(
+      R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": -1}]}, "controlSpace": {"hmax": 1}})",
+      ErrorCode::InvalidArgument, "domain.outer[0].radius: must be positive");
+  expectError(
+      R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1}]}, "controlSpace": {"hmax": 1, "gradation": 0.5}})",
+      ErrorCode::InvalidArgument, "controlSpace.gradation: must be >= 1 or null");
+  expectError(
+      R"({"domain": {"outer": [{"type": "circle", "center": [0, 0], "radius": 1}]}, "controlSpace": {"hmax": 1, "hmin": 2}})",
+      ErrorCode::InvalidArgument, "controlSpace.hmin: must be in [0, hmax]");
   expectError(withTop(R"("sources": [{"type": "radial", "center": [0, 0], "metric": {"h1": 0}, "radius": 1}])"),
               ErrorCode::InvalidArgument, "sources[0].metric.h1: must be positive");
-  expectError(R"({"domain": {"outer": [{"type": "arc", "points": [[0, 0], [1, 1], [2, 2]]}]}, "controlSpace": {"hmax": 1}})",
-              ErrorCode::InvalidArgument, "domain.outer[0]: arc through");
-  expectError(R"({"domain": {"outer": [{"type": "bspline", "points": [[0, 0], [1, 1], [2, 2]]}]}, "controlSpace": {"hmax": 1}})",
-              ErrorCode::ParseError, "domain.outer[0].points: expected at least 4 points, got 3");
+  expectError(
+      R"({"domain": {"outer": [{"type": "arc", "points": [[0, 0], [1, 1], [2, 2]]}]}, "controlSpace": {"hmax": 1}})",
+      ErrorCode::InvalidArgument, "domain.outer[0]: arc through");
+  expectError(
+      R"({"domain": {"outer": [{"type": "bspline", "points": [[0, 0], [1, 1], [2, 2]]}]}, "controlSpace": {"hmax": 1}})",
+      ErrorCode::ParseError, "domain.outer[0].points: expected at least 4 points, got 3");
 }
 
 TEST(CaseJson, NullGradationMeansNone) {

@@ -39,13 +39,15 @@ std::string withHoles(const std::string& holes) {
 }  // namespace
 
 TEST(CliPipeline, BadDomainsAreNamed) {
-  expectCaseFails(R"({"domain": {"outer": [{"type": "line", "p1": [0, 0], "p2": [1, 0]}, {"type": "line", "p1": [1, 0], "p2": [1, 1]}]},
+  expectCaseFails(
+      R"({"domain": {"outer": [{"type": "line", "p1": [0, 0], "p2": [1, 0]}, {"type": "line", "p1": [1, 0], "p2": [1, 1]}]},
                       "controlSpace": {"hmax": 0.1}})",
-                  "OPEN_CONTOUR", "outer");
+      "OPEN_CONTOUR", "outer");
   expectCaseFails(R"({"domain": {"outer": [{"type": "polyline", "points": [[0, 0], [2, 2], [2, 0], [0, 2], [0, 0]]}]},
                       "controlSpace": {"hmax": 0.1}})",
                   "SELF_INTERSECTING_CONTOUR", "outer");
-  expectCaseFails(withHoles(R"([[{"type": "circle", "center": [10, 10], "radius": 1}]])"), "HOLE_OUTSIDE_DOMAIN", "holes[0]");
+  expectCaseFails(withHoles(R"([[{"type": "circle", "center": [10, 10], "radius": 1}]])"), "HOLE_OUTSIDE_DOMAIN",
+                  "holes[0]");
   expectCaseFails(withHoles(R"([[{"type": "circle", "center": [1.5, 2], "radius": 0.8}],
                                 [{"type": "circle", "center": [2.5, 2], "radius": 0.8}]])"),
                   "SELF_INTERSECTING_CONTOUR", "holes[1]");
@@ -69,10 +71,13 @@ TEST(CliPipeline, BadJsonAndBudgetAreNamed) {
 TEST(CliPipeline, RemeshBadSolutions) {
   const std::string mesh = tmp("in.mesh"), sol = tmp("in.sol"), out = tmp("remesh_out.mesh");
   std::remove(out.c_str());
-  writeFile(mesh, "MeshVersionFormatted 2\nDimension 2\nVertices\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
-                  "Triangles\n2\n1 2 3 0\n1 3 4 0\nEnd\n");
+  writeFile(mesh,
+            "MeshVersionFormatted 2\nDimension 2\nVertices\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+            "Triangles\n2\n1 2 3 0\n1 3 4 0\nEnd\n");
   // A non-SPD tensor (m11 m12 m22 with m12^2 > m11 m22).
-  writeFile(sol, "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n4\n1 3\n100 0 100\n100 500 100\n100 0 100\n100 0 100\nEnd\n");
+  writeFile(sol,
+            "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n4\n1 3\n100 0 100\n100 500 100\n100 0 100\n100 0 "
+            "100\nEnd\n");
   CliRun r = run("remesh " + mesh + " -sol " + sol + " -o " + out);
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("INVALID_METRIC"), std::string::npos) << r.err;

@@ -144,7 +144,8 @@ TEST(ControlSpaceSources, SourceOutsideTheDomainChangesNothing) {
                         SegmentSource{{-3.0, -1.0}, {3.0, -1.0}, Metric::isotropic(0.001), 0.5}});
     ASSERT_EQ(cs->nodeCount(), before->nodeCount());
     ASSERT_EQ(cs->elementCount(), before->elementCount());
-    for (int i = 0; i < cs->nodeCount(); ++i) ASSERT_EQ(cs->nodeMetric(i).transform(), before->nodeMetric(i).transform());
+    for (int i = 0; i < cs->nodeCount(); ++i)
+      ASSERT_EQ(cs->nodeMetric(i).transform(), before->nodeMetric(i).transform());
   }
 }
 
@@ -152,7 +153,8 @@ TEST(ControlSpaceContinuous, IntersectsWithExistingField) {
   for (bool quadtree : {true, false}) {
     auto cs = makeSpace(quadtree, 8);
     insertSources(*cs, {RadialSource{{0.5, 0.5}, Metric::fromSizes(0.0, 0.01, 0.2), 0.1}});
-    insertMetricFunction(*cs, [](const Vec2&) { return Metric::isotropic(0.05); }, insertion());
+    insertMetricFunction(
+        *cs, [](const Vec2&) { return Metric::isotropic(0.05); }, insertion());
     expectBalanced(*cs);
     const MetricSizes s = cs->metricAt({0.5, 0.5}).sizes();
     EXPECT_NEAR(s.h1, 0.01, 1e-9);

@@ -170,7 +170,8 @@ TEST(ControlSpaceExport, JsonAndVtkCountNodesAndCells) {
     }
     checkVtk(controlSpaceToVtk(*cs), cs->nodeCount(), cs->elementCount());
   }
-  const nlohmann::json s = sampledControlSpaceToJson(UniformControlSpace(Box2{{0, 0}, {1, 1}}, Metric::isotropic(0.1)), 4, 3);
+  const nlohmann::json s =
+      sampledControlSpaceToJson(UniformControlSpace(Box2{{0, 0}, {1, 1}}, Metric::isotropic(0.1)), 4, 3);
   EXPECT_EQ(s["samples"].size(), 12u);
   auto cs = buildAdaptiveControlSpace(sampleSpec(ControlSpaceKind::Quadtree));
   try {

@@ -29,9 +29,7 @@ ContinuousInsertionOptions insertion() {
 // Two crossing anisotropic fields with different orientations.
 Metric fieldA(const Vec2& p) { return Metric::fromSizes(0.4, 0.02 + 0.2 * p.x(), 0.1 - 0.05 * p.y()); }
 Metric fieldB(const Vec2& p) { return Metric::fromSizes(-0.2, 0.05, 0.005 + 0.3 * std::abs(p.x() - 0.6)); }
-Metric fieldC(const Vec2& p) {
-  return Metric::fromSizes(1.1 * p.y(), 0.01 + 0.05 * (p - Vec2(0.3, 0.7)).norm(), 0.08);
-}
+Metric fieldC(const Vec2& p) { return Metric::fromSizes(1.1 * p.y(), 0.01 + 0.05 * (p - Vec2(0.3, 0.7)).norm(), 0.08); }
 
 // kind 0: analytic, 1: quadtree, 2: background mesh - of field f.
 std::shared_ptr<const ControlSpace> makeInput(int kind, const MetricFunction& f) {
@@ -101,9 +99,8 @@ TEST(ControlSpaceMinimumLazy, InsideBothInputsAndEqualToTheSmallerAtRandomPoints
 TEST(ControlSpaceMinimumLazy, ThreeInputsAndAnInputSmallerEverywhere) {
   const auto q = makeInput(1, fieldA), bg = makeInput(2, fieldB), an = makeInput(0, fieldC);
   // The finest field scaled down: smaller than the others in every direction everywhere.
-  const auto tiny = std::make_shared<AnalyticControlSpace>(box(0, 0, 1, 1), [](const Vec2& p) {
-    return intersect(intersect(fieldA(p), fieldB(p)), fieldC(p)).scaled(0.5);
-  });
+  const auto tiny = std::make_shared<AnalyticControlSpace>(
+      box(0, 0, 1, 1), [](const Vec2& p) { return intersect(intersect(fieldA(p), fieldB(p)), fieldC(p)).scaled(0.5); });
   const MinimumControlSpace three({q, bg, an});
   const MinimumControlSpace four({q, tiny, bg, an});
   std::mt19937 rng(5);

@@ -48,11 +48,13 @@ std::vector<Case> cases() {
       {"log(3 + u*v)", [](double u, double v) { return std::log(3 + u * v); }, -1, 1},
       {"sqrt(1 + u^2 + v^4)", [](double u, double v) { return std::sqrt(1 + u * u + v * v * v * v); }, -2, 2},
       {"abs(u - 5) * v", [](double u, double v) { return std::abs(u - 5) * v; }, -2, 2},
-      {"min(u*v, 10) + max(v, -10)", [](double u, double v) { return std::min(u * v, 10.0) + std::max(v, -10.0); },
-       -2, 2},
+      {"min(u*v, 10) + max(v, -10)", [](double u, double v) { return std::min(u * v, 10.0) + std::max(v, -10.0); }, -2,
+       2},
       {"pi*u + e*v", [](double u, double v) { return M_PI * u + std::exp(1.0) * v; }, -2, 2},
       {"1.5*exp(-0.001*(u^2+v^2))*sin(2*u)*cos(0.2*v)",
-       [](double u, double v) { return 1.5 * std::exp(-0.001 * (u * u + v * v)) * std::sin(2 * u) * std::cos(0.2 * v); },
+       [](double u, double v) {
+         return 1.5 * std::exp(-0.001 * (u * u + v * v)) * std::sin(2 * u) * std::cos(0.2 * v);
+       },
        -10, 10},
   };
 }
@@ -96,9 +98,9 @@ TEST(Expression, DerivativesMatchFiniteDifferences) {
       const double k = 1e-4, f0 = c.f(u, v);
       EXPECT_LT(rel(r.fuu, (c.f(u + k, v) - 2 * f0 + c.f(u - k, v)) / (k * k)), 2e-4) << c.text;
       EXPECT_LT(rel(r.fvv, (c.f(u, v + k) - 2 * f0 + c.f(u, v - k)) / (k * k)), 2e-4) << c.text;
-      EXPECT_LT(rel(r.fuv, (c.f(u + k, v + k) - c.f(u + k, v - k) - c.f(u - k, v + k) + c.f(u - k, v - k)) /
-                               (4 * k * k)),
-                2e-4)
+      EXPECT_LT(
+          rel(r.fuv, (c.f(u + k, v + k) - c.f(u + k, v - k) - c.f(u - k, v + k) + c.f(u - k, v - k)) / (4 * k * k)),
+          2e-4)
           << c.text;
     }
   }

@@ -5,14 +5,14 @@
 // in tests/golden/ (commit them with a note of what changed and why).
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstdint>
 #include <cstdio>
-#include <cctype>
 #include <cstdlib>
 #include <filesystem>
-#include <set>
 #include <ostream>
 #include <regex>
+#include <set>
 #include <string>
 #include <vector>
 

@@ -52,7 +52,8 @@ TEST(IoVtk, RoundTripWithRefs) {
 TEST(IoVtk, Errors) {
   expectParseError([] { parseVtk("hello\n"); }, "VTK line 1");
   const std::string head = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 1 double\n0 0 0\n";
-  expectParseError([&] { parseVtk(head + "CELLS 1 4\n3 0 0 1\nCELL_TYPES 1\n5\n"); }, "line 8: vertex index 1 of cell 0 is out of range");
+  expectParseError([&] { parseVtk(head + "CELLS 1 4\n3 0 0 1\nCELL_TYPES 1\n5\n"); },
+                   "line 8: vertex index 1 of cell 0 is out of range");
   expectParseError([&] { parseVtk(head + "CELLS 1 2\n1 0\nCELL_TYPES 1\n1\n"); }, "unsupported VTK type 1");
   expectParseError([] { parseVtk("# vtk DataFile Version 3.0\nt\nBINARY\n"); }, "line 3: expected 'ASCII'");
 }

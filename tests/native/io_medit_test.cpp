@@ -101,11 +101,16 @@ TEST(IoMedit, MalformedFilesNameLineAndExpectation) {
   expectError([&] { parseMedit(head + "Vertices\n2\n0 0 0\n1 1 0\nTriangles\n1\n1 2 3 0\n"); }, ErrorCode::ParseError,
               "line 9: vertex index 3 of Triangles 1 is out of range 1..2");
   expectError([&] { parseMedit(head + "Vertices\n3\n0 0 0\n"); }, ErrorCode::ParseError, "larger than the data");
-  expectError([&] { parseMedit(head + "Vertices\n1\n0 0\n"); }, ErrorCode::ParseError, "expected the reference of vertex 1, got end of file");
-  expectError([&] { parseMedit(head + "Vertex\n1\n0 0 0\n"); }, ErrorCode::ParseError, "line 3: expected a Medit keyword");
-  expectError([&] { parseMedit("MeshVersionFormatted 2\nDimension 4\n"); }, ErrorCode::ParseError, "line 2: expected Dimension 2 or 3");
-  expectError([&] { parseMedit("Dimension 2\nVertices\n0\n"); }, ErrorCode::ParseError, "expected MeshVersionFormatted before Vertices");
-  expectError([&] { parseMedit(head + "Triangles\n0\n"); }, ErrorCode::ParseError, "expected Vertices before Triangles");
+  expectError([&] { parseMedit(head + "Vertices\n1\n0 0\n"); }, ErrorCode::ParseError,
+              "expected the reference of vertex 1, got end of file");
+  expectError([&] { parseMedit(head + "Vertex\n1\n0 0 0\n"); }, ErrorCode::ParseError,
+              "line 3: expected a Medit keyword");
+  expectError([&] { parseMedit("MeshVersionFormatted 2\nDimension 4\n"); }, ErrorCode::ParseError,
+              "line 2: expected Dimension 2 or 3");
+  expectError([&] { parseMedit("Dimension 2\nVertices\n0\n"); }, ErrorCode::ParseError,
+              "expected MeshVersionFormatted before Vertices");
+  expectError([&] { parseMedit(head + "Triangles\n0\n"); }, ErrorCode::ParseError,
+              "expected Vertices before Triangles");
   expectError([&] { parseMedit(head + "Vertices\n-1\n"); }, ErrorCode::ParseError, "nonnegative");
   // Keywords are case-sensitive, as in Medit.
   expectError([&] { parseMedit(head + "vertices\n0\n"); }, ErrorCode::ParseError, "got 'vertices'");
@@ -129,7 +134,8 @@ TEST(IoSol, ScalarAndTensorRoundTrip) {
   EXPECT_EQ(tb.type, 3);
   EXPECT_EQ(tb.values, t.values);
   const std::vector<Metric> mb = solToMetrics(tb, 2);
-  for (size_t i = 0; i < 2; ++i) EXPECT_LT((mb[i].tensor() - metrics[i].tensor()).norm(), 1e-9 * metrics[i].tensor().norm());
+  for (size_t i = 0; i < 2; ++i)
+    EXPECT_LT((mb[i].tensor() - metrics[i].tensor()).norm(), 1e-9 * metrics[i].tensor().norm());
 }
 
 TEST(IoSol, ScalarIsIsotropicSize) {
@@ -154,13 +160,16 @@ TEST(IoSol, Errors) {
   const std::string head = "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n2\n";
   expectError([&] { parseSol(head + "1 2\n1 1\n2 2\nEnd\n"); }, ErrorCode::ParseError,
               "line 5: expected solution type 1 (scalar) or 3 (symmetric tensor), got 2");
-  expectError([&] { parseSol(head + "2 1 1\n1 1\n"); }, ErrorCode::ParseError, "line 5: expected 1 solution field, got 2");
+  expectError([&] { parseSol(head + "2 1 1\n1 1\n"); }, ErrorCode::ParseError,
+              "line 5: expected 1 solution field, got 2");
   expectError([&] { parseSol(head + "1 3\n1 0 1\n1 0 oops\n"); }, ErrorCode::ParseError,
               "line 7: expected value 3 of vertex 2, got 'oops'");
-  expectError([&] { parseSol("MeshVersionFormatted 2\nDimension 2\nEnd\n"); }, ErrorCode::ParseError, "expected a SolAtVertices section");
+  expectError([&] { parseSol("MeshVersionFormatted 2\nDimension 2\nEnd\n"); }, ErrorCode::ParseError,
+              "expected a SolAtVertices section");
   SolData s;
   s.values = {1, 2, 3};
-  expectError([&] { solToMetrics(s, 5); }, ErrorCode::ParseError, "the solution has 3 values but the mesh has 5 vertices");
+  expectError([&] { solToMetrics(s, 5); }, ErrorCode::ParseError,
+              "the solution has 3 values but the mesh has 5 vertices");
   s.values = {1, -2, 3};
   expectError([&] { solToMetrics(s, 3); }, ErrorCode::InvalidMetric, "vertex 2");
   expectError([] { readSolFile("/nonexistent/x.sol"); }, ErrorCode::IoError, "cannot open");

@@ -30,17 +30,13 @@ void meshAndCheck(const std::vector<BoundaryLoop>& loops, double h, PlanarMesher
 
 }  // namespace
 
-TEST(MeshPlanar, UnitSquareUniform) {
-  meshAndCheck({polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 20)}, 0.05);
-}
+TEST(MeshPlanar, UnitSquareUniform) { meshAndCheck({polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 20)}, 0.05); }
 
 TEST(MeshPlanar, LShapeUniform) {
   meshAndCheck({polygonLoop({{0, 0}, {1, 0}, {1, 0.5}, {0.5, 0.5}, {0.5, 1}, {0, 1}}, 10)}, 0.05);
 }
 
-TEST(MeshPlanar, ClockwiseOuterLoop) {
-  meshAndCheck({polygonLoop({{0, 0}, {0, 1}, {1, 1}, {1, 0}}, 10)}, 0.1);
-}
+TEST(MeshPlanar, ClockwiseOuterLoop) { meshAndCheck({polygonLoop({{0, 0}, {0, 1}, {1, 1}, {1, 0}}, 10)}, 0.1); }
 
 TEST(MeshPlanar, SquareWithSquareHole) {
   meshAndCheck({polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 20),
@@ -113,12 +109,12 @@ TEST(MeshPlanar, InvalidInput) {
   badRefs.edgeRefs.pop_back();
   EXPECT_EQ(code({badRefs}), ErrorCode::InvalidArgument);
   EXPECT_EQ(code({makeLoop({{0, 0}, {1, 0}, {0, NAN}})}), ErrorCode::InvalidArgument);
-  EXPECT_EQ(code({makeLoop({{0, 0}, {1, 0}, {1, 0}, {0, 1}})}), ErrorCode::InvalidArgument);  // duplicate
+  EXPECT_EQ(code({makeLoop({{0, 0}, {1, 0}, {1, 0}, {0, 1}})}), ErrorCode::InvalidArgument);          // duplicate
   EXPECT_EQ(code({makeLoop({{0, 0}, {1, 0}, {0, 1}, {1, 1}})}), ErrorCode::SelfIntersectingContour);  // bow tie
   const BoundaryLoop square = polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 10);
   EXPECT_EQ(code({square, circleLoop({2.0, 0.5}, 0.2, 12)}), ErrorCode::HoleOutsideDomain);
   EXPECT_EQ(code({square, circleLoop({0.5, 0.5}, 0.3, 16), circleLoop({0.5, 0.5}, 0.1, 8)}),
-            ErrorCode::HoleOutsideDomain);  // hole inside a hole
+            ErrorCode::HoleOutsideDomain);                                                   // hole inside a hole
   EXPECT_EQ(code({circleLoop({0.5, 0.5}, 0.3, 16), square}), ErrorCode::HoleOutsideDomain);  // outer inside hole
   EXPECT_EQ(code({square, circleLoop({1.0, 0.53}, 0.2, 12)}), ErrorCode::SelfIntersectingContour);  // crossing
 }

@@ -12,11 +12,12 @@ namespace {
 
 const Box2 kUnit{{0.0, 0.0}, {1.0, 1.0}};
 
-Metric layer(const Vec2& p) { return Metric::fromSizes(0.0, 0.05, std::min(0.05, 0.005 + 0.2 * std::fabs(p.y() - 0.5))); }
+Metric layer(const Vec2& p) {
+  return Metric::fromSizes(0.0, 0.05, std::min(0.05, 0.005 + 0.2 * std::fabs(p.y() - 0.5)));
+}
 
 std::vector<BoundaryLoop> domain(const ControlSpace& cs) {
-  return {metricPolygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, cs),
-          circleLoop({0.3, 0.3}, 0.1, 24, true)};
+  return {metricPolygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, cs), circleLoop({0.3, 0.3}, 0.1, 24, true)};
 }
 
 bool convexCcw(const Mesh& m, const std::array<int, 4>& q) {

@@ -162,8 +162,7 @@ inline void checkPlanarMesh(const Mesh& m, const std::vector<BoundaryLoop>& loop
 }
 
 inline bool sameMesh(const Mesh& a, const Mesh& b) {
-  if (a.params.size() != b.params.size() || a.triangles != b.triangles || a.quads != b.quads ||
-      a.edges != b.edges)
+  if (a.params.size() != b.params.size() || a.triangles != b.triangles || a.quads != b.quads || a.edges != b.edges)
     return false;
   for (size_t i = 0; i < a.params.size(); ++i)
     if (std::memcmp(a.params[i].data(), b.params[i].data(), 2 * sizeof(double)) != 0) return false;

@@ -94,8 +94,7 @@ TEST(PipelineCase, EveryExampleMeshesWithTheRealControlSpace) {
       }
     // Every boundary curve is covered by boundary edges (chords: slightly shorter on curves).
     for (size_t e = 0; e < mesh.edges.size(); ++e)
-      edgeLength[mesh.edgeRefs[e]] +=
-          (mesh.points[mesh.edges[e][1]] - mesh.points[mesh.edges[e][0]]).norm();
+      edgeLength[mesh.edgeRefs[e]] += (mesh.points[mesh.edges[e][1]] - mesh.points[mesh.edges[e][0]]).norm();
     for (const auto& [ref, len] : curveLength) {
       EXPECT_LE(edgeLength[ref], len * (1 + 1e-9)) << "ref " << ref;
       EXPECT_GE(edgeLength[ref], len * 0.99) << "ref " << ref;
@@ -119,8 +118,9 @@ TEST(PipelineCase, BoundaryLayerQualityAgainstAnalyticMetric) {
   const MetricFunction f = caseAnalyticMetric(spec);
   EXPECT_GE(f({2, 0}).aspectRatio(), 100 - 1e-9);
   const QualityReport q = measureQuality(mesh, AnalyticControlSpace(cs->bounds(), f));
-  std::cout << "[ figures  ] boundary layer vs analytic: " << mesh.triangles.size() << " triangles, edges in [1/sqrt2, sqrt2] "
-            << q.edgesWithinSqrt2 << ", mean Q " << q.qualityMean << ", min Q " << q.qualityMin << "\n";
+  std::cout << "[ figures  ] boundary layer vs analytic: " << mesh.triangles.size()
+            << " triangles, edges in [1/sqrt2, sqrt2] " << q.edgesWithinSqrt2 << ", mean Q " << q.qualityMean
+            << ", min Q " << q.qualityMin << "\n";
   EXPECT_GE(q.edgesWithinSqrt2, 0.98);
   EXPECT_GE(q.qualityMean, 0.93);
   EXPECT_GE(q.qualityMin, 0.4);
@@ -132,8 +132,9 @@ TEST(PipelineCase, ShearLayerQualityAgainstAnalyticMetric) {
   const Mesh mesh = meshCase(spec, nullptr, {}, &cs);
   EXPECT_STREQ(cs->kindName(), "quadtree");
   const QualityReport q = measureQuality(mesh, AnalyticControlSpace(cs->bounds(), caseAnalyticMetric(spec)));
-  std::cout << "[ figures  ] shear layer vs analytic: " << mesh.triangles.size() << " triangles, edges in [1/sqrt2, sqrt2] "
-            << q.edgesWithinSqrt2 << ", mean Q " << q.qualityMean << ", min Q " << q.qualityMin << "\n";
+  std::cout << "[ figures  ] shear layer vs analytic: " << mesh.triangles.size()
+            << " triangles, edges in [1/sqrt2, sqrt2] " << q.edgesWithinSqrt2 << ", mean Q " << q.qualityMean
+            << ", min Q " << q.qualityMin << "\n";
   // Reached with the mesher's adaptation loop (collapse/split/swap/smooth in the metric):
   // 0.986 of the edges, mean Q 0.953, min Q 0.60.
   EXPECT_GE(q.edgesWithinSqrt2, 0.98);
@@ -173,7 +174,9 @@ TEST(PipelineCase, NarrowChannelIsRefinedInTheGap) {
   EXPECT_EQ(q.degenerate, 0);
   // No element spanning the gap (vertices on both holes) has a bad metric quality.
   const std::vector<double> quality = elementQualities(mesh, *cs);
-  auto onHole = [&](int v, double cx) { return std::abs((mesh.points[v].head<2>() - Vec2(cx, 1)).norm() - 0.5) < 1e-9; };
+  auto onHole = [&](int v, double cx) {
+    return std::abs((mesh.points[v].head<2>() - Vec2(cx, 1)).norm() - 0.5) < 1e-9;
+  };
   int spanning = 0;
   double worst = 1.0;
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {

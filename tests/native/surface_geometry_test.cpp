@@ -47,8 +47,7 @@ std::vector<std::shared_ptr<Surface>> allSurfaces() {
 }
 
 void expectVecNear(const Vec3& a, const Vec3& b, double tol, const std::string& what) {
-  EXPECT_LE((a - b).norm(), tol * std::max(1.0, b.norm())) << what << ": " << a.transpose() << " vs "
-                                                           << b.transpose();
+  EXPECT_LE((a - b).norm(), tol * std::max(1.0, b.norm())) << what << ": " << a.transpose() << " vs " << b.transpose();
 }
 
 std::shared_ptr<ExpressionSurface> expressionSphere(double r) {

@@ -61,11 +61,12 @@ void expectConforming(const Mesh& mesh, const SurfaceMeshReport& r) {
 }
 
 void print(const char* what, const SurfaceMeshReport& r) {
-  std::printf("[%s] tris %d verts %d rounds %d inval %d | 3D edges in [1/sqrt2,sqrt2] %.4f  mean len %.3f  Q mean %.4f min %.3f"
-              " | chord dev max %.4g (%.2f x tol) | across-shared ratio %.3f | %.2fs\n",
-              what, r.triangles, r.vertices, r.rounds, r.invalidations, r.quality.edgesWithinSqrt2,
-              r.quality.edgeLengthMean, r.quality.qualityMean, r.quality.qualityMin, r.quality.chordDeviationMax,
-              r.quality.chordDeviationMaxRelative, r.crossSharedSizeRatioMax, r.secondsTotal);
+  std::printf(
+      "[%s] tris %d verts %d rounds %d inval %d | 3D edges in [1/sqrt2,sqrt2] %.4f  mean len %.3f  Q mean %.4f min %.3f"
+      " | chord dev max %.4g (%.2f x tol) | across-shared ratio %.3f | %.2fs\n",
+      what, r.triangles, r.vertices, r.rounds, r.invalidations, r.quality.edgesWithinSqrt2, r.quality.edgeLengthMean,
+      r.quality.qualityMean, r.quality.qualityMin, r.quality.chordDeviationMax, r.quality.chordDeviationMaxRelative,
+      r.crossSharedSizeRatioMax, r.secondsTotal);
 }
 
 TEST(SurfaceMesh, P2WithHolesQuality) {
@@ -261,7 +262,8 @@ TEST(SurfaceMesh, TwoFlatPatchesShareIdenticalVertices) {
     }
   for (const auto& e : r.sharedEdgeList) EXPECT_EQ(dir[e], 0);
   for (const auto& t : mesh.triangles) {
-    const Vec3 n = (mesh.points[size_t(t[1])] - mesh.points[size_t(t[0])]).cross(mesh.points[size_t(t[2])] - mesh.points[size_t(t[0])]);
+    const Vec3 n = (mesh.points[size_t(t[1])] - mesh.points[size_t(t[0])])
+                       .cross(mesh.points[size_t(t[2])] - mesh.points[size_t(t[0])]);
     EXPECT_GT(n.z(), 0.0);
   }
   for (const auto& e : r.sharedEdgeList) {
@@ -375,8 +377,8 @@ TEST(SurfaceMesh, Source3DRefinesAroundItsCenter) {
 }
 
 TEST(SurfaceMesh, EverySurfaceExampleParses) {
-  for (const char* f : {"surface_p2_holes.json", "surface_sphere.json", "surface_torus.json", "surface_two_patch_c.json",
-                        "surface_two_patch_c_noadapt.json"}) {
+  for (const char* f : {"surface_p2_holes.json", "surface_sphere.json", "surface_torus.json",
+                        "surface_two_patch_c.json", "surface_two_patch_c_noadapt.json"}) {
     SCOPED_TRACE(f);
     const std::string text = readExample(f);
     EXPECT_TRUE(isSurfaceCaseJson(text));
@@ -408,26 +410,32 @@ TEST(SurfaceMeshErrors, ParseErrorsNameThePath) {
               {"patches[0].surface.type", "unknown surface type"});
   expectError(R"({"patches": [{"surface": {"type": "plane"}, "outer": [{"type": "line", "p1": [0, 0]}]}]})",
               ErrorCode::ParseError, {"patches[0].outer[0].p2", "missing"});
-  expectError(R"({"patches": [{"surface": {"type": "plane"}}], "shared": [{"a": {"patch": "X", "curve": 0}, "b": {"patch": 0, "curve": 1}}]})",
-              ErrorCode::ParseError, {"shared[0].a.patch", "no patch named 'X'"});
+  expectError(
+      R"({"patches": [{"surface": {"type": "plane"}}], "shared": [{"a": {"patch": "X", "curve": 0}, "b": {"patch": 0, "curve": 1}}]})",
+      ErrorCode::ParseError, {"shared[0].a.patch", "no patch named 'X'"});
   expectError(R"({"patches": [{"surface": {"type": "plane"}}], "adaptation": "yes"})", ErrorCode::ParseError,
               {"adaptation", "expected true or false"});
   expectError("{\"patches\": [", ErrorCode::ParseError, {"malformed JSON"});
 }
 
 TEST(SurfaceMeshErrors, BadExpressionNamesTheColumn) {
-  expectError(R"J({"patches": [{"surface": {"type": "expression", "x": "u", "y": "v", "z": "sin(u +* v)", "domain": [[0,0],[1,1]]}}]})J",
-              ErrorCode::ParseError, {"patches[0].surface.z", "z(u,v)", "column"});
+  expectError(
+      R"J({"patches": [{"surface": {"type": "expression", "x": "u", "y": "v", "z": "sin(u +* v)", "domain": [[0,0],[1,1]]}}]})J",
+      ErrorCode::ParseError, {"patches[0].surface.z", "z(u,v)", "column"});
 }
 
 TEST(SurfaceMeshErrors, NaNSurfaceNamesPatchAndPlace) {
-  expectError(std::string(R"({)") + kMetric + R"J(, "patches": [{"name": "bad", "surface": {"type": "expression", "x": "u", "y": "v", "z": "sqrt(u - 0.5)", "domain": [[0,0],[1,1]]}}]})J",
-              ErrorCode::InvalidSurface, {"patch 'bad'", "(u, v) = ("});
+  expectError(
+      std::string(R"({)") + kMetric +
+          R"J(, "patches": [{"name": "bad", "surface": {"type": "expression", "x": "u", "y": "v", "z": "sqrt(u - 0.5)", "domain": [[0,0],[1,1]]}}]})J",
+      ErrorCode::InvalidSurface, {"patch 'bad'", "(u, v) = ("});
 }
 
 TEST(SurfaceMeshErrors, DegenerateParameterizationNamesPatchAndPlace) {
-  expectError(std::string(R"({)") + kMetric + R"(, "patches": [{"name": "flat", "surface": {"type": "expression", "x": "u+v", "y": "u+v", "z": "u+v", "domain": [[0,0],[1,1]]}}]})",
-              ErrorCode::InvalidSurface, {"patch 'flat'", "degenerate", "(u, v) = ("});
+  expectError(
+      std::string(R"({)") + kMetric +
+          R"(, "patches": [{"name": "flat", "surface": {"type": "expression", "x": "u+v", "y": "u+v", "z": "u+v", "domain": [[0,0],[1,1]]}}]})",
+      ErrorCode::InvalidSurface, {"patch 'flat'", "degenerate", "(u, v) = ("});
 }
 
 TEST(SurfaceMeshErrors, ContourOffTheDomainNamesPatch) {

@@ -69,9 +69,9 @@ TEST(SurfaceMetric, CylinderAxialSizeIsHmaxOrTheAspectCap) {
   o.hmax = 0.5;
   o.maxAspectRatio = 100;  // hmax binds: 0.5 < 100 hc
   Metric m = parameterMetric(s, uv, o);
-  EXPECT_NEAR(size3D(s, uv, m, 0.0), hc, 1e-12);           // around (u)
+  EXPECT_NEAR(size3D(s, uv, m, 0.0), hc, 1e-12);          // around (u)
   EXPECT_NEAR(size3D(s, uv, m, kPi / 2), o.hmax, 1e-12);  // along the axis (v)
-  o.maxAspectRatio = 3;  // the cap binds: 3 hc < 0.5
+  o.maxAspectRatio = 3;                                   // the cap binds: 3 hc < 0.5
   m = parameterMetric(s, uv, o);
   EXPECT_NEAR(size3D(s, uv, m, 0.0), hc, 1e-12);
   EXPECT_NEAR(size3D(s, uv, m, kPi / 2), 3 * hc, 1e-12);
@@ -184,7 +184,8 @@ TEST(SurfaceMetric, EdgeLengthAndQualityIn3D) {
   EXPECT_NEAR(edgeLength3D(Vec3(0, 0, 0), Vec3(0, 0, 2), Mat3(Vec3(1, 1, 4).asDiagonal())), 4, 1e-15);
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0.5, std::sqrt(3.0) / 2, 0);
   EXPECT_NEAR(triangleQuality3D(a, b, c, Mat3::Identity()), 1, 1e-14);
-  EXPECT_NEAR(triangleQuality3D(a, b, c, Mat3(Vec3(4, 1, 1).asDiagonal())), 4 * std::sqrt(3.0) * (std::sqrt(3.0) / 2) / (4 + 1.75 + 1.75), 1e-14);  // x stretched by 2
+  EXPECT_NEAR(triangleQuality3D(a, b, c, Mat3(Vec3(4, 1, 1).asDiagonal())),
+              4 * std::sqrt(3.0) * (std::sqrt(3.0) / 2) / (4 + 1.75 + 1.75), 1e-14);  // x stretched by 2
   EXPECT_EQ(triangleQuality3D(a, b, Vec3(2, 0, 0), Mat3::Identity()), 0);
 
   // On a sphere, an edge whose 3D length is the requested size has metric length ~1.
@@ -194,13 +195,13 @@ TEST(SurfaceMetric, EdgeLengthAndQualityIn3D) {
   EXPECT_NEAR(edgeLength3D(s, {0.2, 0.0}, {0.2 + du, 0.0}, looseBounds(tol)), 1.0, 1e-9);
   // An equilateral (in 3D) small triangle on the sphere has Q close to 1.
   const double dv = du;  // near the equator u and v scale alike
-  const double q = triangleQuality3D(s, {0.2, 0.0}, {0.2 + du, 0.0}, {0.2 + 0.5 * du, dv * std::sqrt(3.0) / 2},
-                                     looseBounds(tol));
+  const double q =
+      triangleQuality3D(s, {0.2, 0.0}, {0.2 + du, 0.0}, {0.2 + 0.5 * du, dv * std::sqrt(3.0) / 2}, looseBounds(tol));
   EXPECT_NEAR(q, 1.0, 1e-3);
   // A plane with isotropic hmax sizing: Q is the Euclidean quality.
   const PlaneSurface plane(Vec3::Zero(), Vec3(1, 0, 0), Vec3(0, 1, 0));
-  EXPECT_NEAR(triangleQuality3D(plane, {0, 0}, {1, 0}, {0, 1}, SurfaceMetricOptions{}),
-              4 * std::sqrt(3.0) * 0.5 / 4, 1e-14);
+  EXPECT_NEAR(triangleQuality3D(plane, {0, 0}, {1, 0}, {0, 1}, SurfaceMetricOptions{}), 4 * std::sqrt(3.0) * 0.5 / 4,
+              1e-14);
 }
 
 TEST(SurfaceMetric, OptionsAreValidated) {

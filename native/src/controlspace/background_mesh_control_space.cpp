@@ -30,7 +30,8 @@ BackgroundMeshControlSpace::BackgroundMeshControlSpace(const Box2& box, const Ba
   const SymMt pm = toSymMt(placeholder);
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
-      const Vec2 p(i == n ? box.hi.x() : box.lo.x() + sz.x() * i / n, j == n ? box.hi.y() : box.lo.y() + sz.y() * j / n);
+      const Vec2 p(i == n ? box.hi.x() : box.lo.x() + sz.x() * i / n,
+                   j == n ? box.hi.y() : box.lo.y() + sz.y() * j / n);
       addNode(p, pm, options.initialMetric.has_value());
     }
   for (int j = 0; j < n; ++j)
@@ -313,7 +314,7 @@ void BackgroundMeshControlSpace::refine(const ElementPredicate& pred, const NewN
     touchedFlag_.assign(tri_.size(), 0);
     for (int t : split)
       if (!touchedFlag_[t]) bisectImpl(t);  // a touched triangle is already a child: re-checked next batch
-    locatorStale_ = true;  // rebuilt by the next query, or at the end
+    locatorStale_ = true;                   // rebuilt by the next query, or at the end
     if (onNewNodes) onNewNodes(nodesBefore, nodeCount());
     work = touched_;
     std::sort(work.begin(), work.end());

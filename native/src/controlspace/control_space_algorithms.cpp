@@ -30,7 +30,8 @@ class BucketGrid {
     for (size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
     start_ = count;
     items_.resize(count.back());
-    for (size_t k = 0; k < boxes.size(); ++k) forCells(boxes[k], [&](int c) { items_[count[c]++] = static_cast<int>(k); });
+    for (size_t k = 0; k < boxes.size(); ++k)
+      forCells(boxes[k], [&](int c) { items_[count[c]++] = static_cast<int>(k); });
   }
 
   // Calls fn(item) for items in buckets overlapping b (an item may come more than once
@@ -340,7 +341,8 @@ int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback) {
   return filled;
 }
 
-void insertMetricFunction(AdaptiveControlSpace& cs, const MetricFunction& f, const ContinuousInsertionOptions& options) {
+void insertMetricFunction(AdaptiveControlSpace& cs, const MetricFunction& f,
+                          const ContinuousInsertionOptions& options) {
   require(static_cast<bool>(f), ErrorCode::InvalidArgument, "metric function is empty");
   require(options.threshold > 0.0, ErrorCode::InvalidArgument, "continuous insertion threshold must be > 0");
   const double sampleThreshold = options.sampleThreshold < 0.0 ? options.threshold : options.sampleThreshold;
@@ -426,7 +428,8 @@ void intersectControlSpace(AdaptiveControlSpace& cs1, const ControlSpace& cs2, c
         const Mat2 ir = r.transform().inverse();
         const Mat2 q = ir * t.tensor() * ir;
         const double half = 0.5 * (q(0, 0) - q(1, 1)), off = 0.5 * (q(0, 1) + q(1, 0));
-        worst = std::max(worst, std::sqrt(std::max(0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off), 0.0)));
+        worst =
+            std::max(worst, std::sqrt(std::max(0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off), 0.0)));
       };
       if (el.size() == 4) {  // leaf: a 4 x 4 grid of interior points
         const Vec2 lo = cs1.nodePosition(el[0]), hi = cs1.nodePosition(el[2]);
@@ -738,7 +741,8 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
       const SymMt& now = cs.nodeMt(hanging[k].node);
       const SymMt& was = before[k];
       const double scale = std::max({std::abs(was.a), std::abs(was.b), std::abs(was.c)});
-      if (std::max({std::abs(now.a - was.a), std::abs(now.b - was.b), std::abs(now.c - was.c)}) <= tol * scale) continue;
+      if (std::max({std::abs(now.a - was.a), std::abs(now.b - was.b), std::abs(now.c - was.c)}) <= tol * scale)
+        continue;
       const int d = hanging[k].node;
       // Finer than before: limiting its neighbours (taking it) is enough. Otherwise its
       // neighbours must limit it again too.

@@ -17,7 +17,8 @@ void checkPoint(const Vec2& p, const char* what) {
 
 void checkRadius(double r, const char* what) {
   if (!(std::isfinite(r) && r >= 0.0))
-    throw Error(ErrorCode::InvalidArgument, std::string(what) + " radius must be finite and >= 0, got " + std::to_string(r));
+    throw Error(ErrorCode::InvalidArgument,
+                std::string(what) + " radius must be finite and >= 0, got " + std::to_string(r));
 }
 
 bool isZeroLength(const Vec2& a, const Vec2& b) {
@@ -43,8 +44,10 @@ bool segmentMeetsBox(const Vec2& a, const Vec2& b, const Box2& box) {
       if (q[i] < 0.0) return false;
     } else {
       const double t = q[i] / p[i];
-      if (p[i] < 0.0) t0 = std::max(t0, t);
-      else t1 = std::min(t1, t);
+      if (p[i] < 0.0)
+        t0 = std::max(t0, t);
+      else
+        t1 = std::min(t1, t);
       if (t0 > t1) return false;
     }
   }
@@ -111,7 +114,11 @@ std::vector<SourcePiece> sourcePieces(const std::vector<MetricSource>& sources, 
         checkPoint(p, "curve source point");
         return p;
       };
-      struct Item { double t0, t1; Vec2 p0, p1; int depth; };
+      struct Item {
+        double t0, t1;
+        Vec2 p0, p1;
+        int depth;
+      };
       const int n0 = 16;
       std::vector<Item> stack;
       Vec2 prev = eval(s->t1);

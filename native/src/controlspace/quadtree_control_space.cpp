@@ -283,7 +283,8 @@ void QuadtreeControlSpace::splitLeafImpl(int c) {
     const int cc = first + k;
     for (int j = 0; j < nodesPerLeaf_; ++j) {
       bool created = false;
-      const int n = findOrCreateNode(ix_[cc] + kNodeHalfOffsets[j][0] * h / 2, iy_[cc] + kNodeHalfOffsets[j][1] * h / 2, c, created);
+      const int n = findOrCreateNode(ix_[cc] + kNodeHalfOffsets[j][0] * h / 2, iy_[cc] + kNodeHalfOffsets[j][1] * h / 2,
+                                     c, created);
       cellNodes_[static_cast<size_t>(cc) * nodesPerLeaf_ + j] = n;
     }
   }
@@ -346,7 +347,6 @@ void QuadtreeControlSpace::applyConstraints() {
     if (init) flags_[k.node] |= kInitialized;
   }
 }
-
 
 std::vector<AdaptiveControlSpace::HangingNode> QuadtreeControlSpace::hangingNodes() const {
   rebuildConstraints();
@@ -489,10 +489,22 @@ bool QuadtreeControlSpace::isBalanced() const {
       for (int k = 0; k < 4; ++k) {
         int x = ix_[c], y = iy_[c];
         const int along = k * (s / 4);
-        if (side == 0) { x -= 1; y += along; }
-        if (side == 1) { x += s; y += along; }
-        if (side == 2) { y -= 1; x += along; }
-        if (side == 3) { y += s; x += along; }
+        if (side == 0) {
+          x -= 1;
+          y += along;
+        }
+        if (side == 1) {
+          x += s;
+          y += along;
+        }
+        if (side == 2) {
+          y -= 1;
+          x += along;
+        }
+        if (side == 3) {
+          y += s;
+          x += along;
+        }
         if (x < 0 || y < 0 || x >= r || y >= r) continue;
         if (level_[descend(x, y, 1 << 30)] >= lvl + 2) return false;
       }

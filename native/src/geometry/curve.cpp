@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "anisomesh/core/error.h"
-#include "anisomesh/geometry/quadrature.h"
 #include "anisomesh/core/portable_math.h"
+#include "anisomesh/geometry/quadrature.h"
 
 namespace anisomesh {
 namespace {
@@ -133,8 +133,7 @@ std::vector<double> PolylineCurve::breakpoints() const {
   return std::vector<double>(cum_.begin() + 1, cum_.end() - 1);
 }
 
-BezierCurve::BezierCurve(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, int ref)
-    : p_{p0, p1, p2, p3} {
+BezierCurve::BezierCurve(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, int ref) : p_{p0, p1, p2, p3} {
   for (const Vec2& p : p_) require(p.allFinite(), ErrorCode::InvalidArgument, "Bezier control points must be finite");
   setRef(ref);
 }
@@ -157,7 +156,8 @@ BSplineCurve::BSplineCurve(std::vector<Vec2> controlPoints, int ref) : ctrl_(std
   const int n = static_cast<int>(ctrl_.size());
   require(n >= 4, ErrorCode::InvalidArgument,
           "a cubic B-spline needs at least 4 control points, got " + std::to_string(n));
-  for (const Vec2& p : ctrl_) require(p.allFinite(), ErrorCode::InvalidArgument, "B-spline control points must be finite");
+  for (const Vec2& p : ctrl_)
+    require(p.allFinite(), ErrorCode::InvalidArgument, "B-spline control points must be finite");
   // Clamped uniform knots: 4 zeros, n - 4 uniform interior knots, 4 ones.
   const int spans = n - 3;
   knots_.assign(4, 0.0);

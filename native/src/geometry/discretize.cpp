@@ -40,7 +40,10 @@ double invertInLeaf(const Integrand& f, const Leaf& leaf, double start, double t
   for (int it = 0; it < 40; ++it) {
     const double g = start + gaussLegendre5(f, leaf.a, t) - target;
     if (std::abs(g) <= 1e-12 * (1.0 + std::abs(target))) break;
-    if (g > 0) hi = t; else lo = t;
+    if (g > 0)
+      hi = t;
+    else
+      lo = t;
     const double d = f(t);
     double next = d > 0 ? t - g / d : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
@@ -181,8 +184,10 @@ std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const
         if (!findPolygonCrossing(polygons, &x)) continue;
         require(round < options.maxRefinementRounds, ErrorCode::SelfIntersectingContour,
                 "the boundary discretization crosses itself near " + formatPoint(x.where) + " even after " +
-                    std::to_string(round) + " refinements: curves too close for the requested metric, or crossing curves");
-        for (const Curve* c : {owners[size_t(x.polygonA)][size_t(x.segmentA)], owners[size_t(x.polygonB)][size_t(x.segmentB)]}) {
+                    std::to_string(round) +
+                    " refinements: curves too close for the requested metric, or crossing curves");
+        for (const Curve* c :
+             {owners[size_t(x.polygonA)][size_t(x.segmentA)], owners[size_t(x.polygonB)][size_t(x.segmentB)]}) {
           minimum[c] = std::max(minimum[c], 2 * int(points[c].size() - 1));
           discretizeOne(c);
         }

@@ -204,7 +204,8 @@ void validateDomain(const Domain& domain, const DomainValidationOptions& options
   for (size_t k = 0; k < contours.size(); ++k)
     for (size_t i = 0; i < contours[k]->curves.size(); ++i) {
       const CurveUse& u = contours[k]->curves[i];
-      require(u.curve != nullptr, ErrorCode::InvalidArgument, contourName(int(k)) + ", curve " + std::to_string(i) + ": null curve");
+      require(u.curve != nullptr, ErrorCode::InvalidArgument,
+              contourName(int(k)) + ", curve " + std::to_string(i) + ": null curve");
       require(u.curve->length() > options.zeroLengthTolerance * diag, ErrorCode::ZeroLengthCurve,
               curveName(domain, int(k), int(i)) + ": zero length at " + formatPoint(u.curve->start()));
     }
@@ -219,8 +220,8 @@ void validateDomain(const Domain& domain, const DomainValidationOptions& options
       if (gap > options.closeTolerance * diag) {
         std::ostringstream os;
         os << curveName(domain, int(k), int(i)) << " ends at " << formatPoint(e) << " but "
-           << (j == 0 ? "the first curve, " : "the next curve, ") << "curve " << j << ", starts at "
-           << formatPoint(s) << " (gap " << gap << "): the contour is not closed";
+           << (j == 0 ? "the first curve, " : "the next curve, ") << "curve " << j << ", starts at " << formatPoint(s)
+           << " (gap " << gap << "): the contour is not closed";
         throw Error(ErrorCode::OpenContour, os.str());
       }
     }
@@ -242,8 +243,7 @@ void validateDomain(const Domain& domain, const DomainValidationOptions& options
   }
   PolygonCrossing x;
   if (findPolygonCrossing(polygons, &x)) {
-    const std::string what =
-        x.polygonA == x.polygonB ? "the contour intersects itself" : "the contours cross or touch";
+    const std::string what = x.polygonA == x.polygonB ? "the contour intersects itself" : "the contours cross or touch";
     throw Error(ErrorCode::SelfIntersectingContour,
                 curveName(domain, x.polygonA, owners[size_t(x.polygonA)][size_t(x.segmentA)]) + " meets " +
                     curveName(domain, x.polygonB, owners[size_t(x.polygonB)][size_t(x.segmentB)]) + " near " +

@@ -24,10 +24,22 @@ struct FunctionInfo {
 
 // "pow" shares the Pow opcode with the '^' operator.
 constexpr std::array<FunctionInfo, 17> kFunctions{{
-    {"sin", Op::Sin, 1},   {"cos", Op::Cos, 1},     {"tan", Op::Tan, 1},   {"asin", Op::Asin, 1},
-    {"acos", Op::Acos, 1}, {"atan", Op::Atan, 1},   {"atan2", Op::Atan2, 2}, {"sinh", Op::Sinh, 1},
-    {"cosh", Op::Cosh, 1}, {"tanh", Op::Tanh, 1},   {"exp", Op::Exp, 1},   {"log", Op::Log, 1},
-    {"sqrt", Op::Sqrt, 1}, {"abs", Op::Abs, 1},     {"pow", Op::Pow, 2},   {"min", Op::Min, 2},
+    {"sin", Op::Sin, 1},
+    {"cos", Op::Cos, 1},
+    {"tan", Op::Tan, 1},
+    {"asin", Op::Asin, 1},
+    {"acos", Op::Acos, 1},
+    {"atan", Op::Atan, 1},
+    {"atan2", Op::Atan2, 2},
+    {"sinh", Op::Sinh, 1},
+    {"cosh", Op::Cosh, 1},
+    {"tanh", Op::Tanh, 1},
+    {"exp", Op::Exp, 1},
+    {"log", Op::Log, 1},
+    {"sqrt", Op::Sqrt, 1},
+    {"abs", Op::Abs, 1},
+    {"pow", Op::Pow, 2},
+    {"min", Op::Min, 2},
     {"max", Op::Max, 2},
 }};
 
@@ -39,8 +51,14 @@ const FunctionInfo* findFunction(const std::string& name) {
 
 bool isBinary(Op op) {
   switch (op) {
-    case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: case Op::Pow:
-    case Op::Atan2: case Op::Min: case Op::Max:
+    case Op::Add:
+    case Op::Sub:
+    case Op::Mul:
+    case Op::Div:
+    case Op::Pow:
+    case Op::Atan2:
+    case Op::Min:
+    case Op::Max:
       return true;
     default:
       return false;
@@ -50,29 +68,53 @@ bool isBinary(Op op) {
 // Scalar semantics of every unary or binary opcode (shared by value() and constant folding).
 double applyScalar(Op op, double a, double b) {
   switch (op) {
-    case Op::Neg: return -a;
-    case Op::Add: return a + b;
-    case Op::Sub: return a - b;
-    case Op::Mul: return a * b;
-    case Op::Div: return a / b;
-    case Op::Pow: case Op::PowConst: return pm::pow(a, b);
-    case Op::Sin: return pm::sin(a);
-    case Op::Cos: return pm::cos(a);
-    case Op::Tan: return pm::tan(a);
-    case Op::Asin: return pm::asin(a);
-    case Op::Acos: return pm::acos(a);
-    case Op::Atan: return pm::atan(a);
-    case Op::Atan2: return pm::atan2(a, b);
-    case Op::Sinh: return pm::sinh(a);
-    case Op::Cosh: return pm::cosh(a);
-    case Op::Tanh: return pm::tanh(a);
-    case Op::Exp: return pm::exp(a);
-    case Op::Log: return pm::log(a);
-    case Op::Sqrt: return std::sqrt(a);
-    case Op::Abs: return std::abs(a);
-    case Op::Min: return a <= b ? a : b;
-    case Op::Max: return a >= b ? a : b;
-    default: return 0.0;  // leaves (Const, U, V, Param) never reach here
+    case Op::Neg:
+      return -a;
+    case Op::Add:
+      return a + b;
+    case Op::Sub:
+      return a - b;
+    case Op::Mul:
+      return a * b;
+    case Op::Div:
+      return a / b;
+    case Op::Pow:
+    case Op::PowConst:
+      return pm::pow(a, b);
+    case Op::Sin:
+      return pm::sin(a);
+    case Op::Cos:
+      return pm::cos(a);
+    case Op::Tan:
+      return pm::tan(a);
+    case Op::Asin:
+      return pm::asin(a);
+    case Op::Acos:
+      return pm::acos(a);
+    case Op::Atan:
+      return pm::atan(a);
+    case Op::Atan2:
+      return pm::atan2(a, b);
+    case Op::Sinh:
+      return pm::sinh(a);
+    case Op::Cosh:
+      return pm::cosh(a);
+    case Op::Tanh:
+      return pm::tanh(a);
+    case Op::Exp:
+      return pm::exp(a);
+    case Op::Log:
+      return pm::log(a);
+    case Op::Sqrt:
+      return std::sqrt(a);
+    case Op::Abs:
+      return std::abs(a);
+    case Op::Min:
+      return a <= b ? a : b;
+    case Op::Max:
+      return a >= b ? a : b;
+    default:
+      return 0.0;  // leaves (Const, U, V, Param) never reach here
   }
 }
 
@@ -91,15 +133,14 @@ inline Dual2 chain1(const Dual2& a, double g, double g1, double g2) {
 }
 
 // g(a, b) from its partial derivatives up to second order.
-inline Dual2 chain2(const Dual2& a, const Dual2& b, double g, double ga, double gb, double gaa,
-                    double gab, double gbb) {
+inline Dual2 chain2(const Dual2& a, const Dual2& b, double g, double ga, double gb, double gaa, double gab,
+                    double gbb) {
   Dual2 r;
   r.f = g;
   r.fu = ga * a.fu + gb * b.fu;
   r.fv = ga * a.fv + gb * b.fv;
   r.fuu = ga * a.fuu + gb * b.fuu + gaa * a.fu * a.fu + 2.0 * gab * a.fu * b.fu + gbb * b.fu * b.fu;
-  r.fuv = ga * a.fuv + gb * b.fuv + gaa * a.fu * a.fv + gab * (a.fu * b.fv + a.fv * b.fu) +
-          gbb * b.fu * b.fv;
+  r.fuv = ga * a.fuv + gb * b.fuv + gaa * a.fu * a.fv + gab * (a.fu * b.fv + a.fv * b.fu) + gbb * b.fu * b.fv;
   r.fvv = ga * a.fvv + gb * b.fvv + gaa * a.fv * a.fv + 2.0 * gab * a.fv * b.fv + gbb * b.fv * b.fv;
   return r;
 }
@@ -123,17 +164,27 @@ inline Dual2 powDual(const Dual2& a, const Dual2& b) {
   const double la = pm::log(a.f);
   if (isConstantDual(a)) return chain1(b, f, f * la, f * la * la);
   const double p1 = pm::pow(a.f, b.f - 1.0);
-  return chain2(a, b, f, b.f * p1, f * la, b.f * (b.f - 1.0) * pm::pow(a.f, b.f - 2.0),
-                p1 * (1.0 + b.f * la), f * la * la);
+  return chain2(a, b, f, b.f * p1, f * la, b.f * (b.f - 1.0) * pm::pow(a.f, b.f - 2.0), p1 * (1.0 + b.f * la),
+                f * la * la);
 }
 
 inline Dual2 unaryDual(Op op, const Dual2& a) {
   const double x = a.f;
   switch (op) {
-    case Op::Neg: return chain1(a, -x, -1.0, 0.0);
-    case Op::Sin: { const double s = pm::sin(x), c = pm::cos(x); return chain1(a, s, c, -s); }
-    case Op::Cos: { const double s = pm::sin(x), c = pm::cos(x); return chain1(a, c, -s, -c); }
-    case Op::Tan: { const double t = pm::tan(x), g1 = 1.0 + t * t; return chain1(a, t, g1, 2.0 * t * g1); }
+    case Op::Neg:
+      return chain1(a, -x, -1.0, 0.0);
+    case Op::Sin: {
+      const double s = pm::sin(x), c = pm::cos(x);
+      return chain1(a, s, c, -s);
+    }
+    case Op::Cos: {
+      const double s = pm::sin(x), c = pm::cos(x);
+      return chain1(a, c, -s, -c);
+    }
+    case Op::Tan: {
+      const double t = pm::tan(x), g1 = 1.0 + t * t;
+      return chain1(a, t, g1, 2.0 * t * g1);
+    }
     case Op::Asin: {
       const double g1 = 1.0 / std::sqrt(1.0 - x * x);
       return chain1(a, pm::asin(x), g1, x * g1 * g1 * g1);
@@ -142,36 +193,60 @@ inline Dual2 unaryDual(Op op, const Dual2& a) {
       const double g1 = 1.0 / std::sqrt(1.0 - x * x);
       return chain1(a, pm::acos(x), -g1, -x * g1 * g1 * g1);
     }
-    case Op::Atan: { const double g1 = 1.0 / (1.0 + x * x); return chain1(a, pm::atan(x), g1, -2.0 * x * g1 * g1); }
-    case Op::Sinh: return chain1(a, pm::sinh(x), pm::cosh(x), pm::sinh(x));
-    case Op::Cosh: return chain1(a, pm::cosh(x), pm::sinh(x), pm::cosh(x));
-    case Op::Tanh: { const double t = pm::tanh(x), g1 = 1.0 - t * t; return chain1(a, t, g1, -2.0 * t * g1); }
-    case Op::Exp: { const double e = pm::exp(x); return chain1(a, e, e, e); }
-    case Op::Log: return chain1(a, pm::log(x), 1.0 / x, -1.0 / (x * x));
-    case Op::Sqrt: { const double s = std::sqrt(x); return chain1(a, s, 0.5 / s, -0.25 / (s * x)); }
-    case Op::Abs: return chain1(a, std::abs(x), x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0), 0.0);
-    default: return a;
+    case Op::Atan: {
+      const double g1 = 1.0 / (1.0 + x * x);
+      return chain1(a, pm::atan(x), g1, -2.0 * x * g1 * g1);
+    }
+    case Op::Sinh:
+      return chain1(a, pm::sinh(x), pm::cosh(x), pm::sinh(x));
+    case Op::Cosh:
+      return chain1(a, pm::cosh(x), pm::sinh(x), pm::cosh(x));
+    case Op::Tanh: {
+      const double t = pm::tanh(x), g1 = 1.0 - t * t;
+      return chain1(a, t, g1, -2.0 * t * g1);
+    }
+    case Op::Exp: {
+      const double e = pm::exp(x);
+      return chain1(a, e, e, e);
+    }
+    case Op::Log:
+      return chain1(a, pm::log(x), 1.0 / x, -1.0 / (x * x));
+    case Op::Sqrt: {
+      const double s = std::sqrt(x);
+      return chain1(a, s, 0.5 / s, -0.25 / (s * x));
+    }
+    case Op::Abs:
+      return chain1(a, std::abs(x), x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0), 0.0);
+    default:
+      return a;
   }
 }
 
 inline Dual2 binaryDual(Op op, const Dual2& a, const Dual2& b) {
   switch (op) {
-    case Op::Add: return chain2(a, b, a.f + b.f, 1.0, 1.0, 0.0, 0.0, 0.0);
-    case Op::Sub: return chain2(a, b, a.f - b.f, 1.0, -1.0, 0.0, 0.0, 0.0);
-    case Op::Mul: return chain2(a, b, a.f * b.f, b.f, a.f, 0.0, 1.0, 0.0);
+    case Op::Add:
+      return chain2(a, b, a.f + b.f, 1.0, 1.0, 0.0, 0.0, 0.0);
+    case Op::Sub:
+      return chain2(a, b, a.f - b.f, 1.0, -1.0, 0.0, 0.0, 0.0);
+    case Op::Mul:
+      return chain2(a, b, a.f * b.f, b.f, a.f, 0.0, 1.0, 0.0);
     case Op::Div: {
       const double ib = 1.0 / b.f;
       return chain2(a, b, a.f * ib, ib, -a.f * ib * ib, 0.0, -ib * ib, 2.0 * a.f * ib * ib * ib);
     }
-    case Op::Pow: return powDual(a, b);
+    case Op::Pow:
+      return powDual(a, b);
     case Op::Atan2: {
       const double y = a.f, x = b.f, r2 = x * x + y * y, ir4 = 1.0 / (r2 * r2);
       return chain2(a, b, pm::atan2(y, x), x / r2, -y / r2, -2.0 * x * y * ir4, (y * y - x * x) * ir4,
                     2.0 * x * y * ir4);
     }
-    case Op::Min: return a.f <= b.f ? a : b;
-    case Op::Max: return a.f >= b.f ? a : b;
-    default: return a;
+    case Op::Min:
+      return a.f <= b.f ? a : b;
+    case Op::Max:
+      return a.f >= b.f ? a : b;
+    default:
+      return a;
   }
 }
 
@@ -205,9 +280,7 @@ class ExpressionCompiler {
   int depth_ = 0;
   int nesting_ = 0;
 
-  [[noreturn]] void fail(const std::string& what) const {
-    throw Error(ErrorCode::ParseError, e_.name_ + ": " + what);
-  }
+  [[noreturn]] void fail(const std::string& what) const { throw Error(ErrorCode::ParseError, e_.name_ + ": " + what); }
   // "<head> at column N<tail>", column 1-based.
   [[noreturn]] void failAt(size_t at, const std::string& head, const std::string& tail = "") const {
     fail(head + " at column " + std::to_string(at + 1) + tail);
@@ -223,7 +296,8 @@ class ExpressionCompiler {
   std::string describeHere() const {
     if (pos_ >= s_.size()) return "end of formula";
     const char c = s_[pos_];
-    const bool token = std::isalnum(static_cast<unsigned char>(c)) || std::string("+-*/^(),._").find(c) != std::string::npos;
+    const bool token =
+        std::isalnum(static_cast<unsigned char>(c)) || std::string("+-*/^(),._").find(c) != std::string::npos;
     return std::string(token ? "'" : "character '") + c + "'";
   }
 
@@ -345,8 +419,7 @@ class ExpressionCompiler {
 
   void parsePrimary() {
     skipSpace();
-    if (pos_ >= s_.size())
-      failAt(pos_, "unexpected end of formula", ", expected a number, a name, '-' or '('");
+    if (pos_ >= s_.size()) failAt(pos_, "unexpected end of formula", ", expected a number, a name, '-' or '('");
     const char c = s_[pos_];
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
       parseNumber();
@@ -356,8 +429,7 @@ class ExpressionCompiler {
       const size_t open = pos_++;
       parseExpr();
       if (!peek(')')) {
-        if (pos_ >= s_.size())
-          failAt(pos_, "missing ')'", " to close the '(' at column " + std::to_string(open + 1));
+        if (pos_ >= s_.size()) failAt(pos_, "missing ')'", " to close the '(' at column " + std::to_string(open + 1));
         failAt(pos_, "unexpected " + describeHere(), ", expected ')' or an operator");
       }
       ++pos_;
@@ -413,8 +485,7 @@ class ExpressionCompiler {
             continue;
           }
           if (peek(')')) break;
-          if (pos_ >= s_.size())
-            failAt(pos_, "missing ')'", " to close the call of '" + name + "'");
+          if (pos_ >= s_.size()) failAt(pos_, "missing ')'", " to close the call of '" + name + "'");
           failAt(pos_, "unexpected " + describeHere(), ", expected ',' or ')'");
         }
       }
@@ -454,9 +525,9 @@ Expression Expression::parse(const std::string& text, const ExpressionOptions& o
   for (const auto& [name, value] : options.parameters) {
     bool ident = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_');
     for (char c : name) ident = ident && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
-    require(ident && name != options.uName && name != options.vName && name != "pi" && name != "e" && !findFunction(name),
-            ErrorCode::InvalidArgument,
-            options.name + ": parameter name '" + name + "' is not a free identifier");
+    require(
+        ident && name != options.uName && name != options.vName && name != "pi" && name != "e" && !findFunction(name),
+        ErrorCode::InvalidArgument, options.name + ": parameter name '" + name + "' is not a free identifier");
     e.paramNames_.push_back(name);
     e.paramValues_.push_back(value);
   }
@@ -490,10 +561,18 @@ double Expression::value(double u, double v) const {
   int top = -1;
   for (const Instr& in : code_) {
     switch (in.op) {
-      case Op::Const: stack[++top] = constants_[in.arg]; break;
-      case Op::U: stack[++top] = u; break;
-      case Op::V: stack[++top] = v; break;
-      case Op::Param: stack[++top] = paramValues_[in.arg]; break;
+      case Op::Const:
+        stack[++top] = constants_[in.arg];
+        break;
+      case Op::U:
+        stack[++top] = u;
+        break;
+      case Op::V:
+        stack[++top] = v;
+        break;
+      case Op::Param:
+        stack[++top] = paramValues_[in.arg];
+        break;
       case Op::PowConst: {
         const double c = constants_[in.arg];
         stack[top] = c == 2.0 ? stack[top] * stack[top] : pm::pow(stack[top], c);
@@ -516,11 +595,21 @@ Dual2 Expression::evaluate(double u, double v) const {
   int top = -1;
   for (const Instr& in : code_) {
     switch (in.op) {
-      case Op::Const: stack[++top] = Dual2{constants_[in.arg], 0, 0, 0, 0, 0}; break;
-      case Op::U: stack[++top] = Dual2{u, 1, 0, 0, 0, 0}; break;
-      case Op::V: stack[++top] = Dual2{v, 0, 1, 0, 0, 0}; break;
-      case Op::Param: stack[++top] = Dual2{paramValues_[in.arg], 0, 0, 0, 0, 0}; break;
-      case Op::PowConst: stack[top] = powConst(stack[top], constants_[in.arg]); break;
+      case Op::Const:
+        stack[++top] = Dual2{constants_[in.arg], 0, 0, 0, 0, 0};
+        break;
+      case Op::U:
+        stack[++top] = Dual2{u, 1, 0, 0, 0, 0};
+        break;
+      case Op::V:
+        stack[++top] = Dual2{v, 0, 1, 0, 0, 0};
+        break;
+      case Op::Param:
+        stack[++top] = Dual2{paramValues_[in.arg], 0, 0, 0, 0, 0};
+        break;
+      case Op::PowConst:
+        stack[top] = powConst(stack[top], constants_[in.arg]);
+        break;
       default:
         if (isBinary(in.op)) {
           stack[top - 1] = binaryDual(in.op, stack[top - 1], stack[top]);

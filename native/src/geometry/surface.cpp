@@ -48,9 +48,9 @@ Surface::Surface(std::string name, const Box2& domain) : name_(std::move(name)) 
 void Surface::setDomain(const Box2& domain) {
   if (!(domain.lo.allFinite() && domain.hi.allFinite() && domain.lo.x() < domain.hi.x() &&
         domain.lo.y() < domain.hi.y()))
-    throw Error(ErrorCode::InvalidDomain, "surface '" + name_ + "': parameter domain [" + fmt(domain.lo.x()) +
-                                              ", " + fmt(domain.hi.x()) + "] x [" + fmt(domain.lo.y()) +
-                                              ", " + fmt(domain.hi.y()) + "] is empty or not finite");
+    throw Error(ErrorCode::InvalidDomain, "surface '" + name_ + "': parameter domain [" + fmt(domain.lo.x()) + ", " +
+                                              fmt(domain.hi.x()) + "] x [" + fmt(domain.lo.y()) + ", " +
+                                              fmt(domain.hi.y()) + "] is empty or not finite");
   domain_ = domain;
 }
 
@@ -138,8 +138,7 @@ SurfaceDerivatives CylinderSurface::derivatives(const Vec2& uv) const {
 SphereSurface::SphereSurface(double radius, const Vec3& center, const Box2& domain)
     : Surface("sphere", domain), r_(radius), c_(center) {
   if (!(std::isfinite(radius) && radius > 0.0 && center.allFinite()))
-    throw Error(ErrorCode::InvalidArgument,
-                "surface 'sphere': radius must be finite and positive, got " + fmt(radius));
+    throw Error(ErrorCode::InvalidArgument, "surface 'sphere': radius must be finite and positive, got " + fmt(radius));
 }
 
 Vec3 SphereSurface::point(const Vec2& uv) const {
@@ -164,11 +163,10 @@ SurfaceDerivatives SphereSurface::derivatives(const Vec2& uv) const {
 
 TorusSurface::TorusSurface(double majorRadius, double minorRadius, const Vec3& center, const Box2& domain)
     : Surface("torus", domain), R_(majorRadius), r_(minorRadius), c_(center) {
-  if (!(std::isfinite(majorRadius) && std::isfinite(minorRadius) && minorRadius > 0.0 &&
-        majorRadius > minorRadius && center.allFinite()))
-    throw Error(ErrorCode::InvalidArgument,
-                "surface 'torus': need finite radii with major > minor > 0, got " + fmt(majorRadius) +
-                    " and " + fmt(minorRadius));
+  if (!(std::isfinite(majorRadius) && std::isfinite(minorRadius) && minorRadius > 0.0 && majorRadius > minorRadius &&
+        center.allFinite()))
+    throw Error(ErrorCode::InvalidArgument, "surface 'torus': need finite radii with major > minor > 0, got " +
+                                                fmt(majorRadius) + " and " + fmt(minorRadius));
 }
 
 Vec3 TorusSurface::point(const Vec2& uv) const {
@@ -214,8 +212,7 @@ void bernstein3(double t, double b[4], double db[4], double ddb[4]) {
 
 }  // namespace
 
-BezierPatchSurface::BezierPatchSurface(const std::array<std::array<Vec3, 4>, 4>& controlPoints,
-                                       std::string name)
+BezierPatchSurface::BezierPatchSurface(const std::array<std::array<Vec3, 4>, 4>& controlPoints, std::string name)
     : Surface(std::move(name), Box2{{0.0, 0.0}, {1.0, 1.0}}), cp_(controlPoints) {
   for (const auto& row : cp_)
     for (const auto& p : row)
@@ -294,20 +291,16 @@ BasisEval evalBasis(const std::vector<double>& k, int p, int count, double t) {
     const int i = s - p + r;
     out.n[r] = N(i, p);
     out.dn[r] = dN(i, p);
-    out.ddn[r] =
-        p * (safeDiv(dN(i, p - 1), k[i + p] - k[i]) - safeDiv(dN(i + 1, p - 1), k[i + p + 1] - k[i + 1]));
+    out.ddn[r] = p * (safeDiv(dN(i, p - 1), k[i + p] - k[i]) - safeDiv(dN(i + 1, p - 1), k[i + p + 1] - k[i + 1]));
   }
   return out;
 }
 
 }  // namespace
 
-BSplinePatchSurface::BSplinePatchSurface(std::vector<std::vector<Vec3>> controlPoints, int degreeU,
-                                         int degreeV, std::string name)
-    : Surface(std::move(name), Box2{{0.0, 0.0}, {1.0, 1.0}}),
-      cp_(std::move(controlPoints)),
-      p_(degreeU),
-      q_(degreeV) {
+BSplinePatchSurface::BSplinePatchSurface(std::vector<std::vector<Vec3>> controlPoints, int degreeU, int degreeV,
+                                         std::string name)
+    : Surface(std::move(name), Box2{{0.0, 0.0}, {1.0, 1.0}}), cp_(std::move(controlPoints)), p_(degreeU), q_(degreeV) {
   if (!(p_ >= 1 && p_ <= kMaxDegree && q_ >= 1 && q_ <= kMaxDegree))
     throw Error(ErrorCode::InvalidArgument, "surface '" + this->name() + "': degrees must be in [1, 7]");
   const int m = static_cast<int>(cp_.size());
@@ -356,8 +349,7 @@ SurfaceDerivatives BSplinePatchSurface::derivatives(const Vec2& uv) const {
 
 // --- Expression surface -----------------------------------------------------------------
 
-ExpressionSurface::ExpressionSurface(Expression x, Expression y, Expression z, const Box2& domain,
-                                     std::string name)
+ExpressionSurface::ExpressionSurface(Expression x, Expression y, Expression z, const Box2& domain, std::string name)
     : Surface(std::move(name), domain), f_{std::move(x), std::move(y), std::move(z)} {}
 
 ExpressionSurface::ExpressionSurface(const std::string& x, const std::string& y, const std::string& z,
@@ -371,8 +363,8 @@ Vec3 ExpressionSurface::point(const Vec2& uv) const {
   for (int c = 0; c < 3; ++c) {
     p[c] = f_[c].value(uv.x(), uv.y());
     if (!(std::isfinite(p[c])))
-      throw Error(ErrorCode::InvalidSurface, std::string(1, "xyz"[c]) + "(u,v) = " + f_[c].text() +
-                                                 " is NaN or infinite on " + where(uv));
+      throw Error(ErrorCode::InvalidSurface,
+                  std::string(1, "xyz"[c]) + "(u,v) = " + f_[c].text() + " is NaN or infinite on " + where(uv));
   }
   return p;
 }
@@ -396,8 +388,7 @@ SurfaceDerivatives ExpressionSurface::derivatives(const Vec2& uv) const {
 }
 
 std::shared_ptr<ExpressionSurface> paperP2(const Box2& domain) {
-  return std::make_shared<ExpressionSurface>("u", "v", "1.5*exp(-0.001*(u^2+v^2))*sin(2*u)*cos(0.2*v)",
-                                             domain, "p2");
+  return std::make_shared<ExpressionSurface>("u", "v", "1.5*exp(-0.001*(u^2+v^2))*sin(2*u)*cos(0.2*v)", domain, "p2");
 }
 
 // --- differential geometry ---------------------------------------------------------------
@@ -413,16 +404,14 @@ namespace {
 Vec3 normalOrThrow(const SurfaceDerivatives& d, const Surface& s, const Vec2& uv) {
   const Vec3 c = d.su.cross(d.sv);
   if (!(!isDegenerate(d)))
-    throw Error(ErrorCode::InvalidSurface, "degenerate parameterization (|Su x Sv| = " + fmt(c.norm()) +
-                                               ", no normal) on " + s.where(uv));
+    throw Error(ErrorCode::InvalidSurface,
+                "degenerate parameterization (|Su x Sv| = " + fmt(c.norm()) + ", no normal) on " + s.where(uv));
   return c.normalized();
 }
 
 }  // namespace
 
-Mat2 firstFundamentalForm(const Surface& s, const Vec2& uv) {
-  return s.derivatives(uv).firstFundamentalForm();
-}
+Mat2 firstFundamentalForm(const Surface& s, const Vec2& uv) { return s.derivatives(uv).firstFundamentalForm(); }
 
 Vec3 unitNormal(const Surface& s, const Vec2& uv) { return normalOrThrow(s.derivatives(uv), s, uv); }
 

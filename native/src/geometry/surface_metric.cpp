@@ -54,8 +54,8 @@ void validate(const SurfaceMetricOptions& o) {
   if (!(std::isfinite(o.chordTolerance) && std::isfinite(o.angleTolerance)))
     throw Error(ErrorCode::InvalidArgument, "surface metric: tolerances must be finite");
   if (!(std::isfinite(o.hmin) && o.hmin > 0.0 && std::isfinite(o.hmax) && o.hmax >= o.hmin))
-    throw Error(ErrorCode::InvalidArgument, "surface metric: need 0 < hmin <= hmax, got hmin = " +
-                                                fmt(o.hmin) + ", hmax = " + fmt(o.hmax));
+    throw Error(ErrorCode::InvalidArgument,
+                "surface metric: need 0 < hmin <= hmax, got hmin = " + fmt(o.hmin) + ", hmax = " + fmt(o.hmax));
   if (!(std::isfinite(o.maxAspectRatio) && o.maxAspectRatio >= 1.0))
     throw Error(ErrorCode::InvalidArgument,
                 "surface metric: maxAspectRatio must be >= 1, got " + fmt(o.maxAspectRatio));
@@ -112,8 +112,7 @@ Metric parameterMetric(const Surface& s, const Vec2& uv, const SurfaceMetricOpti
 
 Mat2 parameterizationMatrix(const Surface& s, const Vec2& uv) {
   const Mat2 mp = sqrtSpd(s.derivatives(uv).firstFundamentalForm());
-  if (!(mp.allFinite()))
-    throw Error(ErrorCode::InvalidSurface, "parameterization matrix not finite on " + s.where(uv));
+  if (!(mp.allFinite())) throw Error(ErrorCode::InvalidSurface, "parameterization matrix not finite on " + s.where(uv));
   return mp;
 }
 
@@ -184,8 +183,7 @@ double triangleQuality3D(const Surface& s, const Vec2& a, const Vec2& b, const V
 }
 
 double chordDeviation(const Surface& s, const Vec2& a, const Vec2& b, const ChordDeviationOptions& options) {
-  if (!(options.samples >= 1))
-    throw Error(ErrorCode::InvalidArgument, "chord deviation: samples must be >= 1");
+  if (!(options.samples >= 1)) throw Error(ErrorCode::InvalidArgument, "chord deviation: samples must be >= 1");
   const Vec3 pa = s.point(a), pb = s.point(b), e = pb - pa;
   const double ee = e.squaredNorm();
   double worst = 0.0;

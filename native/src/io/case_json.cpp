@@ -65,7 +65,8 @@ double positiveField(const json& obj, const std::string& path, const char* key) 
 
 Vec2 point(const json& v, const std::string& path) {
   if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
-    fail(path, std::string("expected a point [x, y], got ") + (v.is_array() ? "an array of " + std::to_string(v.size()) : typeName(v)));
+    fail(path, std::string("expected a point [x, y], got ") +
+                   (v.is_array() ? "an array of " + std::to_string(v.size()) : typeName(v)));
   return {v[0].get<double>(), v[1].get<double>()};
 }
 Vec2 pointField(const json& obj, const std::string& path, const char* key) {
@@ -113,7 +114,8 @@ CurveUse parseCurve(const json& v, const std::string& path, int defaultRef) {
       if (v.contains("points")) {
         checkKeys(v, path, {"type", "ref", "reversed", "points"});
         const auto p = points(v["points"], child(path, "points"), 3);
-        if (p.size() != 3) fail(child(path, "points"), "expected 3 points (start, middle, end), got " + std::to_string(p.size()));
+        if (p.size() != 3)
+          fail(child(path, "points"), "expected 3 points (start, middle, end), got " + std::to_string(p.size()));
         c = std::make_shared<ArcCurve>(ArcCurve::throughPoints(p[0], p[1], p[2], ref));
       } else {
         checkKeys(v, path, {"type", "ref", "reversed", "center", "radius", "start", "end"});
@@ -122,7 +124,8 @@ CurveUse parseCurve(const json& v, const std::string& path, int defaultRef) {
       }
     } else if (type == "circle") {
       checkKeys(v, path, {"type", "ref", "reversed", "center", "radius"});
-      c = std::make_shared<ArcCurve>(ArcCurve::circle(pointField(v, path, "center"), positiveField(v, path, "radius"), ref));
+      c = std::make_shared<ArcCurve>(
+          ArcCurve::circle(pointField(v, path, "center"), positiveField(v, path, "radius"), ref));
     } else if (type == "polyline") {
       checkKeys(v, path, {"type", "ref", "reversed", "points"});
       c = std::make_shared<PolylineCurve>(points(member(v, path, "points"), child(path, "points"), 2), ref);
@@ -135,7 +138,8 @@ CurveUse parseCurve(const json& v, const std::string& path, int defaultRef) {
       checkKeys(v, path, {"type", "ref", "reversed", "points"});
       c = std::make_shared<BSplineCurve>(points(member(v, path, "points"), child(path, "points"), 4), ref);
     } else {
-      fail(child(path, "type"), "unknown curve type '" + type + "' (expected line, arc, circle, polyline, bezier or bspline)");
+      fail(child(path, "type"),
+           "unknown curve type '" + type + "' (expected line, arc, circle, polyline, bezier or bspline)");
     }
   } catch (const Error& e) {
     // Values checked here already name their path; constructor errors get the curve's.
@@ -176,8 +180,10 @@ AnalyticFieldSpec parseAnalytic(const json& v, const std::string& path) {
         return fallback;
       }
       std::string text;
-      if (v[key].is_number()) text = v[key].dump();
-      else text = string(v[key], child(path, key));
+      if (v[key].is_number())
+        text = v[key].dump();
+      else
+        text = string(v[key], child(path, key));
       ExpressionOptions o;
       o.name = child(path, key);
       o.uName = "x";
@@ -194,7 +200,8 @@ AnalyticFieldSpec parseAnalytic(const json& v, const std::string& path) {
     checkKeys(v, path, {"type", "field", "p1", "p2", "h0", "hTangent", "thickness"});
     a.p1 = pointField(v, path, "p1");
     a.p2 = pointField(v, path, "p2");
-    require((a.p2 - a.p1).norm() > 0, ErrorCode::InvalidArgument, path + ": p1 and p2 must differ (they define the wall line)");
+    require((a.p2 - a.p1).norm() > 0, ErrorCode::InvalidArgument,
+            path + ": p1 and p2 must differ (they define the wall line)");
   } else if (a.field == "shear_layer_circle") {
     checkKeys(v, path, {"type", "field", "center", "radius", "h0", "hTangent", "thickness"});
     a.center = pointField(v, path, "center");
@@ -207,7 +214,8 @@ AnalyticFieldSpec parseAnalytic(const json& v, const std::string& path) {
     require(a.growth >= 0, ErrorCode::InvalidArgument, child(path, "growth") + ": must be >= 0");
     return a;
   } else {
-    fail(child(path, "field"), "unknown analytic field '" + a.field + "' (expected boundary_layer, shear_layer_circle, point or expression)");
+    fail(child(path, "field"),
+         "unknown analytic field '" + a.field + "' (expected boundary_layer, shear_layer_circle, point or expression)");
   }
   a.h0 = positiveField(v, path, "h0");
   a.hTangent = positiveField(v, path, "hTangent");
@@ -240,7 +248,8 @@ SourceSpec parseSource(const json& v, const std::string& path) {
     const std::string mp = child(path, "metrics");
     if (!ms.is_array()) fail(mp, std::string("expected an array of metrics, got ") + typeName(ms));
     if (ms.size() != s.points.size())
-      fail(mp, "expected one metric per point (" + std::to_string(s.points.size()) + "), got " + std::to_string(ms.size()));
+      fail(mp,
+           "expected one metric per point (" + std::to_string(s.points.size()) + "), got " + std::to_string(ms.size()));
     for (size_t i = 0; i < ms.size(); ++i) s.metrics.push_back(parseMetric(ms[i], index(mp, i)));
     return s;
   } else if (type == "analytic") {
@@ -248,11 +257,13 @@ SourceSpec parseSource(const json& v, const std::string& path) {
     s.analytic = parseAnalytic(v, path);
     return s;
   } else {
-    fail(child(path, "type"), "unknown source type '" + type + "' (expected radial, segment, polyline, nodes or analytic)");
+    fail(child(path, "type"),
+         "unknown source type '" + type + "' (expected radial, segment, polyline, nodes or analytic)");
   }
   s.metric = parseMetric(member(v, path, "metric"), child(path, "metric"));
   s.radius = number(member(v, path, "radius"), child(path, "radius"));
-  require(s.radius >= 0, ErrorCode::InvalidArgument, child(path, "radius") + ": must be >= 0, got " + std::to_string(s.radius));
+  require(s.radius >= 0, ErrorCode::InvalidArgument,
+          child(path, "radius") + ": must be >= 0, got " + std::to_string(s.radius));
   return s;
 }
 
@@ -273,10 +284,12 @@ CaseControlSpaceSpec parseControlSpace(const json& v, const std::string& path) {
   }
   if (v.contains("gradation") && !v["gradation"].is_null()) {
     const double dr = number(v["gradation"], child(path, "gradation"));
-    require(dr >= 1, ErrorCode::InvalidArgument, child(path, "gradation") + ": must be >= 1 or null, got " + std::to_string(dr));
+    require(dr >= 1, ErrorCode::InvalidArgument,
+            child(path, "gradation") + ": must be >= 1 or null, got " + std::to_string(dr));
     cs.gradation = dr;
   }
-  if (v.contains("refineThreshold")) cs.refineThreshold = positive(v["refineThreshold"], child(path, "refineThreshold"));
+  if (v.contains("refineThreshold"))
+    cs.refineThreshold = positive(v["refineThreshold"], child(path, "refineThreshold"));
   if (v.contains("maxLevel")) {
     cs.maxLevel = integer(v["maxLevel"], child(path, "maxLevel"));
     require(cs.maxLevel >= 2 && cs.maxLevel <= 20, ErrorCode::InvalidArgument,
@@ -285,12 +298,14 @@ CaseControlSpaceSpec parseControlSpace(const json& v, const std::string& path) {
   if (v.contains("interpolation")) {
     cs.interpolation = string(v["interpolation"], child(path, "interpolation"));
     const bool quadtree = cs.kind == "quadtree";
-    const bool ok = cs.interpolation == "bilinear" || (quadtree ? cs.interpolation == "serendipity"
-                                                                : cs.interpolation == "linear" || cs.interpolation == "inverse_distance");
+    const bool ok = cs.interpolation == "bilinear" ||
+                    (quadtree ? cs.interpolation == "serendipity"
+                              : cs.interpolation == "linear" || cs.interpolation == "inverse_distance");
     if (!ok)
-      fail(child(path, "interpolation"), std::string(quadtree ? "expected \"bilinear\" or \"serendipity\" for a quadtree"
-                                                             : "expected \"linear\" or \"inverse_distance\" for a background mesh") +
-                                            ", got \"" + cs.interpolation + "\"");
+      fail(child(path, "interpolation"),
+           std::string(quadtree ? "expected \"bilinear\" or \"serendipity\" for a quadtree"
+                                : "expected \"linear\" or \"inverse_distance\" for a background mesh") +
+               ", got \"" + cs.interpolation + "\"");
   }
   return cs;
 }
@@ -303,7 +318,8 @@ CaseOptions parseOptions(const json& v, const std::string& path) {
   if (v.contains("allQuads")) o.allQuads = boolean(v["allQuads"], child(path, "allQuads"));
   if (v.contains("maxElements")) {
     const json& m = v["maxElements"];
-    if (!m.is_number_integer()) fail(child(path, "maxElements"), std::string("expected an integer, got ") + typeName(m));
+    if (!m.is_number_integer())
+      fail(child(path, "maxElements"), std::string("expected an integer, got ") + typeName(m));
     o.maxElements = m.get<std::int64_t>();
     require(o.maxElements > 0, ErrorCode::InvalidArgument, child(path, "maxElements") + ": must be positive");
   }

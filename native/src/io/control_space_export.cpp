@@ -15,9 +15,7 @@ nlohmann::json metricJson(const Vec2& p, const Metric& m) {
   return {{"p", {p.x(), p.y()}}, {"m", {t(0, 0), t(0, 1), t(1, 1)}}, {"alpha", s.alpha}, {"h1", s.h1}, {"h2", s.h2}};
 }
 
-nlohmann::json boundsJson(const Box2& b) {
-  return {{"lo", {b.lo.x(), b.lo.y()}}, {"hi", {b.hi.x(), b.hi.y()}}};
-}
+nlohmann::json boundsJson(const Box2& b) { return {{"lo", {b.lo.x(), b.lo.y()}}, {"hi", {b.hi.x(), b.hi.y()}}}; }
 
 }  // namespace
 

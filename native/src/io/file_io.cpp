@@ -33,7 +33,8 @@ void writeTextFileAtomic(const std::string& path, const std::string& contents) {
   const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
   const std::string tmp = path + ".tmp-" + std::to_string(rd()) + "-" + std::to_string(stamp);
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  require(f != nullptr, ErrorCode::IoError, "cannot create '" + tmp + "' to write '" + path + "': " + std::strerror(errno));
+  require(f != nullptr, ErrorCode::IoError,
+          "cannot create '" + tmp + "' to write '" + path + "': " + std::strerror(errno));
   const bool written = std::fwrite(contents.data(), 1, contents.size(), f) == contents.size();
   const bool closed = std::fclose(f) == 0;
   if (!written || !closed) {

@@ -15,11 +15,19 @@ using io_detail::TokenStream;
 
 // Sections we read past without keeping: tokens per record (-1: one per dimension).
 const std::map<std::string, int>& skippedSections() {
-  static const std::map<std::string, int> s{
-      {"Corners", 1},           {"Ridges", 1},           {"RequiredVertices", 1}, {"RequiredEdges", 1},
-      {"RequiredTriangles", 1}, {"RequiredQuadrilaterals", 1}, {"Tetrahedra", 5}, {"Hexahedra", 9},
-      {"Prisms", 7},            {"Normals", -1},         {"NormalAtVertices", 2}, {"Tangents", -1},
-      {"TangentAtVertices", 2}};
+  static const std::map<std::string, int> s{{"Corners", 1},
+                                            {"Ridges", 1},
+                                            {"RequiredVertices", 1},
+                                            {"RequiredEdges", 1},
+                                            {"RequiredTriangles", 1},
+                                            {"RequiredQuadrilaterals", 1},
+                                            {"Tetrahedra", 5},
+                                            {"Hexahedra", 9},
+                                            {"Prisms", 7},
+                                            {"Normals", -1},
+                                            {"NormalAtVertices", 2},
+                                            {"Tangents", -1},
+                                            {"TangentAtVertices", 2}};
   return s;
 }
 
@@ -41,7 +49,8 @@ void readElements(TokenStream& ts, const char* name, int vertexCount, std::vecto
       e[k] = int(v - 1);
     }
     elems->push_back(e);
-    refs->push_back(int(ts.integer([&] { return std::string("the reference of ") + name + " " + std::to_string(i + 1); })));
+    refs->push_back(
+        int(ts.integer([&] { return std::string("the reference of ") + name + " " + std::to_string(i + 1); })));
   }
 }
 
@@ -118,7 +127,8 @@ Mesh parseMedit(const std::string& text) {
       for (long long i = 0; i < n; ++i) {
         Vec3 p = Vec3::Zero();
         for (int k = 0; k < dimension; ++k)
-          p[k] = ts.number([&] { return std::string("coordinate ") + "xyz"[k] + " of vertex " + std::to_string(i + 1); });
+          p[k] =
+              ts.number([&] { return std::string("coordinate ") + "xyz"[k] + " of vertex " + std::to_string(i + 1); });
         mesh.points.push_back(p);
         mesh.pointRefs.push_back(int(ts.integer([&] { return "the reference of vertex " + std::to_string(i + 1); })));
       }
@@ -126,16 +136,20 @@ Mesh parseMedit(const std::string& text) {
     } else if (key == "Edges" || key == "Triangles" || key == "Quadrilaterals") {
       if (!haveVertices) ts.failAt(line, "expected Vertices before " + key);
       const int nv = mesh.vertexCount();
-      if (key == "Edges") readElements<2>(ts, "Edges", nv, &mesh.edges, &mesh.edgeRefs);
-      else if (key == "Triangles") readElements<3>(ts, "Triangles", nv, &mesh.triangles, &mesh.triangleRefs);
-      else readElements<4>(ts, "Quadrilaterals", nv, &mesh.quads, &mesh.quadRefs);
+      if (key == "Edges")
+        readElements<2>(ts, "Edges", nv, &mesh.edges, &mesh.edgeRefs);
+      else if (key == "Triangles")
+        readElements<3>(ts, "Triangles", nv, &mesh.triangles, &mesh.triangleRefs);
+      else
+        readElements<4>(ts, "Quadrilaterals", nv, &mesh.quads, &mesh.quadRefs);
     } else if (skippedSections().count(key)) {
       int per = skippedSections().at(key);
       if (per < 0) per = dimension > 0 ? dimension : 3;
       const long long n = ts.count("the number of " + key, per);
       for (long long i = 0; i < n * per; ++i) ts.number("a value of " + key);
     } else {
-      ts.failAt(line, "expected a Medit keyword (Vertices, Edges, Triangles, Quadrilaterals, End, ...), got '" + key + "'");
+      ts.failAt(line,
+                "expected a Medit keyword (Vertices, Edges, Triangles, Quadrilaterals, End, ...), got '" + key + "'");
     }
   }
   if (version == 0) ts.failAt(1, "expected MeshVersionFormatted");
@@ -193,7 +207,8 @@ SolData parseSol(const std::string& text) {
       sol.values.reserve(size_t(n) * size_t(per));
       for (long long i = 0; i < n; ++i)
         for (int k = 0; k < per; ++k)
-          sol.values.push_back(ts.number([&] { return "value " + std::to_string(k + 1) + " of vertex " + std::to_string(i + 1); }));
+          sol.values.push_back(
+              ts.number([&] { return "value " + std::to_string(k + 1) + " of vertex " + std::to_string(i + 1); }));
       haveField = true;
     } else {
       ts.failAt(line, "expected MeshVersionFormatted, Dimension, SolAtVertices or End, got '" + key + "'");

@@ -116,13 +116,14 @@ Mesh parseVtk(const std::string& text) {
       for (long long i = 0; i < n; ++i) {
         const int cl = ts.line();
         const long long k = ts.integer("the vertex count of cell " + std::to_string(i));
-        if (k < 1 || k > 8) ts.failAt(cl, "cell " + std::to_string(i) + " has an unsupported vertex count " + std::to_string(k));
+        if (k < 1 || k > 8)
+          ts.failAt(cl, "cell " + std::to_string(i) + " has an unsupported vertex count " + std::to_string(k));
         std::vector<int> c;
         for (long long j = 0; j < k; ++j) {
           const long long v = ts.integer([&] { return "a vertex index of cell " + std::to_string(i); });
           if (v < 0 || v >= (long long)mesh.points.size())
-            ts.failAt(cl, "vertex index " + std::to_string(v) + " of cell " + std::to_string(i) + " is out of range 0.." +
-                              std::to_string((long long)mesh.points.size() - 1));
+            ts.failAt(cl, "vertex index " + std::to_string(v) + " of cell " + std::to_string(i) +
+                              " is out of range 0.." + std::to_string((long long)mesh.points.size() - 1));
           c.push_back(int(v));
         }
         cells.push_back(std::move(c));
@@ -131,12 +132,15 @@ Mesh parseVtk(const std::string& text) {
     } else if (key == "CELL_TYPES") {
       const long long n = ts.count("the number of cell types", 1);
       if (n != (long long)cells.size())
-        ts.failAt(line, "CELL_TYPES has " + std::to_string(n) + " entries but CELLS has " + std::to_string(cells.size()));
-      for (long long i = 0; i < n; ++i) cellTypes.push_back(int(ts.integer([&] { return "the type of cell " + std::to_string(i); })));
+        ts.failAt(line,
+                  "CELL_TYPES has " + std::to_string(n) + " entries but CELLS has " + std::to_string(cells.size()));
+      for (long long i = 0; i < n; ++i)
+        cellTypes.push_back(int(ts.integer([&] { return "the type of cell " + std::to_string(i); })));
     } else if (key == "CELL_DATA") {
       const long long n = ts.count("the number of cell data values", 1);
       if (n != (long long)cells.size())
-        ts.failAt(line, "CELL_DATA has " + std::to_string(n) + " entries but CELLS has " + std::to_string(cells.size()));
+        ts.failAt(line,
+                  "CELL_DATA has " + std::to_string(n) + " entries but CELLS has " + std::to_string(cells.size()));
       expectKeyword(ts, "SCALARS");
       ts.next();  // name
       ts.next();  // type
@@ -152,17 +156,31 @@ Mesh parseVtk(const std::string& text) {
       ts.failAt(line, "expected POINTS, CELLS, CELL_TYPES or CELL_DATA, got '" + key + "'");
     }
   }
-  if (cellTypes.size() != cells.size()) ts.failAt(ts.line(), "expected CELL_TYPES for the " + std::to_string(cells.size()) + " cells");
+  if (cellTypes.size() != cells.size())
+    ts.failAt(ts.line(), "expected CELL_TYPES for the " + std::to_string(cells.size()) + " cells");
   for (size_t i = 0; i < cells.size(); ++i) {
     const int ref = i < refs.size() ? refs[i] : 0;
     const std::vector<int>& c = cells[i];
     const int type = cellTypes[i];
     const size_t want = type == 3 ? 2 : type == 5 ? 3 : type == 9 ? 4 : 0;
-    if (want == 0) ts.failAt(cellLines[i], "cell " + std::to_string(i) + " has unsupported VTK type " + std::to_string(type) + " (3, 5 or 9 expected)");
-    if (c.size() != want) ts.failAt(cellLines[i], "cell " + std::to_string(i) + " of type " + std::to_string(type) + " needs " + std::to_string(want) + " vertices");
-    if (type == 3) { mesh.edges.push_back({c[0], c[1]}); mesh.edgeRefs.push_back(ref); }
-    if (type == 5) { mesh.triangles.push_back({c[0], c[1], c[2]}); mesh.triangleRefs.push_back(ref); }
-    if (type == 9) { mesh.quads.push_back({c[0], c[1], c[2], c[3]}); mesh.quadRefs.push_back(ref); }
+    if (want == 0)
+      ts.failAt(cellLines[i], "cell " + std::to_string(i) + " has unsupported VTK type " + std::to_string(type) +
+                                  " (3, 5 or 9 expected)");
+    if (c.size() != want)
+      ts.failAt(cellLines[i], "cell " + std::to_string(i) + " of type " + std::to_string(type) + " needs " +
+                                  std::to_string(want) + " vertices");
+    if (type == 3) {
+      mesh.edges.push_back({c[0], c[1]});
+      mesh.edgeRefs.push_back(ref);
+    }
+    if (type == 5) {
+      mesh.triangles.push_back({c[0], c[1], c[2]});
+      mesh.triangleRefs.push_back(ref);
+    }
+    if (type == 9) {
+      mesh.quads.push_back({c[0], c[1], c[2], c[3]});
+      mesh.quadRefs.push_back(ref);
+    }
   }
   mesh.pointRefs.assign(mesh.points.size(), 0);
   setPlanarIfFlat(&mesh);
@@ -205,7 +223,9 @@ Mesh parseObj(const std::string& text) {
     TokenStream ts(lineText, "OBJ", '#', line);
     if (ts.atEnd()) continue;
     const std::string key = ts.next().str();
-    auto here = [&](const std::string& m) { throw Error(ErrorCode::ParseError, "OBJ line " + std::to_string(line) + ": " + m); };
+    auto here = [&](const std::string& m) {
+      throw Error(ErrorCode::ParseError, "OBJ line " + std::to_string(line) + ": " + m);
+    };
     if (key == "v") {
       Vec3 p = Vec3::Zero();
       for (int k = 0; k < 3; ++k) {
@@ -235,8 +255,8 @@ Mesh parseObj(const std::string& text) {
   for (const Pending& p : pending) {
     for (long long v : p.v)
       if (v < 0 || v >= n)
-        throw Error(ErrorCode::ParseError, "OBJ line " + std::to_string(p.line) + ": vertex index " + std::to_string(v + 1) +
-                                               " is out of range 1.." + std::to_string(n));
+        throw Error(ErrorCode::ParseError, "OBJ line " + std::to_string(p.line) + ": vertex index " +
+                                               std::to_string(v + 1) + " is out of range 1.." + std::to_string(n));
     if (p.kind == 'l') {
       for (size_t k = 0; k + 1 < p.v.size(); ++k) {
         mesh.edges.push_back({int(p.v[k]), int(p.v[k + 1])});
@@ -257,18 +277,24 @@ Mesh parseObj(const std::string& text) {
 
 std::string writeMeshString(const Mesh& mesh, MeshFormat format) {
   switch (format) {
-    case MeshFormat::Medit: return writeMedit(mesh);
-    case MeshFormat::Vtk: return writeVtk(mesh);
-    case MeshFormat::Obj: return writeObj(mesh);
+    case MeshFormat::Medit:
+      return writeMedit(mesh);
+    case MeshFormat::Vtk:
+      return writeVtk(mesh);
+    case MeshFormat::Obj:
+      return writeObj(mesh);
   }
   return writeMedit(mesh);
 }
 
 Mesh parseMeshString(const std::string& text, MeshFormat format) {
   switch (format) {
-    case MeshFormat::Medit: return parseMedit(text);
-    case MeshFormat::Vtk: return parseVtk(text);
-    case MeshFormat::Obj: return parseObj(text);
+    case MeshFormat::Medit:
+      return parseMedit(text);
+    case MeshFormat::Vtk:
+      return parseVtk(text);
+    case MeshFormat::Obj:
+      return parseObj(text);
   }
   return parseMedit(text);
 }

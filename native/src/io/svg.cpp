@@ -50,8 +50,7 @@ struct Camera {
 
 std::string writeSvg(const Mesh& mesh, const SvgOptions& options) {
   require(options.width > 0, ErrorCode::InvalidArgument, "SVG width must be positive");
-  require(options.elementValues.empty() ||
-              options.elementValues.size() == mesh.triangles.size() + mesh.quads.size(),
+  require(options.elementValues.empty() || options.elementValues.size() == mesh.triangles.size() + mesh.quads.size(),
           ErrorCode::InvalidArgument, "SVG element values: one value per element expected");
   const Camera cam(options.azimuth, options.elevation);
   auto plane = [&](const Vec3& p) { return options.view3d ? cam.project(p) : Vec2(p.head<2>()); };
@@ -80,8 +79,8 @@ std::string writeSvg(const Mesh& mesh, const SvgOptions& options) {
      << "\" viewBox=\"0 0 " << options.width << " " << height << "\">\n";
   os << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   os << "<g stroke=\"#1b3a5c\" stroke-width=\"" << options.strokeWidth << "\" stroke-linejoin=\"round\">\n";
-  const std::array<double, 3> plain = options.view3d ? std::array<double, 3>{170, 200, 230}
-                                                     : std::array<double, 3>{0xdf, 0xe9, 0xf3};
+  const std::array<double, 3> plain =
+      options.view3d ? std::array<double, 3>{170, 200, 230} : std::array<double, 3>{0xdf, 0xe9, 0xf3};
   // Light from the viewer's upper right; shade = 0.35 + 0.65 |n . l| (two-sided).
   const Vec3 light = (cam.toViewer + 0.6 * cam.up + 0.3 * cam.right).normalized();
   auto element = [&](const int* v, int n, size_t index) {
@@ -94,8 +93,9 @@ std::string writeSvg(const Mesh& mesh, const SvgOptions& options) {
     double shade = 1.0;
     if (options.view3d) {
       const Vec3& a = mesh.points[size_t(v[0])];
-      const Vec3 nrm = n == 3 ? (mesh.points[size_t(v[1])] - a).cross(mesh.points[size_t(v[2])] - a)
-                              : (mesh.points[size_t(v[2])] - a).cross(mesh.points[size_t(v[3])] - mesh.points[size_t(v[1])]);
+      const Vec3 nrm =
+          n == 3 ? (mesh.points[size_t(v[1])] - a).cross(mesh.points[size_t(v[2])] - a)
+                 : (mesh.points[size_t(v[2])] - a).cross(mesh.points[size_t(v[3])] - mesh.points[size_t(v[1])]);
       const double len = nrm.norm();
       shade = 0.35 + 0.65 * (len > 0 ? std::abs(nrm.dot(light)) / len : 1.0);
     }

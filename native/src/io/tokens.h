@@ -25,7 +25,9 @@ struct Token {
 inline std::string describe(const std::string& s) { return s; }
 inline std::string describe(const char* s) { return s; }
 template <class F, class = decltype(std::declval<const F&>()())>
-std::string describe(const F& f) { return f(); }
+std::string describe(const F& f) {
+  return f();
+}
 
 class TokenStream {
  public:
@@ -62,8 +64,8 @@ class TokenStream {
 
   [[noreturn]] void fail(const std::string& expected) const {
     const std::string got = atEnd() ? std::string("end of file") : "'" + peek().str() + "'";
-    throw Error(ErrorCode::ParseError, format_ + " line " + std::to_string(line()) + ": expected " + expected +
-                                           ", got " + got);
+    throw Error(ErrorCode::ParseError,
+                format_ + " line " + std::to_string(line()) + ": expected " + expected + ", got " + got);
   }
   [[noreturn]] void failAt(int line, const std::string& message) const {
     throw Error(ErrorCode::ParseError, format_ + " line " + std::to_string(line) + ": " + message);

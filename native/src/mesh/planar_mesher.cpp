@@ -31,19 +31,17 @@ namespace anisomesh {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-constexpr int kSuper = 4;                              // super-box corners are vertices 0..3
-constexpr double kIdealRadius = 0.57735026918962576;   // circumradius of the unit equilateral triangle
-constexpr double kAcceptRadius = 0.70710678118654752;  // triangles with metric radius below are done
-constexpr int kBucketOffset = 4 * 1100;                // bucket index offset: covers every double exponent
-constexpr double kEstimateFactor = 1.0;                // measured: within ~10% on the layer test cases
-constexpr double kSwapSkipQuality = 0.97;              // pairs whose worse triangle is better are not swapped
+constexpr int kSuper = 4;                                // super-box corners are vertices 0..3
+constexpr double kIdealRadius = 0.57735026918962576;     // circumradius of the unit equilateral triangle
+constexpr double kAcceptRadius = 0.70710678118654752;    // triangles with metric radius below are done
+constexpr int kBucketOffset = 4 * 1100;                  // bucket index offset: covers every double exponent
+constexpr double kEstimateFactor = 1.0;                  // measured: within ~10% on the layer test cases
+constexpr double kSwapSkipQuality = 0.97;                // pairs whose worse triangle is better are not swapped
 constexpr double kCollapseLength = 0.70710678118654752;  // shorter edges are collapsed
-constexpr double kCollapseMaxLength = 1.3;             // ... unless a new edge would be longer
-constexpr double kCollapseMinQuality = 0.4;            // ... or a triangle worse than this (or than before)
+constexpr double kCollapseMaxLength = 1.3;               // ... unless a new edge would be longer
+constexpr double kCollapseMinQuality = 0.4;              // ... or a triangle worse than this (or than before)
 // Final short-edge rounds (after the adaptation loop): the edges still shorter than
 // kCollapseLength are collapsed where the merged vertex can sit at unit length from its
 // ring, new edges up to kFinalCollapseMaxLength (just under sqrt2) but no triangle below
@@ -51,10 +49,10 @@ constexpr double kCollapseMinQuality = 0.4;            // ... or a triangle wors
 constexpr double kFinalCollapseMaxLength = 1.41;
 constexpr double kFinalCollapseMinQuality = 0.75;
 constexpr int kFinalCollapseRounds = 2;
-constexpr double kSplitLength = 1.41421356237309505;   // longer inner edges are split at their midpoint
-constexpr double kSplitMinQuality = 0.4;               // ... unless a triangle gets worse than this (and than before)
-constexpr double kSmoothSkipQuality = 0.9;             // balls whose worst triangle is better are not smoothed
-constexpr double kSmoothMinGain = 0.005;               // smaller gains of the worst triangle are not taken
+constexpr double kSplitLength = 1.41421356237309505;  // longer inner edges are split at their midpoint
+constexpr double kSplitMinQuality = 0.4;              // ... unless a triangle gets worse than this (and than before)
+constexpr double kSmoothSkipQuality = 0.9;            // balls whose worst triangle is better are not smoothed
+constexpr double kSmoothMinGain = 0.005;              // smaller gains of the worst triangle are not taken
 // Smoothing makes no ring edge shorter than this (unless it already is): a little above
 // 1/sqrt2, as the vertex-averaged Mt overestimates the length integral in a graded metric.
 constexpr double kSmoothMinLength = 0.715;
@@ -151,9 +149,9 @@ class Mesher {
   struct Tri {
     std::array<int, 3> v;
     std::array<int, 3> n;
-    std::uint8_t c;         // constrained-edge bits
-    std::uint8_t acc;       // frontal insertion: accepted (done)
-    std::uint32_t mark;     // cavity / work-list epoch
+    std::uint8_t c;      // constrained-edge bits
+    std::uint8_t acc;    // frontal insertion: accepted (done)
+    std::uint32_t mark;  // cavity / work-list epoch
   };
   std::vector<Tri> tri_;
   std::vector<int> freeTris_;
@@ -195,9 +193,9 @@ void Mesher::validate() const {
   for (size_t l = 0; l < loops_.size(); ++l) {
     const auto& lp = loops_[l];
     const std::string name = l == 0 ? "outer loop" : "hole loop " + std::to_string(l);
-    require(lp.points.size() >= 3, ErrorCode::InvalidArgument,
-            "meshPlanarBoundary: " + name + " has " + std::to_string(lp.points.size()) +
-                " points, at least 3 are needed");
+    require(
+        lp.points.size() >= 3, ErrorCode::InvalidArgument,
+        "meshPlanarBoundary: " + name + " has " + std::to_string(lp.points.size()) + " points, at least 3 are needed");
     require(lp.edgeRefs.size() == lp.points.size(), ErrorCode::InvalidArgument,
             "meshPlanarBoundary: " + name + " has " + std::to_string(lp.points.size()) + " points but " +
                 std::to_string(lp.edgeRefs.size()) + " edge refs (one per edge expected)");
@@ -495,7 +493,8 @@ void Mesher::triangulateBoundary() {
     if (t < 0) {  // cannot happen inside the super-box; scan as a last resort
       for (int k = 0; k < static_cast<int>(tri_.size()) && t < 0; ++k)
         if (tri_[k].v[0] >= 0 && orient(vx_[tri_[k].v[0]].p, vx_[tri_[k].v[1]].p, x) >= 0 &&
-            orient(vx_[tri_[k].v[1]].p, vx_[tri_[k].v[2]].p, x) >= 0 && orient(vx_[tri_[k].v[2]].p, vx_[tri_[k].v[0]].p, x) >= 0)
+            orient(vx_[tri_[k].v[1]].p, vx_[tri_[k].v[2]].p, x) >= 0 &&
+            orient(vx_[tri_[k].v[2]].p, vx_[tri_[k].v[0]].p, x) >= 0)
           t = k;
       require(t >= 0, ErrorCode::Internal, "meshPlanarBoundary: point location failed");
     }
@@ -564,8 +563,8 @@ void Mesher::recoverEdge(int a, int b) {
     while (tri_[cur].v[i] == u || tri_[cur].v[i] == w) ++i;
     if (cons(cur, i)) {
       std::ostringstream os;
-      os << "meshPlanarBoundary: boundary segment (" << pa.x() << ", " << pa.y() << ")-(" << pb.x() << ", "
-         << pb.y() << ") crosses another boundary segment";
+      os << "meshPlanarBoundary: boundary segment (" << pa.x() << ", " << pa.y() << ")-(" << pb.x() << ", " << pb.y()
+         << ") crosses another boundary segment";
       throw Error(ErrorCode::SelfIntersectingContour, os.str());
     }
     crossing.emplace_back(u, w);
@@ -690,8 +689,8 @@ void Mesher::removeOutside() {
 }
 
 // Integral of det(Mt) over the domain (metric area), adaptive over the boundary triangles.
-double Mesher::metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double da, double db, double dc,
-                             int depth, std::int64_t& budget) const {
+double Mesher::metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double da, double db, double dc, int depth,
+                             std::int64_t& budget) const {
   const double area = 0.5 * std::fabs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
   const Vec2 g = (a + b + c) / 3.0;
   const double dg = cs_.metricAt(g).transform().determinant();
@@ -1026,7 +1025,8 @@ int Mesher::smoothPass(std::vector<int>& touched) {
       const Vec2& cand = cands[ci];
       double after = std::numeric_limits<double>::infinity();
       for (size_t k = 0; k < deg; ++k) {
-        after = std::min(after, metricTriangleQuality(triM[k], cand, vx_[ring[k]].p, vx_[ring[k + 1 == deg ? 0 : k + 1]].p));
+        after = std::min(after,
+                         metricTriangleQuality(triM[k], cand, vx_[ring[k]].p, vx_[ring[k + 1 == deg ? 0 : k + 1]].p));
         if (after <= bestQ) break;
       }
       if (!(after > bestQ)) continue;

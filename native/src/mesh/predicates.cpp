@@ -137,8 +137,7 @@ std::vector<double> diff2(double a, double b) {
 
 double orient2dExact(const double* a, const double* b, const double* c) {
   // det = ax*by - ax*cy - cx*by - ay*bx + ay*cx + cy*bx (the cx*cy terms cancel).
-  const double terms[6][2] = {{a[0], b[1]}, {-a[0], c[1]}, {-c[0], b[1]},
-                              {-a[1], b[0]}, {a[1], c[0]}, {c[1], b[0]}};
+  const double terms[6][2] = {{a[0], b[1]}, {-a[0], c[1]}, {-c[0], b[1]}, {-a[1], b[0]}, {a[1], c[0]}, {c[1], b[0]}};
   double acc[16], tmp[16];
   int len = 0;
   for (const auto& t : terms) {

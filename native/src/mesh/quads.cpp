@@ -54,8 +54,7 @@ void mergeTriangles(Mesh& mesh, const std::vector<SymMt>& vmt, double minQuality
     Vec2 pts[4];
     for (int c = 0; c < 4; ++c) pts[c] = mesh.params[quad[c]];
     bool convex = true;
-    for (int c = 0; c < 4 && convex; ++c)
-      convex = orient2d(pts[(c + 3) % 4], pts[c], pts[(c + 1) % 4]) > 0.0;
+    for (int c = 0; c < 4 && convex; ++c) convex = orient2d(pts[(c + 3) % 4], pts[c], pts[(c + 1) % 4]) > 0.0;
     if (!convex) continue;
     const SymMt m{0.25 * (vmt[p].a + vmt[u].a + vmt[q].a + vmt[w].a),
                   0.25 * (vmt[p].b + vmt[u].b + vmt[q].b + vmt[w].b),

@@ -47,7 +47,8 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace,
   r.quads = static_cast<int>(mesh.quads.size());
   std::vector<Vec2> uv(nv);
   for (int v = 0; v < nv; ++v)
-    uv[v] = mesh.params.size() == static_cast<size_t>(nv) ? mesh.params[v] : Vec2(mesh.points[v].x(), mesh.points[v].y());
+    uv[v] =
+        mesh.params.size() == static_cast<size_t>(nv) ? mesh.params[v] : Vec2(mesh.points[v].x(), mesh.points[v].y());
   std::vector<SymMt> mt(nv);
   for (int v = 0; v < nv; ++v) mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
 

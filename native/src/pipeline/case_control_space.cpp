@@ -7,8 +7,8 @@
 
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/core/error.h"
-#include "anisomesh/geometry/expression.h"
 #include "anisomesh/core/portable_math.h"
+#include "anisomesh/geometry/expression.h"
 
 namespace anisomesh {
 namespace {
@@ -98,9 +98,15 @@ std::vector<MetricSource> caseDiscreteSources(const CaseSpec& spec) {
   for (const SourceSpec& s : spec.sources) {
     const Metric m = Metric::fromSizes(s.metric.alpha, s.metric.h1, s.metric.h2);
     switch (s.type) {
-      case SourceType::Radial: out.emplace_back(std::in_place_type<RadialSource>, RadialSource{s.center, m, s.radius}); break;
-      case SourceType::Segment: out.emplace_back(std::in_place_type<SegmentSource>, SegmentSource{s.p1, s.p2, m, s.radius}); break;
-      case SourceType::Polyline: out.emplace_back(std::in_place_type<PolylineSource>, PolylineSource{s.points, m, s.radius}); break;
+      case SourceType::Radial:
+        out.emplace_back(std::in_place_type<RadialSource>, RadialSource{s.center, m, s.radius});
+        break;
+      case SourceType::Segment:
+        out.emplace_back(std::in_place_type<SegmentSource>, SegmentSource{s.p1, s.p2, m, s.radius});
+        break;
+      case SourceType::Polyline:
+        out.emplace_back(std::in_place_type<PolylineSource>, PolylineSource{s.points, m, s.radius});
+        break;
       case SourceType::Nodes: {
         NodeSource n;
         n.points = s.points;
@@ -108,7 +114,8 @@ std::vector<MetricSource> caseDiscreteSources(const CaseSpec& spec) {
         out.emplace_back(std::in_place_type<NodeSource>, std::move(n));
         break;
       }
-      case SourceType::Analytic: break;
+      case SourceType::Analytic:
+        break;
     }
   }
   return out;
@@ -123,7 +130,8 @@ ControlSpaceSpec caseControlSpaceSpec(const CaseSpec& spec) {
   box.lo -= margin;
   box.hi += margin;
   s.box = box;
-  s.interpolation = c.interpolation == "serendipity" ? QuadtreeInterpolation::Serendipity : QuadtreeInterpolation::Bilinear;
+  s.interpolation =
+      c.interpolation == "serendipity" ? QuadtreeInterpolation::Serendipity : QuadtreeInterpolation::Bilinear;
   // Barycentric by default: a continuous field; eq. 11 on request.
   s.backgroundInterpolation = c.interpolation == "inverse_distance" ? BackgroundInterpolation::InverseSquaredDistance
                                                                     : BackgroundInterpolation::Linear;

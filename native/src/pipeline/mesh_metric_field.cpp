@@ -73,7 +73,8 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     l0 = std::max(l0, 0.0), l1 = std::max(l1, 0.0), l2 = std::max(l2, 0.0);
     const double sum = l0 + l1 + l2;
     const Mat2 mt = (l0 * metrics_[size_t(tri[0])].transform() + l1 * metrics_[size_t(tri[1])].transform() +
-                     l2 * metrics_[size_t(tri[2])].transform()) / sum;
+                     l2 * metrics_[size_t(tri[2])].transform()) /
+                    sum;
     return Metric::fromTransformUnchecked(mt);
   };
   auto closestOnSegment = [](const Vec2& q, const Vec2& a, const Vec2& b) {

@@ -51,9 +51,8 @@ double largestNeighbourSizeRatio(const Mesh& mesh) {
   };
   for (size_t i = 0; i < mesh.triangles.size(); ++i) visit(int(i), mesh.triangles[i].data(), 3);
   for (size_t i = 0; i < mesh.quads.size(); ++i) visit(int(mesh.triangles.size() + i), mesh.quads[i].data(), 4);
-  std::sort(owners.begin(), owners.end(), [](const Owner& x, const Owner& y) {
-    return x.edge != y.edge ? x.edge < y.edge : x.element < y.element;
-  });
+  std::sort(owners.begin(), owners.end(),
+            [](const Owner& x, const Owner& y) { return x.edge != y.edge ? x.edge < y.edge : x.element < y.element; });
   double worst = 1.0;
   for (size_t i = 0; i < owners.size();) {
     size_t j = i + 1;
@@ -73,7 +72,8 @@ std::vector<double> elementQualities(const Mesh& mesh, const ControlSpace& cs) {
   std::vector<double> out;
   out.reserve(size_t(mesh.elementCount()));
   for (const auto& t : mesh.triangles)
-    out.push_back(triangleQuality(xy(mesh, t[0]), xy(mesh, t[1]), xy(mesh, t[2]), (mt[t[0]] + mt[t[1]] + mt[t[2]]) / 3.0));
+    out.push_back(
+        triangleQuality(xy(mesh, t[0]), xy(mesh, t[1]), xy(mesh, t[2]), (mt[t[0]] + mt[t[1]] + mt[t[2]]) / 3.0));
   for (const auto& q : mesh.quads) {
     const Mat2 m = (mt[q[0]] + mt[q[1]] + mt[q[2]] + mt[q[3]]) / 4.0;
     const Vec2 p[4] = {xy(mesh, q[0]), xy(mesh, q[1]), xy(mesh, q[2]), xy(mesh, q[3])};

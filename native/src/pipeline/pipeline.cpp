@@ -12,11 +12,11 @@
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/controlspace/control_space_spec.h"
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/portable_math.h"
 #include "anisomesh/geometry/discretize.h"
 #include "anisomesh/pipeline/case_control_space.h"
 #include "anisomesh/pipeline/mesh_metric_field.h"
 #include "anisomesh/pipeline/remesh_geometry.h"
-#include "anisomesh/core/portable_math.h"
 
 namespace anisomesh {
 namespace {
@@ -48,7 +48,8 @@ double chordDeviation(const Curve& c, double a, double b) {
   const Vec2 p = c.point(a), q = c.point(b);
   double dev = 0.0;
   constexpr int kSamples = 8;
-  for (int k = 1; k < kSamples; ++k) dev = std::max(dev, pointSegmentDistance(c.point(a + (b - a) * k / kSamples), p, q));
+  for (int k = 1; k < kSamples; ++k)
+    dev = std::max(dev, pointSegmentDistance(c.point(a + (b - a) * k / kSamples), p, q));
   return dev;
 }
 
@@ -88,8 +89,9 @@ double chordSources(const Domain& domain, const ControlSpace& cs, const Boundary
           const Vec2 t = c.derivative(0.5 * (a + b));
           const Vec2 pa = c.point(a), pb = c.point(b);
           if ((pb - pa).norm() <= 1e-12 * std::max(1.0, pa.norm())) continue;
-          out->emplace_back(std::in_place_type<SegmentSource>, SegmentSource{pa, pb, Metric::fromSizes(pm::atan2(t.y(), t.x()), h1, o.dMax * h1),
-                                       chordDeviation(c, a, b)});  // emplace: see case_control_space.cpp
+          out->emplace_back(std::in_place_type<SegmentSource>,
+                            SegmentSource{pa, pb, Metric::fromSizes(pm::atan2(t.y(), t.x()), h1, o.dMax * h1),
+                                          chordDeviation(c, a, b)});  // emplace: see case_control_space.cpp
         }
       }
     }
@@ -159,7 +161,8 @@ int proximitySources(const std::vector<BoundaryLoop>& loops, const Mesh& boundar
     if (!(width > 0)) continue;
     const Vec2 centroid = (p0 + p1 + p2) / 3.0;
     const double radius = std::max({(p0 - centroid).norm(), (p1 - centroid).norm(), (p2 - centroid).norm()});
-    out->emplace_back(std::in_place_type<RadialSource>, RadialSource{centroid, Metric::isotropic(width / o.gapElements), radius});
+    out->emplace_back(std::in_place_type<RadialSource>,
+                      RadialSource{centroid, Metric::isotropic(width / o.gapElements), radius});
     ++added;
   }
   return added;
@@ -335,8 +338,8 @@ std::unique_ptr<AdaptiveControlSpace> buildRemeshControlSpace(const Mesh& input,
   return buildAdaptiveControlSpace(s);
 }
 
-Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshOptions& options,
-            PipelineReport* report, std::unique_ptr<AdaptiveControlSpace>* controlSpace) {
+Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshOptions& options, PipelineReport* report,
+            std::unique_ptr<AdaptiveControlSpace>* controlSpace) {
   PipelineReport local;
   PipelineReport& r = report ? *report : local;
   auto t = Clock::now();

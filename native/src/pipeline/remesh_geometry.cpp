@@ -19,8 +19,8 @@ EdgeKey key(int a, int b) { return a < b ? EdgeKey{a, b} : EdgeKey{b, a}; }
 std::vector<BoundaryLoop> boundaryLoopsFromMesh(const Mesh& mesh) {
   for (size_t i = 0; i < mesh.points.size(); ++i)
     require(mesh.points[i].z() == 0.0, ErrorCode::InvalidDomain,
-            "remeshing needs a planar mesh (z = 0), vertex " + std::to_string(i + 1) + " has z = " +
-                std::to_string(mesh.points[i].z()));
+            "remeshing needs a planar mesh (z = 0), vertex " + std::to_string(i + 1) +
+                " has z = " + std::to_string(mesh.points[i].z()));
   std::map<EdgeKey, int> edgeRef;
   for (size_t i = 0; i < mesh.edges.size(); ++i)
     edgeRef[key(mesh.edges[i][0], mesh.edges[i][1])] = i < mesh.edgeRefs.size() ? mesh.edgeRefs[i] : 0;
@@ -63,7 +63,8 @@ std::vector<BoundaryLoop> boundaryLoopsFromMesh(const Mesh& mesh) {
     const Vec3& p = mesh.points[size_t(v.first)];
     require(v.second.size() == 2, ErrorCode::OpenContour,
             "boundary vertex " + std::to_string(v.first + 1) + " " + formatPoint(p.head<2>()) + " has " +
-                std::to_string(v.second.size()) + " boundary edges (2 expected): the boundary edges do not form closed loops");
+                std::to_string(v.second.size()) +
+                " boundary edges (2 expected): the boundary edges do not form closed loops");
   }
   std::vector<bool> used(bnd.size(), false);
   std::vector<BoundaryLoop> loops;
@@ -106,7 +107,8 @@ std::vector<BoundaryLoop> boundaryLoopsFromMesh(const Mesh& mesh) {
   }
   for (size_t i = 1; i < loops.size(); ++i) {
     require(pointInPolygon(loops[0].points, loops[i].points[0]), ErrorCode::InvalidDomain,
-            "boundary loop at " + formatPoint(loops[i].points[0]) + " is outside the outer loop: several components are not supported");
+            "boundary loop at " + formatPoint(loops[i].points[0]) +
+                " is outside the outer loop: several components are not supported");
     for (size_t j = 1; j < loops.size(); ++j)
       require(j == i || !pointInPolygon(loops[j].points, loops[i].points[0]), ErrorCode::InvalidDomain,
               "boundary loop at " + formatPoint(loops[i].points[0]) + " lies inside a hole: islands are not supported");
@@ -123,7 +125,8 @@ Domain domainFromBoundaryLoops(const std::vector<BoundaryLoop>& loops, const Loo
     auto isBreak = [&](int k) {
       const int prev = (k + n - 1) % n;
       if (l.edgeRefs[size_t(prev)] != l.edgeRefs[size_t(k)]) return true;
-      const Vec2 u = l.points[size_t(k)] - l.points[size_t(prev)], v = l.points[size_t((k + 1) % n)] - l.points[size_t(k)];
+      const Vec2 u = l.points[size_t(k)] - l.points[size_t(prev)],
+                 v = l.points[size_t((k + 1) % n)] - l.points[size_t(k)];
       const double turn = pm::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
       return std::abs(turn) > options.cornerAngle;
     };
@@ -146,8 +149,10 @@ Domain domainFromBoundaryLoops(const std::vector<BoundaryLoop>& loops, const Loo
       pts.push_back(l.points[size_t(to)]);
       contour.add(std::make_shared<PolylineCurve>(std::move(pts), l.edgeRefs[size_t(from)], false));
     }
-    if (li == 0) domain.outer = std::move(contour);
-    else domain.holes.push_back(std::move(contour));
+    if (li == 0)
+      domain.outer = std::move(contour);
+    else
+      domain.holes.push_back(std::move(contour));
   }
   return domain;
 }

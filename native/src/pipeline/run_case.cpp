@@ -28,7 +28,9 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
     const nlohmann::json& q = run.stats["quality3d"];
     run.stats["quads"] = run.mesh.quads.size();
     run.stats["inverted"] = q["inverted"];
-    run.stats["edgeLength"] = {{"min", q["edgeLengthMin"]}, {"mean", q["edgeLengthMean"]}, {"max", q["edgeLengthMax"]},
+    run.stats["edgeLength"] = {{"min", q["edgeLengthMin"]},
+                               {"mean", q["edgeLengthMean"]},
+                               {"max", q["edgeLengthMax"]},
                                {"fractionWithinSqrt2", q["edgesWithinSqrt2"]}};
     run.stats["quality"] = {{"mean", q["qualityMean"]}, {"min", q["qualityMin"]}};
     return run;
@@ -46,7 +48,8 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
     // The metric the mesh was built for, so colourings match the report exactly.
     run.vertexMetrics.reserve(3 * run.mesh.points.size());
     for (size_t i = 0; i < run.mesh.points.size(); ++i) {
-      const Vec2 p = run.mesh.params.size() == run.mesh.points.size() ? run.mesh.params[i] : Vec2(run.mesh.points[i].head<2>());
+      const Vec2 p =
+          run.mesh.params.size() == run.mesh.points.size() ? run.mesh.params[i] : Vec2(run.mesh.points[i].head<2>());
       const Mat2 m = run.finalSpace->metricAt(p).tensor();
       run.vertexMetrics.insert(run.vertexMetrics.end(), {m(0, 0), m(0, 1), m(1, 1)});
     }

@@ -137,10 +137,10 @@ std::shared_ptr<const Surface> parseSurface(const json& v, const std::string& pa
     Vec3 center = v.contains("center") ? vec3(v["center"], at(path, "center")) : Vec3::Zero();
     if (type == "plane") {
       keys(v, path, {"type", "name", "origin", "a1", "a2", "domain"});
-      return std::make_shared<PlaneSurface>(
-          v.contains("origin") ? vec3(v["origin"], at(path, "origin")) : Vec3::Zero(),
-          v.contains("a1") ? vec3(v["a1"], at(path, "a1")) : Vec3::UnitX(),
-          v.contains("a2") ? vec3(v["a2"], at(path, "a2")) : Vec3::UnitY(), dom({{0, 0}, {1, 1}}));
+      return std::make_shared<PlaneSurface>(v.contains("origin") ? vec3(v["origin"], at(path, "origin")) : Vec3::Zero(),
+                                            v.contains("a1") ? vec3(v["a1"], at(path, "a1")) : Vec3::UnitX(),
+                                            v.contains("a2") ? vec3(v["a2"], at(path, "a2")) : Vec3::UnitY(),
+                                            dom({{0, 0}, {1, 1}}));
     }
     if (type == "sphere") {
       keys(v, path, {"type", "name", "radius", "center", "domain"});
@@ -185,7 +185,8 @@ CurveUse parseCurve(const json& v, const std::string& path, int defRef) {
   CurvePtr c = withPath(path, [&]() -> CurvePtr {
     if (type == "line") {
       keys(v, path, {"type", "ref", "reversed", "p1", "p2"});
-      return std::make_shared<LineCurve>(vec2(need(v, path, "p1"), at(path, "p1")), vec2(need(v, path, "p2"), at(path, "p2")), ref);
+      return std::make_shared<LineCurve>(vec2(need(v, path, "p1"), at(path, "p1")),
+                                         vec2(need(v, path, "p2"), at(path, "p2")), ref);
     }
     if (type == "arc") {
       if (v.contains("points")) {
@@ -195,10 +196,9 @@ CurveUse parseCurve(const json& v, const std::string& path, int defRef) {
         return std::make_shared<ArcCurve>(ArcCurve::throughPoints(p[0], p[1], p[2], ref));
       }
       keys(v, path, {"type", "ref", "reversed", "center", "radius", "start", "end"});
-      return std::make_shared<ArcCurve>(vec2(need(v, path, "center"), at(path, "center")),
-                                        pos(need(v, path, "radius"), at(path, "radius")),
-                                        num(need(v, path, "start"), at(path, "start")),
-                                        num(need(v, path, "end"), at(path, "end")), ref);
+      return std::make_shared<ArcCurve>(
+          vec2(need(v, path, "center"), at(path, "center")), pos(need(v, path, "radius"), at(path, "radius")),
+          num(need(v, path, "start"), at(path, "start")), num(need(v, path, "end"), at(path, "end")), ref);
     }
     if (type == "circle") {
       keys(v, path, {"type", "ref", "reversed", "center", "radius"});
@@ -219,7 +219,8 @@ CurveUse parseCurve(const json& v, const std::string& path, int defRef) {
       keys(v, path, {"type", "ref", "reversed", "points"});
       return std::make_shared<BSplineCurve>(vec2s(need(v, path, "points"), at(path, "points"), 4), ref);
     }
-    fail(at(path, "type"), "unknown curve type '" + type + "' (expected line, arc, circle, polyline, bezier or bspline)");
+    fail(at(path, "type"),
+         "unknown curve type '" + type + "' (expected line, arc, circle, polyline, bezier or bspline)");
   });
   return {c, rev};
 }
@@ -246,7 +247,8 @@ MetricSource parseSource(const json& v, const std::string& path) {
   require(r >= 0, ErrorCode::InvalidArgument, at(path, "radius") + ": must be >= 0");
   if (type == "radial") {
     keys(v, path, {"type", "center", "metric", "radius"});
-    return RadialSource{vec2(need(v, path, "center"), at(path, "center")), parseMetric(need(v, path, "metric"), at(path, "metric")), r};
+    return RadialSource{vec2(need(v, path, "center"), at(path, "center")),
+                        parseMetric(need(v, path, "metric"), at(path, "metric")), r};
   }
   if (type == "segment") {
     keys(v, path, {"type", "p1", "p2", "metric", "radius"});
@@ -287,14 +289,16 @@ SurfaceCaseSpec parseSurfaceCaseJson(const std::string& text) {
     throw Error(ErrorCode::ParseError, std::string("(root): malformed JSON: ") + e.what());
   }
   object(root, "");
-  keys(root, "", {"name", "description", "metric", "adaptation", "options", "surfaces", "patches", "shared", "sources3d"});
+  keys(root, "",
+       {"name", "description", "metric", "adaptation", "options", "surfaces", "patches", "shared", "sources3d"});
   SurfaceCaseSpec spec;
   SurfaceMeshOptions& o = spec.options;
   if (root.contains("metric")) {
     const json& m = root["metric"];
     object(m, "metric");
-    keys(m, "metric", {"chordTolerance", "chordSafety", "angleTolerance", "hmin", "hmax", "maxAspectRatio", "gradation",
-                       "contourCurvature"});
+    keys(m, "metric",
+         {"chordTolerance", "chordSafety", "angleTolerance", "hmin", "hmax", "maxAspectRatio", "gradation",
+          "contourCurvature"});
     if (m.contains("contourCurvature")) o.contourCurvature = boolean(m["contourCurvature"], "metric.contourCurvature");
     o.chordSafety = m.contains("chordSafety") ? num(m["chordSafety"], "metric.chordSafety") : kDefaultChordSafety;
     require(std::isfinite(o.chordSafety) && o.chordSafety > 0.0, ErrorCode::InvalidArgument,
@@ -351,11 +355,13 @@ SurfaceCaseSpec parseSurfaceCaseJson(const std::string& text) {
     } else {
       p.surface = parseSurface(s, at(path, "surface"), p.name);
     }
-    p.domain.outer = v.contains("outer") ? parseContour(v["outer"], at(path, "outer"), 1) : rectangle(p.surface->domain());
+    p.domain.outer =
+        v.contains("outer") ? parseContour(v["outer"], at(path, "outer"), 1) : rectangle(p.surface->domain());
     if (v.contains("holes")) {
       const json& h = v["holes"];
       if (!h.is_array()) fail(at(path, "holes"), "expected an array of contours");
-      for (size_t k = 0; k < h.size(); ++k) p.domain.holes.push_back(parseContour(h[k], at(at(path, "holes"), k), int(k) + 2));
+      for (size_t k = 0; k < h.size(); ++k)
+        p.domain.holes.push_back(parseContour(h[k], at(at(path, "holes"), k), int(k) + 2));
     }
     if (v.contains("sources")) {
       const json& ss = v["sources"];

@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -20,8 +20,8 @@
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/controlspace/quadtree_control_space.h"
 #include "anisomesh/core/error.h"
-#include "anisomesh/geometry/discretize.h"
 #include "anisomesh/core/portable_math.h"
+#include "anisomesh/geometry/discretize.h"
 
 namespace anisomesh {
 namespace {
@@ -69,7 +69,9 @@ class CountingControlSpace : public ControlSpace {
   Counters& c_;
 };
 
-const Contour& contourOf(const SurfacePatch& p, int k) { return k == 0 ? p.domain.outer : p.domain.holes[size_t(k - 1)]; }
+const Contour& contourOf(const SurfacePatch& p, int k) {
+  return k == 0 ? p.domain.outer : p.domain.holes[size_t(k - 1)];
+}
 int contourCount(const SurfacePatch& p) { return 1 + int(p.domain.holes.size()); }
 
 // Section 3.1: the curvature of every contour curve in 3D, C(t) = S(c(t)), as sources along
@@ -109,8 +111,8 @@ std::vector<MetricSource> contourCurvatureSources(const SurfacePatch& patch, con
         const Vec3 nrm = d.su.cross(d.sv).normalized();
         const Vec3 across = nrm.cross(tan).normalized();
         const double hx = std::min(sizing.hmax, sizing.maxAspectRatio * h);
-        const Mat3 m3 = tan * tan.transpose() / (h * h) + across * across.transpose() / (hx * hx) +
-                        nrm * nrm.transpose() / (h * h);
+        const Mat3 m3 =
+            tan * tan.transpose() / (h * h) + across * across.transpose() / (hx * hx) + nrm * nrm.transpose() / (h * h);
         SegmentSource src;
         src.a = a;
         src.b = nextPt;
@@ -154,8 +156,10 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
   // Main-level grid: curvature where available, extrapolation elsewhere (section 3.1).
   for (int i = 0; i < cs->nodeCount(); ++i) {
     if (!cs->nodeIsFree(i)) continue;
-    if (auto m = eval(cs->nodePosition(i))) cs->setNodeMetric(i, *m);
-    else cs->clearNodeInitialized(i);
+    if (auto m = eval(cs->nodePosition(i)))
+      cs->setNodeMetric(i, *m);
+    else
+      cs->clearNodeInitialized(i);
   }
   const Metric fallback = Metric::isotropic(0.1 * surf.domain().size().norm());
   extrapolateMetric(*cs, fallback);
@@ -212,11 +216,11 @@ struct Slot {
   int patch = 0, contour = 0, curve = 0;
   CurvePtr c;
   int minSegments = 1;
-  int master = -1;         // slot discretized with this one (the "a" side), or -1
+  int master = -1;  // slot discretized with this one (the "a" side), or -1
   bool masterReversed = false;
-  int follower = -1;       // the "b" side when this slot is a master
-  std::vector<double> t;   // parameters, 0 ... 1
-  std::vector<int> gid;    // merged-mesh vertex of each point
+  int follower = -1;      // the "b" side when this slot is a master
+  std::vector<double> t;  // parameters, 0 ... 1
+  std::vector<int> gid;   // merged-mesh vertex of each point
   bool invalid = true;
 };
 
@@ -249,8 +253,10 @@ class CurveProjector {
     const double g = 0.5 * (std::sqrt(5.0) - 1.0);
     double a = hi - g * (hi - lo), b = lo + g * (hi - lo), fa = f(a), fb = f(b);
     for (int it = 0; it < 80 && hi - lo > 1e-15; ++it) {
-      if (fa < fb) hi = b, b = a, fb = fa, a = hi - g * (hi - lo), fa = f(a);
-      else lo = a, a = b, fa = fb, b = lo + g * (hi - lo), fb = f(b);
+      if (fa < fb)
+        hi = b, b = a, fb = fa, a = hi - g * (hi - lo), fa = f(a);
+      else
+        lo = a, a = b, fa = fb, b = lo + g * (hi - lo), fb = f(b);
     }
     double t = 0.5 * (lo + hi);
     // Ends are exact matches of corners: snap when the table's end is the best.
@@ -308,8 +314,8 @@ void checkPatch(const SurfacePatch& p, int index) {
               label + ": " + contourName(k) + " leaves the surface's parameter domain [" + fmt(box.lo.x()) + ", " +
                   fmt(box.hi.x()) + "] x [" + fmt(box.lo.y()) + ", " + fmt(box.hi.y()) + "] at " + fmtUv(q));
       if (isDegenerate(derivs(q)))
-        throw Error(ErrorCode::InvalidSurface, label + ": degenerate parameterization (Su x Sv = 0) on " +
-                                                   contourName(k) + " at " + fmtUv(q));
+        throw Error(ErrorCode::InvalidSurface,
+                    label + ": degenerate parameterization (Su x Sv = 0) on " + contourName(k) + " at " + fmtUv(q));
     }
   const auto outer = sampleContour(p.domain.outer, 16);
   std::vector<std::vector<Vec2>> holes;
@@ -450,7 +456,8 @@ std::vector<std::array<int, 2>> splitPatchIntoQuads(Mesh& pm, size_t nb, const s
     origin.push_back(from);
     return int(pm.params.size()) - 1;
   };
-  for (size_t i = 0; i < nb; ++i) mids[{std::min(int(i), next[i]), std::max(int(i), next[i])}] = addPoint(curveMid[i], {int(i), next[i]});
+  for (size_t i = 0; i < nb; ++i)
+    mids[{std::min(int(i), next[i]), std::max(int(i), next[i])}] = addPoint(curveMid[i], {int(i), next[i]});
   auto mid = [&](int a, int b) {
     const std::array<int, 2> k{std::min(a, b), std::max(a, b)};
     const auto it = mids.find(k);
@@ -460,7 +467,8 @@ std::vector<std::array<int, 2>> splitPatchIntoQuads(Mesh& pm, size_t nb, const s
   std::vector<std::array<int, 4>> quads;
   for (const auto& t : pm.triangles) {
     const int mab = mid(t[0], t[1]), mbc = mid(t[1], t[2]), mca = mid(t[2], t[0]);
-    const int g = addPoint((pm.params[size_t(t[0])] + pm.params[size_t(t[1])] + pm.params[size_t(t[2])]) / 3.0, {-1, -1});
+    const int g =
+        addPoint((pm.params[size_t(t[0])] + pm.params[size_t(t[1])] + pm.params[size_t(t[2])]) / 3.0, {-1, -1});
     quads.push_back({t[0], mab, g, mca});
     quads.push_back({t[1], mbc, g, mab});
     quads.push_back({t[2], mca, g, mbc});
@@ -550,7 +558,8 @@ void ModelMesher::setupSlots() {
             what + ": no patch " + std::to_string(r.patch));
     const auto& cs = ps_[size_t(r.patch)].slots;
     require(r.contour >= 0 && r.contour < int(cs.size()), ErrorCode::InvalidArgument,
-            what + ": " + patchLabel(m_.patches[size_t(r.patch)], r.patch) + " has no contour " + std::to_string(r.contour));
+            what + ": " + patchLabel(m_.patches[size_t(r.patch)], r.patch) + " has no contour " +
+                std::to_string(r.contour));
     require(r.curve >= 0 && r.curve < int(cs[size_t(r.contour)].size()), ErrorCode::InvalidArgument,
             what + ": " + patchLabel(m_.patches[size_t(r.patch)], r.patch) + " " + contourName(r.contour) +
                 " has no curve " + std::to_string(r.curve));
@@ -578,10 +587,10 @@ void ModelMesher::validateSharing() {
     if (b.master < 0) continue;
     const Slot& a = slots_[size_t(b.master)];
     auto mismatch = [&](const Slot& x, const Slot& y, double t, double d) {
-      throw Error(ErrorCode::InvalidSurface,
-                  "shared curve mismatch: " + slotName(m_, x) + " and " + slotName(m_, y) + " are " + fmt(d) +
-                      " apart (tolerance " + fmt(tol) + ") at t = " + fmt(t) + ", " + fmtUv(x.c->point(t)) + " of " +
-                      patchLabel(m_.patches[size_t(x.patch)], x.patch));
+      throw Error(ErrorCode::InvalidSurface, "shared curve mismatch: " + slotName(m_, x) + " and " + slotName(m_, y) +
+                                                 " are " + fmt(d) + " apart (tolerance " + fmt(tol) +
+                                                 ") at t = " + fmt(t) + ", " + fmtUv(x.c->point(t)) + " of " +
+                                                 patchLabel(m_.patches[size_t(x.patch)], x.patch));
     };
     for (int end = 0; end < 2; ++end) {
       const double ta = end, tb = b.masterReversed ? 1.0 - end : double(end);
@@ -605,7 +614,9 @@ void ModelMesher::assignCornerIds() {
   const int n = int(slots_.size());
   std::vector<int> parent(size_t(2 * n));
   std::iota(parent.begin(), parent.end(), 0);
-  std::function<int(int)> root = [&](int x) { return parent[size_t(x)] == x ? x : parent[size_t(x)] = root(parent[size_t(x)]); };
+  std::function<int(int)> root = [&](int x) {
+    return parent[size_t(x)] == x ? x : parent[size_t(x)] = root(parent[size_t(x)]);
+  };
   auto unite = [&](int x, int y) { parent[size_t(root(x))] = root(y); };
   for (size_t p = 0; p < m_.patches.size(); ++p)
     for (int k = 0; k < contourCount(m_.patches[p]); ++k) {
@@ -691,8 +702,10 @@ std::vector<double> ModelMesher::discretizeShared(const Slot& a, const Slot& b, 
   }
   tb->clear();
   for (size_t i = 0; i < ts.size(); ++i) {
-    if (i == 0 || i + 1 == ts.size()) tb->push_back((i == 0) != b.masterReversed ? 0.0 : 1.0);
-    else tb->push_back(mapB(ts[i]));
+    if (i == 0 || i + 1 == ts.size())
+      tb->push_back((i == 0) != b.masterReversed ? 0.0 : 1.0);
+    else
+      tb->push_back(mapB(ts[i]));
   }
   return ts;
 }
@@ -858,8 +871,10 @@ void ModelMesher::checkPatchBoundary(int p) {
     const double area = 0.5 * std::abs(e[0].x() * e[1].y() - e[0].y() * e[1].x());
     if (!(area < 0.2)) continue;
     double gap;  // metric distance between the boundary pieces the triangle joins
-    if (boundaryEdge >= 0) gap = 2.0 * area / e[boundaryEdge].norm();
-    else gap = 2.0 * area / std::max({e[0].norm(), e[1].norm(), e[2].norm()});
+    if (boundaryEdge >= 0)
+      gap = 2.0 * area / e[boundaryEdge].norm();
+    else
+      gap = 2.0 * area / std::max({e[0].norm(), e[1].norm(), e[2].norm()});
     if (gap < 0.5) {
       const double uvLongest = std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()});
       RadialSource src;
@@ -874,7 +889,9 @@ void ModelMesher::checkPatchBoundary(int p) {
   for (const auto& contourSlots : ps_[size_t(p)].slots)
     for (int si : contourSlots) {
       Slot& s = slots_[size_t(si)];
-      const Slot* other = s.master >= 0 ? &slots_[size_t(s.master)] : s.follower >= 0 ? &slots_[size_t(s.follower)] : nullptr;
+      const Slot* other = s.master >= 0     ? &slots_[size_t(s.master)]
+                          : s.follower >= 0 ? &slots_[size_t(s.follower)]
+                                            : nullptr;
       const int owner = s.master >= 0 ? s.master : si;  // the slot that gets re-discretized
       const size_t n = s.t.size();
       for (size_t i = 0; i + 1 < n; ++i) {
@@ -882,8 +899,10 @@ void ModelMesher::checkPatchBoundary(int p) {
         const double l = cs.metricAt(um).length(u1 - u0);
         double lOther = 0.0;
         if (other) {
-          const size_t j = (s.master >= 0 ? s.masterReversed : slots_[size_t(s.follower)].masterReversed) ? n - 1 - i : i;
-          const size_t j1 = (s.master >= 0 ? s.masterReversed : slots_[size_t(s.follower)].masterReversed) ? j - 1 : j + 1;
+          const size_t j =
+              (s.master >= 0 ? s.masterReversed : slots_[size_t(s.follower)].masterReversed) ? n - 1 - i : i;
+          const size_t j1 =
+              (s.master >= 0 ? s.masterReversed : slots_[size_t(s.follower)].masterReversed) ? j - 1 : j + 1;
           const Vec2 v0 = uvOf(*other, j), v1 = uvOf(*other, j1);
           lOther = space(other->patch).metricAt(0.5 * (v0 + v1)).length(v1 - v0);
         }
@@ -895,8 +914,9 @@ void ModelMesher::checkPatchBoundary(int p) {
         if (tol > 0 && dev > tol) {
           const double h = 0.9 * (u1 - u0).norm() * std::sqrt(tol / dev);
           const Vec2 d = u1 - u0;
-          addSource(p, segmentSource(u0, u1, Metric::fromSizes(pm::atan2(d.y(), d.x()), h, o_.metric.maxAspectRatio * h),
-                                     0.5 * d.norm()));
+          addSource(p,
+                    segmentSource(u0, u1, Metric::fromSizes(pm::atan2(d.y(), d.x()), h, o_.metric.maxAspectRatio * h),
+                                  0.5 * d.norm()));
           slots_[size_t(owner)].invalid = true;
         }
         // Segment length (eps1 = 0.8): refine near short segments, unless without adaptation
@@ -907,8 +927,9 @@ void ModelMesher::checkPatchBoundary(int p) {
           const Vec2 d = u1 - u0;
           const Metric here = cs.metricAt(um);
           const double across = here.sizeAlong(Vec2(-d.y(), d.x()));
-          addSource(p, segmentSource(u0, u1, Metric::fromSizes(pm::atan2(d.y(), d.x()), d.norm(), std::max(across, d.norm())),
-                                     0.25 * d.norm()));
+          addSource(
+              p, segmentSource(u0, u1, Metric::fromSizes(pm::atan2(d.y(), d.x()), d.norm(), std::max(across, d.norm())),
+                               0.25 * d.norm()));
         }
         const double lEff = std::max(l, lOther);
         if ((lEff < 0.5 && n > 2 && std::max<size_t>(n - 1, 1) > size_t(s.minSegments)) || lEff > 2.0)
@@ -955,7 +976,9 @@ std::vector<ControlSpaceGlyph> ModelMesher::glyphs() const {
     std::stable_sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) { return a.size > b.size; });
     const double bin = std::max(0.5 * smallest, dom.size().maxCoeff() / 400.0);
     std::map<std::pair<long, long>, std::vector<Vec2>> accepted;
-    auto binOf = [&](double x, double y) { return std::make_pair(long(std::floor((x - dom.lo.x()) / bin)), long(std::floor((y - dom.lo.y()) / bin))); };
+    auto binOf = [&](double x, double y) {
+      return std::make_pair(long(std::floor((x - dom.lo.x()) / bin)), long(std::floor((y - dom.lo.y()) / bin)));
+    };
     for (const Cand& cand : cands) {
       const double r = std::max(cand.m.sizes().h1, cand.m.sizes().h2);
       const auto b0 = binOf(cand.c.x() - r, cand.c.y() - r), b1 = binOf(cand.c.x() + r, cand.c.y() + r);
@@ -1117,11 +1140,13 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
       const std::array<int, 2> from = i >= nBefore ? splits[i - nBefore] : std::array<int, 2>{-1, -1};
       std::array<int, 2> key{-1, -1};
       if (from[0] >= 0 && o_.mergeMesh) {
-        key = {std::min(ids[size_t(from[0])], ids[size_t(from[1])]), std::max(ids[size_t(from[0])], ids[size_t(from[1])])};
+        key = {std::min(ids[size_t(from[0])], ids[size_t(from[1])]),
+               std::max(ids[size_t(from[0])], ids[size_t(from[1])])};
         const auto it = boundaryMid.find(key);
         if (it != boundaryMid.end()) g = it->second;
       }
-      if (i < nb && o_.mergeMesh) g = ids[i];
+      if (i < nb && o_.mergeMesh)
+        g = ids[i];
       else if (g < 0) {
         g = int(out.points.size());
         out.points.emplace_back();
@@ -1155,7 +1180,8 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
           for (size_t c = 0; c + 1 < chain.size(); ++c) {
             const int a = chain[c], b = chain[c + 1];
             const std::array<int, 2> e{std::min(a, b), std::max(a, b)};
-            if (shared[base + i] && o_.mergeMesh) sharedEdges.insert(e);
+            if (shared[base + i] && o_.mergeMesh)
+              sharedEdges.insert(e);
             else {
               out.edges.push_back({a, b});
               out.edgeRefs.push_back(loop.edgeRefs[i]);
@@ -1178,7 +1204,8 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
       const Vec3& x0 = out.points[size_t(g0)];
       const Vec3& x1 = out.points[size_t(g1)];
       const double l = (edgeLength3D(x0, x1, metric3(u0)) + 4.0 * edgeLength3D(x0, x1, metric3(0.5 * (u0 + u1))) +
-                        edgeLength3D(x0, x1, metric3(u1))) / 6.0;
+                        edgeLength3D(x0, x1, metric3(u1))) /
+                       6.0;
       lenSum += l;
       q.edgeLengthMin = std::min(q.edgeLengthMin, l);
       q.edgeLengthMax = std::max(q.edgeLengthMax, l);

@@ -25,10 +25,10 @@ enum class BackgroundInterpolation {
 };
 
 struct BackgroundMeshOptions {
-  int initialGrid = 4;         // main-level grid cells per side (each cell -> 2 triangles)
-  int maxLevel = 14;           // smallest element: longest initial edge / 2^maxLevel
+  int initialGrid = 4;  // main-level grid cells per side (each cell -> 2 triangles)
+  int maxLevel = 14;    // smallest element: longest initial edge / 2^maxLevel
   BackgroundInterpolation interpolation = BackgroundInterpolation::InverseSquaredDistance;
-  double epsilon = 1e-12;      // relative to the box diagonal: "at a vertex" distance
+  double epsilon = 1e-12;               // relative to the box diagonal: "at a vertex" distance
   std::optional<Metric> initialMetric;  // as in QuadtreeOptions
 };
 

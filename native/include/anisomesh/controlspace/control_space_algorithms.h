@@ -37,9 +37,9 @@ int refineWhereMetricsDiffer(AdaptiveControlSpace& cs, double threshold);
 int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback);
 
 struct ContinuousInsertionOptions {
-  double threshold = 0.05;         // difference() between an element's nodes that splits it
-  bool checkSamples = true;         // also compare interpolated and analytic metric inside elements
-  double sampleThreshold = -1.0;    // difference() at samples that splits (< 0: same as threshold)
+  double threshold = 0.05;        // difference() between an element's nodes that splits it
+  bool checkSamples = true;       // also compare interpolated and analytic metric inside elements
+  double sampleThreshold = -1.0;  // difference() at samples that splits (< 0: same as threshold)
 };
 
 // Continuous source (section 2.3): every free node takes f (intersected with its metric
@@ -77,8 +77,8 @@ struct MinimumOptions {
 // errs on the fine side instead: the result is inside the exact minimum at the samples
 // and close to it between them. MinimumControlSpace (minimum_control_space.h) is the
 // exact minimum at every point, evaluated lazily.
-void intersectControlSpace(AdaptiveControlSpace& cs1, const ControlSpace& cs2,
-                           const std::vector<ControlNode>& cs2Nodes, const MinimumOptions& options = {});
+void intersectControlSpace(AdaptiveControlSpace& cs1, const ControlSpace& cs2, const std::vector<ControlNode>& cs2Nodes,
+                           const MinimumOptions& options = {});
 // Same, taking cs2's nodes from the structure itself.
 void intersectControlSpace(AdaptiveControlSpace& cs1, const AdaptiveControlSpace& cs2,
                            const MinimumOptions& options = {});

@@ -33,11 +33,11 @@ struct ControlSpaceSpec {
   double refineThreshold = 0.05;  // difference() that splits an element (continuous sources)
   double gradation = 0.0;         // dr; 0 = no smoothing
   std::vector<MetricSource> sources;
-  MetricFunction analytic;        // empty = none
+  MetricFunction analytic;              // empty = none
   std::optional<Metric> defaultMetric;  // when no source/function: default isotropic(box diagonal / 10)
-  double hmin = 0.0;              // 0 = no lower clamp
-  double hmax = 0.0;              // 0 = no upper clamp
-  double cacheTolerance = 0.0;    // > 0: buildControlSpace wraps the result in a CachedControlSpace
+  double hmin = 0.0;                    // 0 = no lower clamp
+  double hmax = 0.0;                    // 0 = no upper clamp
+  double cacheTolerance = 0.0;          // > 0: buildControlSpace wraps the result in a CachedControlSpace
 };
 
 // Builds the adaptive structure described by spec (steps 1-5 above).

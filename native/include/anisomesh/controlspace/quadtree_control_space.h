@@ -57,9 +57,7 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   std::vector<double> nodeElementSizes() const override;
   double minElementSize() const override;
   const char* kindName() const override { return "quadtree"; }
-  std::unique_ptr<AdaptiveControlSpace> clone() const override {
-    return std::make_unique<QuadtreeControlSpace>(*this);
-  }
+  std::unique_ptr<AdaptiveControlSpace> clone() const override { return std::make_unique<QuadtreeControlSpace>(*this); }
 
   // Splits the leaf cell (first splitting coarser neighbours so balance holds).
   void splitLeaf(int cell);
@@ -118,7 +116,7 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   Vec2 cellScale_;  // length units per lattice unit
   double latticeMax_;
 
-  std::vector<std::int32_t> child_;      // first child (4 consecutive) or -1 for a leaf
+  std::vector<std::int32_t> child_;  // first child (4 consecutive) or -1 for a leaf
   std::vector<std::uint8_t> level_;
   std::vector<std::int32_t> ix_, iy_;    // lattice coordinates of the cell's lo corner
   std::vector<std::int32_t> cellNodes_;  // nodesPerLeaf_ entries per cell

@@ -8,19 +8,19 @@
 namespace anisomesh {
 
 enum class ErrorCode {
-  InvalidArgument,        // a parameter out of its range (negative radius, dr < 1, ...)
-  InvalidMetric,          // NaN/infinite entries, zero or negative sizes, non-SPD tensor
-  InvalidDomain,          // empty or inverted box, source outside in a place that matters
-  OpenContour,            // a contour chain whose ends do not meet
-  SelfIntersectingContour,// contour segments that cross
-  HoleOutsideDomain,      // a hole not strictly inside the outer contour, or overlapping holes
-  ZeroLengthCurve,        // a segment or curve of zero length
-  InvalidSurface,         // degenerate parameterization, bad expression
-  ElementBudgetExceeded,  // the requested mesh would exceed the element budget
-  ParseError,             // malformed file or JSON
-  IoError,                // a file that cannot be read or written
-  Cancelled,              // a long run stopped on request
-  Internal,               // a bug: an invariant of the core did not hold
+  InvalidArgument,          // a parameter out of its range (negative radius, dr < 1, ...)
+  InvalidMetric,            // NaN/infinite entries, zero or negative sizes, non-SPD tensor
+  InvalidDomain,            // empty or inverted box, source outside in a place that matters
+  OpenContour,              // a contour chain whose ends do not meet
+  SelfIntersectingContour,  // contour segments that cross
+  HoleOutsideDomain,        // a hole not strictly inside the outer contour, or overlapping holes
+  ZeroLengthCurve,          // a segment or curve of zero length
+  InvalidSurface,           // degenerate parameterization, bad expression
+  ElementBudgetExceeded,    // the requested mesh would exceed the element budget
+  ParseError,               // malformed file or JSON
+  IoError,                  // a file that cannot be read or written
+  Cancelled,                // a long run stopped on request
+  Internal,                 // a bug: an invariant of the core did not hold
 };
 
 // Stable upper-case name of a code, e.g. "INVALID_METRIC".

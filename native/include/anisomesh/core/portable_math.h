@@ -154,16 +154,16 @@ inline constexpr double kPiHi = 0x1.921fb54442d18p+1;
 inline constexpr double kPiLo = 0x1.1a62633145c07p-53;
 inline constexpr double kPio2Hi = 0x1.921fb54442d18p+0;
 inline constexpr double kPio2Lo = 0x1.1a62633145c07p-54;
-inline constexpr double kPio2_1 = 0x1.921fb54400000p+0;  // 33 bits
+inline constexpr double kPio2_1 = 0x1.921fb54400000p+0;   // 33 bits
 inline constexpr double kPio2_2 = 0x1.0b4611a600000p-34;  // 33 bits
 inline constexpr double kPio2_3 = 0x1.3198a2e037073p-69;
 inline constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
 
 // exp(r) - 1 - r for |r| <= ~0.35: r^2 * (1/2! + r/3! + ... + r^11/13!).
 inline double expTail(double r) {
-  constexpr double c2 = 1.0 / 2, c3 = 1.0 / 6, c4 = 1.0 / 24, c5 = 1.0 / 120, c6 = 1.0 / 720,
-                   c7 = 1.0 / 5040, c8 = 1.0 / 40320, c9 = 1.0 / 362880, c10 = 1.0 / 3628800,
-                   c11 = 1.0 / 39916800, c12 = 1.0 / 479001600, c13 = 1.0 / 6227020800.0;
+  constexpr double c2 = 1.0 / 2, c3 = 1.0 / 6, c4 = 1.0 / 24, c5 = 1.0 / 120, c6 = 1.0 / 720, c7 = 1.0 / 5040,
+                   c8 = 1.0 / 40320, c9 = 1.0 / 362880, c10 = 1.0 / 3628800, c11 = 1.0 / 39916800,
+                   c12 = 1.0 / 479001600, c13 = 1.0 / 6227020800.0;
   const double r2 = r * r;
   // Two interleaved Horner chains (even / odd coefficients) for latency.
   const double even = c2 + r2 * (c4 + r2 * (c6 + r2 * (c8 + r2 * (c10 + r2 * c12))));
@@ -243,12 +243,12 @@ inline DD logDD(double x) {
   const double zz = z.hi;
   const double p =
       2.0 / 5 +
-      zz * (2.0 / 7 +
-            zz * (2.0 / 9 +
-                  zz * (2.0 / 11 +
-                        zz * (2.0 / 13 +
-                              zz * (2.0 / 15 +
-                                    zz * (2.0 / 17 + zz * (2.0 / 19 + zz * (2.0 / 21 + zz * (2.0 / 23)))))))));
+      zz *
+          (2.0 / 7 +
+           zz * (2.0 / 9 + zz * (2.0 / 11 +
+                                 zz * (2.0 / 13 +
+                                       zz * (2.0 / 15 +
+                                             zz * (2.0 / 17 + zz * (2.0 / 19 + zz * (2.0 / 21 + zz * (2.0 / 23)))))))));
   const double tail = c.hi * zz * p;
   DD r = twoSum(2.0 * sh, t.hi);
   r.lo += 2.0 * sl + (t.lo + tail);
@@ -315,8 +315,7 @@ inline DD atanSmall(double u, double ul) {
   }
   const double z = t * t;
   const double p =
-      -1.0 / 3 +
-      z * (1.0 / 5 + z * (-1.0 / 7 + z * (1.0 / 9 + z * (-1.0 / 11 + z * (1.0 / 13 + z * (-1.0 / 15))))));
+      -1.0 / 3 + z * (1.0 / 5 + z * (-1.0 / 7 + z * (1.0 / 9 + z * (-1.0 / 11 + z * (1.0 / 13 + z * (-1.0 / 15))))));
   return {kAtanHi[j], t + (t * z * p + (tl + kAtanLo[j]))};
 }
 
@@ -375,7 +374,7 @@ inline int trigReduce(double ax, double& rh, double& rl) {
     ax = std::fmod(ax, 4.0 * kPio2_1);
   }
   const double k = roundHalf(ax * kTwoOverPi);
-  const double t = ax - k * kPio2_1;  // exact for k < 2^20
+  const double t = ax - k * kPio2_1;       // exact for k < 2^20
   const DD y = twoSum(t, -(k * kPio2_2));  // k*kPio2_2 exact for k < 2^20
   const DD r = fastTwoSum(y.hi, y.lo - k * kPio2_3);
   rh = r.hi;
@@ -390,10 +389,9 @@ inline DD sinKernelDD(double r, double rl) {
   const double p =
       -1.0 / 6 +
       z * (1.0 / 120 +
-           z * (-1.0 / 5040 +
-                z * (1.0 / 362880 +
-                     z * (-1.0 / 39916800 +
-                          z * (1.0 / 6227020800.0 + z * (-1.0 / 1307674368000.0 + z * (1.0 / 355687428096000.0)))))));
+           z * (-1.0 / 5040 + z * (1.0 / 362880 + z * (-1.0 / 39916800 + z * (1.0 / 6227020800.0 +
+                                                                              z * (-1.0 / 1307674368000.0 +
+                                                                                   z * (1.0 / 355687428096000.0)))))));
   return fastTwoSum(r, r * z * p + rl * (1.0 - 0.5 * z));
 }
 
@@ -405,8 +403,8 @@ inline DD cosKernelDD(double r, double rl) {
       z * (-1.0 / 720 +
            z * (1.0 / 40320 +
                 z * (-1.0 / 3628800 +
-                     z * (1.0 / 479001600 +
-                          z * (-1.0 / 87178291200.0 + z * (1.0 / 20922789888000.0 + z * (-1.0 / 6402373705728000.0)))))));
+                     z * (1.0 / 479001600 + z * (-1.0 / 87178291200.0 +
+                                                 z * (1.0 / 20922789888000.0 + z * (-1.0 / 6402373705728000.0)))))));
   const double hz = 0.5 * z;
   const double w = 1.0 - hz;
   return fastTwoSum(w, ((1.0 - w) - hz) + (z * z * p - r * rl));
@@ -522,10 +520,18 @@ inline double sin(double x) {
   const int q = detail::trigReduce(std::fabs(x), rh, rl);
   double v;
   switch (q) {
-    case 0: v = detail::sinKernel(rh, rl); break;
-    case 1: v = detail::cosKernel(rh, rl); break;
-    case 2: v = -detail::sinKernel(rh, rl); break;
-    default: v = -detail::cosKernel(rh, rl); break;
+    case 0:
+      v = detail::sinKernel(rh, rl);
+      break;
+    case 1:
+      v = detail::cosKernel(rh, rl);
+      break;
+    case 2:
+      v = -detail::sinKernel(rh, rl);
+      break;
+    default:
+      v = -detail::cosKernel(rh, rl);
+      break;
   }
   return x < 0 ? -v : (x == 0 ? x : v);
 }
@@ -535,10 +541,14 @@ inline double cos(double x) {
   double rh, rl;
   const int q = detail::trigReduce(std::fabs(x), rh, rl);
   switch (q) {
-    case 0: return detail::cosKernel(rh, rl);
-    case 1: return -detail::sinKernel(rh, rl);
-    case 2: return -detail::cosKernel(rh, rl);
-    default: return detail::sinKernel(rh, rl);
+    case 0:
+      return detail::cosKernel(rh, rl);
+    case 1:
+      return -detail::sinKernel(rh, rl);
+    case 2:
+      return -detail::cosKernel(rh, rl);
+    default:
+      return detail::sinKernel(rh, rl);
   }
 }
 

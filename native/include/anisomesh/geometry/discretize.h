@@ -12,11 +12,11 @@
 namespace anisomesh {
 
 struct DiscretizeOptions {
-  int minSegmentsClosedCurve = 3;      // a contour made of a single curve gets at least this many segments
-  std::int64_t maxSegments = 10000000; // ElementBudgetExceeded above this many boundary segments in total
-  double tolerance = 1e-8;             // relative tolerance of the metric length quadrature
-  bool refineCrossings = true;         // refine curves whose chords cross (coarse metric near close curves)
-  int maxRefinementRounds = 10;        // then SelfIntersectingContour
+  int minSegmentsClosedCurve = 3;       // a contour made of a single curve gets at least this many segments
+  std::int64_t maxSegments = 10000000;  // ElementBudgetExceeded above this many boundary segments in total
+  double tolerance = 1e-8;              // relative tolerance of the metric length quadrature
+  bool refineCrossings = true;          // refine curves whose chords cross (coarse metric near close curves)
+  int maxRefinementRounds = 10;         // then SelfIntersectingContour
 };
 
 // Metric length of c between parameters a and b: the integral of |Mt(c(t)) c'(t)| dt.
@@ -34,8 +34,7 @@ std::vector<double> discretizeCurve(const Curve& c, const ControlSpace& cs, int 
 // Where chords of different curves (or parts of one) cross, the curves involved get
 // twice the segments until no crossing is left (the domain itself must be valid).
 std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const Domain*>& faces,
-                                                         const ControlSpace& cs,
-                                                         const DiscretizeOptions& options = {});
+                                                         const ControlSpace& cs, const DiscretizeOptions& options = {});
 
 // Boundary loops of one domain (see discretizeDomains).
 std::vector<BoundaryLoop> discretizeDomain(const Domain& domain, const ControlSpace& cs,

@@ -79,10 +79,33 @@ class Expression {
 
   // Bytecode operations (public for the compiler in expression.cpp).
   enum class Op : std::uint8_t {
-    Const, U, V, Param,
-    Neg, Add, Sub, Mul, Div, Pow, PowConst,
-    Sin, Cos, Tan, Asin, Acos, Atan, Atan2, Sinh, Cosh, Tanh,
-    Exp, Log, Sqrt, Abs, Min, Max,
+    Const,
+    U,
+    V,
+    Param,
+    Neg,
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Pow,
+    PowConst,
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan,
+    Atan2,
+    Sinh,
+    Cosh,
+    Tanh,
+    Exp,
+    Log,
+    Sqrt,
+    Abs,
+    Min,
+    Max,
   };
   struct Instr {
     Op op;

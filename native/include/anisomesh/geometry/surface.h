@@ -199,14 +199,14 @@ std::shared_ptr<ExpressionSurface> paperP2(const Box2& domain = {{-10.0, -10.0},
 
 // Everything the curvature metric needs at one point.
 struct SurfaceCurvature {
-  Vec3 normal = Vec3::UnitZ();   // unit normal (Su x Sv) / |Su x Sv|
-  Mat2 first = Mat2::Identity();  // G
-  Mat2 second = Mat2::Zero();     // II
-  double k1 = 0.0, k2 = 0.0;      // principal curvatures, k1 >= k2
-  Vec3 dir1 = Vec3::UnitX(), dir2 = Vec3::UnitY();  // unit 3D principal directions, dir1 x dir2 = normal
+  Vec3 normal = Vec3::UnitZ();                          // unit normal (Su x Sv) / |Su x Sv|
+  Mat2 first = Mat2::Identity();                        // G
+  Mat2 second = Mat2::Zero();                           // II
+  double k1 = 0.0, k2 = 0.0;                            // principal curvatures, k1 >= k2
+  Vec3 dir1 = Vec3::UnitX(), dir2 = Vec3::UnitY();      // unit 3D principal directions, dir1 x dir2 = normal
   Vec2 uvDir1 = Vec2::UnitX(), uvDir2 = Vec2::UnitY();  // the same in (u, v): J uvDir_i = dir_i
-  double gaussian = 0.0;  // K = k1 k2
-  double mean = 0.0;      // H = (k1 + k2) / 2
+  double gaussian = 0.0;                                // K = k1 k2
+  double mean = 0.0;                                    // H = (k1 + k2) / 2
 };
 
 // G = [Su.Su, Su.Sv; Sv.Su, Sv.Sv] at uv.

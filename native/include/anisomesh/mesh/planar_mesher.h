@@ -60,7 +60,7 @@ struct PlanarMesherOptions {
   double minNodeDistance = 0.6;
   // Quad-dominant merge: pairs whose quad would have a lower metric quality stay triangles.
   double minQuadQuality = 0.3;
-  MesherTimings* timings = nullptr;     // optional output: stage times
+  MesherTimings* timings = nullptr;  // optional output: stage times
 };
 
 // Meshes the region inside loops[0] and outside loops[1..]; every boundary point is a

@@ -10,9 +10,7 @@ namespace anisomesh {
 // The sign is exact; the magnitude is approximate.
 double orient2d(const double* a, const double* b, const double* c);
 // Same on Vec2.
-inline double orient2d(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return orient2d(a.data(), b.data(), c.data());
-}
+inline double orient2d(const Vec2& a, const Vec2& b, const Vec2& c) { return orient2d(a.data(), b.data(), c.data()); }
 
 // > 0 when d lies inside the circle through a, b, c (taken counter-clockwise), < 0 outside,
 // 0 on it. The sign is exact (reversed when a, b, c are clockwise).

@@ -3,8 +3,8 @@
 // (target 1), element shape quality in metric space, inverted/degenerate counts, and
 // the mesher's stage timings.
 #include <array>
-#include <vector>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "anisomesh/controlspace/control_space.h"
 #include "anisomesh/mesh/mesh.h"
@@ -33,9 +33,9 @@ struct QualityReport {
   double quadQualityMin = 0.0;
   double quadQualityMean = 0.0;
   std::array<int, 10> qualityHistogram{};  // element counts per quality bin [k/10, (k+1)/10); <= 0 in bin 0
-  int inverted = 0;    // clockwise (or, for quads, with a reflex corner) in the parameter plane
-  int degenerate = 0;  // not inverted but flat: zero area or metric quality below 1e-3
-  MesherTimings timings;  // filled by the caller from PlanarMesherOptions::timings
+  int inverted = 0;                        // clockwise (or, for quads, with a reflex corner) in the parameter plane
+  int degenerate = 0;                      // not inverted but flat: zero area or metric quality below 1e-3
+  MesherTimings timings;                   // filled by the caller from PlanarMesherOptions::timings
 };
 
 // The distinct edges of all triangles and quads (a < b), sorted.

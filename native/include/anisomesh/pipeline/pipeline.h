@@ -26,30 +26,30 @@ struct PipelineReport {
   int controlElements = 0;             // elements of the control structure at the end
   int controlNodes = 0;
   // Section 3.2 loop.
-  int updateRounds = 0;         // rounds run (1 = the first discretization was valid)
-  bool updatesConverged = true; // false when the round limit stopped the loop
-  int shortSegments = 0;        // boundary segments with metric length < eps1 (all rounds)
-  int invalidSegments = 0;      // ... with length < 1/2 or > 2
-  int chordSources = 0;         // curvature sources added for chord deviation
-  int proximitySources = 0;     // sources added for thin boundary triangles
-  int refinedElements = 0;      // control elements added near short segments
+  int updateRounds = 0;            // rounds run (1 = the first discretization was valid)
+  bool updatesConverged = true;    // false when the round limit stopped the loop
+  int shortSegments = 0;           // boundary segments with metric length < eps1 (all rounds)
+  int invalidSegments = 0;         // ... with length < 1/2 or > 2
+  int chordSources = 0;            // curvature sources added for chord deviation
+  int proximitySources = 0;        // sources added for thin boundary triangles
+  int refinedElements = 0;         // control elements added near short segments
   double maxChordDeviation = 0.0;  // largest deviation / chord length over curved contours, last round
-  MesherTimings mesherTimings;  // stages of the final meshPlanarBoundary
+  MesherTimings mesherTimings;     // stages of the final meshPlanarBoundary
   std::vector<std::string> notes;
 };
 
 // Section 3.2 checks after contour discretization and the boundary-only triangulation.
 struct BoundaryUpdateOptions {
-  double eps1 = 0.8;            // segments shorter (metric) refine the structure near them
-  double lengthMin = 0.5;       // segments outside [lengthMin, lengthMax] make the contour invalid
+  double eps1 = 0.8;       // segments shorter (metric) refine the structure near them
+  double lengthMin = 0.5;  // segments outside [lengthMin, lengthMax] make the contour invalid
   double lengthMax = 2.0;
-  double chordTolerance = 0.05; // largest chord deviation from a curved contour / chord length
-  double dMax = 4.0;            // curvature sources: size across the contour = dMax * size along
+  double chordTolerance = 0.05;  // largest chord deviation from a curved contour / chord length
+  double dMax = 4.0;             // curvature sources: size across the contour = dMax * size along
   // Boundary triangles with metric area below eps2 times the unit equilateral triangle's
   // (sqrt3/4) joining non-adjacent boundary points refine the structure across the gap.
   double eps2 = 0.2;
-  double gapElements = 2.0;     // elements wanted across a gap
-  int maxRounds = 8;            // bound on the loop (the report says whether it converged)
+  double gapElements = 2.0;  // elements wanted across a gap
+  int maxRounds = 8;         // bound on the loop (the report says whether it converged)
   bool enabled = true;
 };
 

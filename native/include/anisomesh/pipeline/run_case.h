@@ -14,8 +14,8 @@
 
 #include "anisomesh/controlspace/adaptive_control_space.h"
 #include "anisomesh/mesh/mesh.h"
-#include "anisomesh/surface/surface_mesh.h"
 #include "anisomesh/pipeline/pipeline.h"
+#include "anisomesh/surface/surface_mesh.h"
 
 namespace anisomesh {
 

@@ -71,35 +71,35 @@ struct SurfaceModel {
 inline constexpr double kDefaultChordSafety = 1.6329931618554521;
 
 struct SurfaceMeshOptions {
-  SurfaceMetricOptions metric;     // chord tolerance, hmin, hmax, d_max (3D)
+  SurfaceMetricOptions metric;  // chord tolerance, hmin, hmax, d_max (3D)
   // Sizes come from chordTolerance / chordSafety^2: h = sqrt(8 tol / (chordSafety^2 |k|)).
   // The default sqrt(8/3) gives h = sqrt(3 tol / |k|), which keeps the whole mesh (edges and
   // triangle interiors) within tol when edges reach metric length sqrt2; 1 is the paper's
   // sizing (edges of metric length 1 have sagitta tol). Derivation in kDefaultChordSafety.
   double chordSafety = kDefaultChordSafety;
-  double gradation = 2.0;          // dr in the parameter plane; 0 = off
+  double gradation = 2.0;  // dr in the parameter plane; 0 = off
   // Section 3.1: sizes from the 3D curvature of every contour curve put into the initial
   // control space along it (false: only the section 3.2 chord check catches contour curvature).
   bool contourCurvature = true;
-  bool adaptation = true;          // adjust control spaces of adjacent patches (figs. 11-13)
-  int maxRounds = 4;               // bound of Algorithm 1's invalidation loop
-  int initialLevel = 3;            // quadtree main-level grid 2^initialLevel
-  int maxLevel = 12;               // deepest quadtree level
-  double refineThreshold = 0.25;   // difference() between node metrics that splits a leaf
-  double sharedTolerance = 1e-6;   // shared curves must match within this * model size
-  PlanarMesherOptions mesher;      // inner nodes and improvement (its quads / allQuads are ignored)
+  bool adaptation = true;         // adjust control spaces of adjacent patches (figs. 11-13)
+  int maxRounds = 4;              // bound of Algorithm 1's invalidation loop
+  int initialLevel = 3;           // quadtree main-level grid 2^initialLevel
+  int maxLevel = 12;              // deepest quadtree level
+  double refineThreshold = 0.25;  // difference() between node metrics that splits a leaf
+  double sharedTolerance = 1e-6;  // shared curves must match within this * model size
+  PlanarMesherOptions mesher;     // inner nodes and improvement (its quads / allQuads are ignored)
   // Quad-dominant: triangle pairs merged in each patch's (u, v) (metric quality >= mesher.minQuadQuality);
   // shared contour edges are never merged across, so the patches stay conforming.
   bool quads = false;
   // All-quad: then every element split (midpoints of edges shared by all elements using
   // them, boundary edges split at the contour curve's middle parameter).
   bool allQuads = false;
-  bool mergeMesh = true;           // false: keep patches' vertices separate (debugging)
+  bool mergeMesh = true;  // false: keep patches' vertices separate (debugging)
   // Flip whole patches so the merged mesh has one 3D orientation across shared curves;
   // a flipped patch's triangles are then clockwise in its own (u, v).
   bool consistentOrientation = true;
-  bool measureQuality = true;      // fill SurfaceMeshReport::quality (3D measures cost about a mesh run)
-  bool controlSpaceGlyphs = false; // fill SurfaceMeshReport::controlSpaceGlyphs (pictures)
+  bool measureQuality = true;       // fill SurfaceMeshReport::quality (3D measures cost about a mesh run)
+  bool controlSpaceGlyphs = false;  // fill SurfaceMeshReport::controlSpaceGlyphs (pictures)
 };
 
 // The requested metric drawn at one control element (quadtree leaf) of a patch: the
@@ -123,18 +123,18 @@ struct Surface3DQuality {
   // the point of the flat 3D triangle and the tangent plane at the surface point of the same
   // parameter (first order the distance to the surface, without the tangential offset).
   double chordDeviationMax = 0.0;
-  double edgeChordDeviationMax = 0.0;          // the same over edges only
-  double isoChordDeviationMax = 0.0;           // chordDeviation(): to the image of the parameter segment
-  double chordDeviationMaxRelative = 0.0;      // the same divided by the chord tolerance
-  int inverted = 0;                            // clockwise triangles in their patch's (u, v)
+  double edgeChordDeviationMax = 0.0;      // the same over edges only
+  double isoChordDeviationMax = 0.0;       // chordDeviation(): to the image of the parameter segment
+  double chordDeviationMaxRelative = 0.0;  // the same divided by the chord tolerance
+  int inverted = 0;                        // clockwise triangles in their patch's (u, v)
 };
 
 struct SurfaceMeshReport {
   int patches = 0;
-  int rounds = 0;                  // Algorithm 1 rounds until no contour was invalid
-  int invalidations = 0;           // contour invalidations over all rounds
+  int rounds = 0;         // Algorithm 1 rounds until no contour was invalid
+  int invalidations = 0;  // contour invalidations over all rounds
   int vertices = 0, triangles = 0;
-  int sharedEdges = 0;             // mesh edges on shared curves
+  int sharedEdges = 0;                   // mesh edges on shared curves
   double crossSharedSizeRatioMax = 0.0;  // largest sqrt(area) ratio of the two triangles at a shared edge
   Surface3DQuality quality;
   // Cost counters: curvature metric evaluations (building the control spaces) and
@@ -144,7 +144,7 @@ struct SurfaceMeshReport {
   long long controlSpaceQueries = 0;
   double controlSpaceSeconds = 0.0;
   double secondsTotal = 0.0;
-  std::vector<int> patchTriangles;  // per patch
+  std::vector<int> patchTriangles;                 // per patch
   std::vector<std::array<int, 2>> sharedEdgeList;  // merged-mesh vertex pairs (i < j) on shared curves
   std::vector<double> elementQuality;  // 3D quality of each element (triangles, then quads), with measureQuality
   std::vector<ControlSpaceGlyph> controlSpaceGlyphs;  // final control spaces, with options.controlSpaceGlyphs
