@@ -52,11 +52,11 @@ long long parseCount(const std::string& option, const char* text);
 // "AZ,EL" in degrees, returned in radians.
 void parseView(const std::string& option, const std::string& text, CaseSvgOptions& svg);
 
-// UsageError unless out names a writable format (.mesh, .vtk, .obj, .svg).
+// UsageError unless out names a writable format (.mesh, .vtk, .obj, .msh, .vtu, .svg).
 void requireOutput(const std::string& out);
 // True for a .svg path.
 bool isSvg(const std::string& path);
-// Writes run.mesh to path by extension (.svg: caseRunSvg with svg).
+// Writes run.mesh to path by extension (.vtu: caseRunVtu, .svg: caseRunSvg with svg).
 void writeOutput(const std::string& path, const CaseRun& run, const CaseSvgOptions& svg);
 // -v N: a progress callback printing "anisomesh: NN%" lines to stderr when verbosity >= 1.
 std::function<bool(double)> progressPrinter(int verbosity);

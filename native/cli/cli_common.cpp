@@ -6,6 +6,7 @@
 #include "anisomesh/core/error.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/mesh_formats.h"
+#include "anisomesh/pipeline/case_vtu.h"
 #include "cli.h"
 
 namespace anisomesh::cli {
@@ -54,17 +55,20 @@ void parseView(const std::string& option, const std::string& v, CaseSvgOptions& 
 
 bool isSvg(const std::string& path) { return fileExtension(path) == "svg"; }
 
+bool isVtu(const std::string& path) { return fileExtension(path) == "vtu"; }
+
 void requireOutput(const std::string& out) {
   if (out.empty()) throw UsageError{"missing -o OUT"};
-  if (isSvg(out)) return;
+  if (isSvg(out) || isVtu(out)) return;
   try {
     meshFormatFromPath(out);
   } catch (const Error& e) {
-    throw UsageError{std::string(e.what()) + " (or .svg)"};
+    throw UsageError{std::string(e.what()) + " (or .vtu, .svg)"};
   }
 }
 
 void writeOutput(const std::string& path, const CaseRun& run, const CaseSvgOptions& svg) {
+  if (isVtu(path)) return writeTextFileAtomic(path, caseRunVtu(run));
   if (!isSvg(path)) return writeMeshFile(path, run.mesh);
   writeTextFileAtomic(path, caseRunSvg(run, svg));
 }

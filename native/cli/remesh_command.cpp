@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "anisomesh/io/medit.h"
+#include "anisomesh/io/mesh_formats.h"
 #include "anisomesh/pipeline/input_size_metrics.h"
 #include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
@@ -64,7 +65,7 @@ int runRemesh(Args& args) {
     throw UsageError{"-hmin must not exceed -hmax"};
   options.mesher.progress = progressPrinter(verbosity);
 
-  const Mesh in = readMeditFile(input);
+  const Mesh in = readMeshFile(input);  // .mesh, .msh, .vtk or .obj by extension
   const std::vector<Metric> metrics = !sol.empty() ? solToMetrics(readSolFile(sol), in.vertexCount())
                                       : hsiz > 0   ? uniformMetrics(in, hsiz)
                                                    : edgeLengthMetrics(in);
@@ -84,7 +85,7 @@ Command remeshCommand() {
   return {"remesh",
           "  remesh IN.mesh [-sol IN.sol] -o OUT [-hgrad R] [-hmin H] [-hmax H] [-hsiz H] [-v N] [--stats]\n"
           "         [--max-elements N]\n"
-          "                            remesh the domain of IN.mesh under the metric IN.sol, used as\n"
+          "                            remesh the domain of IN.mesh (or .msh, .vtk, .obj) under the metric IN.sol, as\n"
           "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1,\n"
           "                            -1 or 0: off); without -sol: isotropic sizes, -hsiz H everywhere or\n"
           "                            the input's edge lengths clamped to [-hmin, -hmax]; -in / -out as in MMG\n",

@@ -1,4 +1,5 @@
 #include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/core/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -460,7 +461,7 @@ void intersectControlSpace(AdaptiveControlSpace& cs1, const AdaptiveControlSpace
 
 double gradationSlope(double ratio) {
   require(std::isfinite(ratio) && ratio >= 1.0, ErrorCode::InvalidArgument,
-          "gradation ratio dr must be finite and >= 1, got " + std::to_string(ratio));
+          "gradation ratio dr must be finite and >= 1, got " + numberText(ratio));
   return 2.0 * (ratio - 1.0) / (ratio + 1.0);
 }
 
