@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/version.h"
 #include "cli.h"
 
 namespace {
@@ -32,7 +33,7 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   try {
     if (cmd == "--version") {
-      std::cout << "anisomesh " ANISOMESH_VERSION "\n";
+      std::cout << "anisomesh " << anisomesh::version() << "\n";
       return 0;
     }
     if (cmd == "--help" || cmd == "-h") return usage(std::cout, 0);
