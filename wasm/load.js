@@ -29,6 +29,9 @@ function instantiate(getBytes, where) {
             .then((r) => done(r.instance ?? r, r.module), fail);
           return {};
         },
+        // The bytes come from getBytes: the glue must not build its own URL (in an IIFE
+        // bundle import.meta.url is undefined and new URL() would throw).
+        locateFile: (path) => path,
         onAbort: (what) => fail(new Error(String(what))),
         print: () => {},
         printErr: () => {},
