@@ -192,7 +192,7 @@ TEST(IoGmsh, MeshioAndGmshReadTheWrittenFiles) {
     if (gmsh) {
       // gmsh re-saves the file as 2.2; reading that back gives the same element counts.
       const std::string out = path + ".gmsh.msh";
-      const std::string cmd = "gmsh " + path + " -0 -format msh22 -o " + out + " >/dev/null 2>&1";
+      const std::string cmd = "gmsh " + path + " -0 -save_all -format msh22 -o " + out + " >/dev/null 2>&1";
       ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
       const Mesh back = parseGmsh(readTextFile(out));
       EXPECT_EQ(back.points.size(), m.points.size()) << path;

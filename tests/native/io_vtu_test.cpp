@@ -54,7 +54,7 @@ TEST(IoVtu, PlanarFieldsHaveOneValuePerPointAndCellAndMatchTheMeasures) {
   EXPECT_EQ(dataArray(vtu, "Points").size(), 3 * nv);
   EXPECT_EQ(dataArray(vtu, "metric").size(), 9 * nv);
   EXPECT_EQ(dataArray(vtu, "requestedSize").size(), 2 * nv);
-  EXPECT_EQ(dataArray(vtu, "ref").size(), nv + cells);  // point refs, then cell refs
+  EXPECT_EQ(dataArray(vtu, "ref").size(), nv);  // the first "ref" array: point data
   EXPECT_EQ(dataArray(vtu, "types").size(), cells);
   const std::vector<double> quality = dataArray(vtu, "quality");
   ASSERT_EQ(quality.size(), cells);
