@@ -108,6 +108,7 @@ nlohmann::json pipelineStatsJson(const Mesh& mesh, const ControlSpace& cs, const
                           {"proximitySources", r.proximitySources},
                           {"refinedElements", r.refinedElements},
                           {"maxChordDeviation", r.maxChordDeviation}};
+  if (r.cacheHits + r.cacheMisses > 0) j["queryCache"] = {{"hits", r.cacheHits}, {"misses", r.cacheMisses}};
   j["notes"] = r.notes;
   return j;
 }

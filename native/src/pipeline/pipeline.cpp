@@ -11,6 +11,7 @@
 
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/controlspace/control_space_spec.h"
+#include "anisomesh/controlspace/query_cache.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/portable_math.h"
 #include "anisomesh/geometry/discretize.h"
@@ -25,6 +26,20 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Runs f on cs, through a section 4 query cache when tolerance > 0 (a fresh one per call:
+// cs may have changed since), adding the cache's counts to the report.
+template <class F>
+auto throughCache(const ControlSpace& cs, double tolerance, PipelineReport& r, F&& f) {
+  if (!(tolerance > 0.0)) return f(cs);
+  QueryCacheOptions o;
+  o.tolerance = tolerance;
+  const CachedControlSpace cache(cs, o);
+  auto result = f(static_cast<const ControlSpace&>(cache));
+  r.cacheHits += cache.hits();
+  r.cacheMisses += cache.misses();
+  return result;
+}
 
 void countBoundary(const std::vector<BoundaryLoop>& loops, PipelineReport* report) {
   if (!report) return;
@@ -59,6 +74,7 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   mesher.progress = progress;
   DiscretizeOptions d;
   d.maxSegments = std::max<std::int64_t>(1, mesher.maxElements);
+  const double cacheTolerance = spec.controlSpace.queryCache;
 
   // Section 3.2 loop: the first round discretizes every contour; later rounds only the
   // contours marked invalid (a segment outside [lengthMin, lengthMax] or a chord too far
@@ -71,7 +87,8 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   for (int round = 0;; ++round) {
     t = Clock::now();
     if (round == 0 || std::find(invalid.begin(), invalid.end(), 1) != invalid.end()) {
-      const std::vector<BoundaryLoop> next = discretizeDomain(spec.domain, *cs, d);
+      const std::vector<BoundaryLoop> next = throughCache(
+          *cs, cacheTolerance, r, [&](const ControlSpace& q) { return discretizeDomain(spec.domain, q, d); });
       if (round == 0) {
         loops = next;
         fresh.assign(loops.size(), 1);
@@ -107,7 +124,8 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
     b.timings = nullptr;
     // The update rounds report no progress of their own but can still be cancelled.
     if (progress) b.progress = [&progress](double) { return progress(0.0); };
-    const Mesh boundaryMesh = meshPlanarBoundary(loops, *cs, b);
+    const Mesh boundaryMesh =
+        throughCache(*cs, cacheTolerance, r, [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, b); });
     const int gaps = proximitySources(loops, boundaryMesh, *cs, updates, &sources);
     const int shortSources = shortSegmentSources(lengths.shortSegments, *cs, spec.controlSpace.hmin, &sources);
     r.chordSources += chords;
@@ -131,7 +149,8 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   t = Clock::now();
   PlanarMesherOptions finalOptions = mesher;
   finalOptions.timings = &r.mesherTimings;
-  Mesh mesh = meshPlanarBoundary(loops, *cs, finalOptions);
+  Mesh mesh = throughCache(*cs, cacheTolerance, r,
+                           [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, finalOptions); });
   r.secondsMeshing = secondsSince(t);
   if (controlSpace) *controlSpace = std::move(cs);
   return mesh;
@@ -190,13 +209,15 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
   t = Clock::now();
   DiscretizeOptions d;
   d.maxSegments = std::max<std::int64_t>(1, options.mesher.maxElements);
-  const std::vector<BoundaryLoop> loops = discretizeDomain(domain, *cs, d);
+  const std::vector<BoundaryLoop> loops =
+      throughCache(*cs, options.queryCache, r, [&](const ControlSpace& q) { return discretizeDomain(domain, q, d); });
   r.secondsDiscretization = secondsSince(t);
   countBoundary(loops, report);
   t = Clock::now();
   PlanarMesherOptions finalOptions = options.mesher;
   finalOptions.timings = &r.mesherTimings;
-  Mesh mesh = meshPlanarBoundary(loops, *cs, finalOptions);
+  Mesh mesh = throughCache(*cs, options.queryCache, r,
+                           [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, finalOptions); });
   r.secondsMeshing = secondsSince(t);
   if (controlSpace) *controlSpace = std::move(cs);
   return mesh;

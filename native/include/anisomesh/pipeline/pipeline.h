@@ -37,6 +37,8 @@ struct PipelineReport {
   int proximitySources = 0;        // sources added for thin boundary triangles
   int refinedElements = 0;         // control elements added near short segments
   double maxChordDeviation = 0.0;  // largest deviation / chord length over curved contours, last round
+  long long cacheHits = 0;         // section 4 query cache (when on): queries answered by it
+  long long cacheMisses = 0;       // ... and passed to the control space
   MesherTimings mesherTimings;     // stages of the final meshPlanarBoundary
   std::vector<std::string> notes;
 };
@@ -71,6 +73,7 @@ struct RemeshOptions {
   double hgrad = 0.0;  // gradation ratio dr of the control space smoothing (0: off, else >= 1)
   RemeshMetricInsertion insertion = RemeshMetricInsertion::PiecewiseLinear;
   double refineThreshold = 0.2;  // PiecewiseLinear: metric difference that splits a control element
+  double queryCache = 0.0;       // section 4 query cache tolerance (metric distance); 0: off
   PlanarMesherOptions mesher;
 };
 
