@@ -2,7 +2,7 @@
 // beside the work-set (smoothGradation). Both apply only the pairwise rule, so both only
 // shrink sizes; the work-set runs to the fixed point, so the bound of eq. 4 holds on every
 // edge of the structure, which one up/down pair does not guarantee. The figures printed
-// are the ones docs/gradation.md quotes.
+// are the ones docs/paper_rules.md quotes.
 #include <gtest/gtest.h>
 
 #include <algorithm>

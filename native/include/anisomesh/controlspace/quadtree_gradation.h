@@ -3,7 +3,7 @@
 // steps, "upwards" from the leaves to the main level, then "downwards", in each step the
 // nodes of every tree element adjusted with the nodes of its sub-elements by the pairwise
 // rule (eqs. 3-9). smoothGradation() (control_space_algorithms.h) is the work-set
-// alternative; docs/gradation.md compares the two (bound reached, node updates, time).
+// alternative; docs/paper_rules.md compares the two (bound reached, node updates, time).
 #include "anisomesh/controlspace/quadtree_control_space.h"
 
 namespace anisomesh {
