@@ -77,6 +77,45 @@ function checkMetrics(metrics, vertexCount, name = 'metrics') {
   return metrics;
 }
 
+// Fields for metricFromField/adapt: a non-empty array of Float64Array, vertexCount values each.
+function checkFieldValues(fields, vertexCount) {
+  const list = fields instanceof Float64Array ? [fields] : fields;
+  if (!Array.isArray(list) || list.length === 0) throw argError('fields: expected a non-empty array of Float64Array (or of expressions in x, y)');
+  list.forEach((f, i) => {
+    if (!(f instanceof Float64Array)) throw argError(`fields[${i}]: expected a Float64Array of one value per vertex`);
+    if (f.length !== vertexCount) throw argError(`fields[${i}]: ${f.length} values for ${vertexCount} vertices`);
+  });
+  return list;
+}
+
+// Options of metricFromField/adapt, checked for type (ranges are the core's).
+function checkAdaptOptions(options) {
+  if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+  const out = {};
+  for (const key of ['err', 'nv', 'hmin', 'hmax', 'anisomax', 'hgrad', 'maxElements', 'iterations']) {
+    const v = options[key];
+    if (v === undefined) continue;
+    if (!(typeof v === 'number' && Number.isFinite(v) && v >= 0)) throw argError(`options.${key}: expected a finite nonnegative number`);
+    out[key] = v;
+  }
+  if (out.iterations !== undefined && !(Number.isInteger(out.iterations) && out.iterations >= 1)) {
+    throw argError('options.iterations: expected a positive integer');
+  }
+  if (options.relative !== undefined) out.relative = Boolean(options.relative);
+  if (options.norm !== undefined) {
+    const n = String(options.norm);
+    if (!['1', '2', 'inf'].includes(n)) throw argError(`options.norm: expected 1, 2 or 'inf', got ${options.norm}`);
+    out.norm = n;
+  }
+  if (options.shape !== undefined) {
+    if (!['anisotropic', 'isotropic', 'uniform'].includes(options.shape)) {
+      throw argError("options.shape: expected 'anisotropic', 'isotropic' or 'uniform'");
+    }
+    out.shape = options.shape;
+  }
+  return out;
+}
+
 // Frees control spaces the user forgot to dispose(), once they are garbage collected.
 const registry = typeof FinalizationRegistry === 'function' ? new FinalizationRegistry((handle) => handle.delete()) : null;
 
@@ -216,6 +255,26 @@ export function wrapCore(core) {
       }
       const r = unwrap(core.remesh(mesh, metrics, options));
       return { mesh: r.mesh, stats: JSON.parse(r.stats) };
+    },
+    /**
+     * The metric of one or several fields (Float64Array of one value per vertex each) on a
+     * planar mesh: Hessian recovery, then error level (err) or target vertex count (nv).
+     */
+    metricFromField(mesh, fields, options = {}) {
+      checkMesh(mesh);
+      const values = checkFieldValues(fields, mesh.vertices.length / mesh.dimension);
+      return unwrap(core.metricFromField(mesh, values, checkAdaptOptions(options)));
+    },
+    /**
+     * Adapts a planar mesh to fields: per-vertex values (Float64Array, transferred between
+     * iterations) or expressions in x, y (strings, re-sampled on every mesh).
+     */
+    adapt(mesh, fields, options = {}) {
+      checkMesh(mesh);
+      const list = Array.isArray(fields) ? fields : [fields];
+      const expressions = list.every((f) => typeof f === 'string') ? list : [];
+      const values = expressions.length ? [] : checkFieldValues(list, mesh.vertices.length / mesh.dimension);
+      return unwrap(core.adapt(mesh, values, expressions, checkAdaptOptions(options)));
     },
     /** The mesh as text: 'mesh' (Medit), 'vtk', 'obj' or 'svg'. */
     writeMesh(mesh, format = 'mesh') {

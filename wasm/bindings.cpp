@@ -418,6 +418,115 @@ val remeshJs(val mesh, val metrics, val options) {
   });
 }
 
+// Field-metric and adaptation options from a plain object (api.js has checked the types):
+// { err, relative, nv, norm: 1 | 2 | 'inf', shape, hmin, hmax, anisomax, maxElements,
+//   iterations, hgrad }.
+AdaptOptions adaptOptionsFromJs(const val& js) {
+  AdaptOptions o;
+  FieldMetricOptions& m = o.metric;
+  auto num = [&js](const char* key, double* out) {
+    if (js.hasOwnProperty(key)) *out = js[key].as<double>();
+  };
+  num("err", &m.err);
+  num("nv", &m.targetVertices);
+  num("hmin", &m.hmin);
+  num("hmax", &m.hmax);
+  num("anisomax", &m.anisomax);
+  num("hgrad", &o.hgrad);
+  if (js.hasOwnProperty("relative")) m.relativeError = js["relative"].as<bool>();
+  if (js.hasOwnProperty("maxElements")) m.maxElements = static_cast<std::int64_t>(js["maxElements"].as<double>());
+  if (js.hasOwnProperty("iterations")) o.iterations = js["iterations"].as<int>();
+  if (js.hasOwnProperty("norm")) {
+    const std::string n = js["norm"].as<std::string>();
+    m.norm = n == "1" ? ErrorNorm::L1 : n == "2" ? ErrorNorm::L2 : ErrorNorm::Linf;
+  }
+  if (js.hasOwnProperty("shape")) {
+    const std::string sh = js["shape"].as<std::string>();
+    m.shape = sh == "isotropic" ? MetricShape::Isotropic
+              : sh == "uniform" ? MetricShape::Uniform
+                                : MetricShape::Anisotropic;
+  }
+  return o;
+}
+
+// Per-vertex values (Float64Array each) from a JS array.
+std::vector<std::vector<double>> fieldsFromJs(const val& fields) {
+  std::vector<std::vector<double>> out;
+  const int n = fields["length"].as<int>();
+  for (int i = 0; i < n; ++i) out.push_back(emscripten::convertJSArrayToNumberVector<double>(fields[i]));
+  return out;
+}
+
+// The metric of fields on mesh: { metrics (m11, m12, m22 per vertex), complexity, expectedVertices, hmin, hmax }.
+val metricFromFieldJs(val mesh, val fields, val options) {
+  return guarded([&] {
+    const Mesh input = meshFromJs(mesh);
+    const FieldMetric fm = metricFromFields(input, fieldsFromJs(fields), adaptOptionsFromJs(options).metric);
+    std::vector<double> flat;
+    flat.reserve(3 * fm.metrics.size());
+    for (const Metric& m : fm.metrics) {
+      const Mat2 t = m.tensor();
+      flat.push_back(t(0, 0));
+      flat.push_back(t(0, 1));
+      flat.push_back(t(1, 1));
+    }
+    val r = val::object();
+    r.set("metrics", typedCopy(flat.data(), flat.size()));
+    r.set("complexity", fm.complexity);
+    r.set("expectedVertices", fm.expectedVertices);
+    r.set("hmin", fm.hmin);
+    r.set("hmax", fm.hmax);
+    return r;
+  });
+}
+
+// The adaptation loop: fields are per-vertex values (transferred) or expressions in x, y
+// (re-sampled); { mesh, fields, iterations }.
+val adaptJs(val mesh, val fields, val expressions, val options) {
+  return guarded([&] {
+    const Mesh input = meshFromJs(mesh);
+    const AdaptOptions o = adaptOptionsFromJs(options);
+    AdaptResult r;
+    const int ne = expressions["length"].as<int>();
+    if (ne > 0) {
+      std::vector<FieldFunction> fns;
+      for (int i = 0; i < ne; ++i) {
+        ExpressionOptions eo;
+        eo.name = "field";
+        eo.uName = "x";
+        eo.vName = "y";
+        const Expression e = Expression::parse(expressions[i].as<std::string>(), eo);
+        fns.push_back([e](const Vec2& p) { return e.value(p.x(), p.y()); });
+      }
+      r = adaptToFunctions(input, fns, o);
+    } else {
+      r = adaptToFields(input, fieldsFromJs(fields), o);
+    }
+    val out = val::object();
+    out.set("mesh", meshToJs(r.mesh));
+    val fs = val::array();
+    for (const auto& f : r.fields) fs.call<void>("push", typedCopy(f.data(), f.size()));
+    out.set("fields", fs);
+    val its = val::array();
+    for (const AdaptIteration& it : r.iterations) {
+      val j = val::object();
+      j.set("vertices", it.vertices);
+      j.set("triangles", it.triangles);
+      j.set("complexity", it.complexity);
+      j.set("expectedVertices", it.expectedVertices);
+      j.set("estimatedError", it.estimatedError);
+      if (it.errorLinf >= 0) {
+        j.set("errorLinf", it.errorLinf);
+        j.set("errorL2", it.errorL2);
+      }
+      j.set("seconds", it.seconds);
+      its.call<void>("push", j);
+    }
+    out.set("iterations", its);
+    return out;
+  });
+}
+
 // Checks an expression in two variables (u, v unless renamed, e.g. x, y); returns its
 // value at (u, v) or the parse error.
 val checkExpression(std::string text, double u, double v, std::string uName, std::string vName) {
@@ -528,6 +637,8 @@ EMSCRIPTEN_BINDINGS(anisomesh) {
   emscripten::function("meshCase", &meshCaseJson);
   emscripten::function("caseStats", &caseStats);
   emscripten::function("remesh", &remeshJs);
+  emscripten::function("metricFromField", &metricFromFieldJs);
+  emscripten::function("adapt", &adaptJs);
   emscripten::function("writeMesh", &writeMeshText);
   emscripten::function("readMesh", &readMeshText);
   emscripten::function("readSol", &readSolText);

@@ -112,6 +112,37 @@ export interface ControlSpace {
   dispose(): void;
 }
 
+/** Options of adapt() and metricFromField(): exactly one of err or nv. */
+export interface AdaptOptions {
+  /** Error level: M = 2 c |H| / err (c = 2/9). */
+  err?: number;
+  /** err relative to the field's range. */
+  relative?: boolean;
+  /** Target vertex count (L^p continuous-mesh metric). */
+  nv?: number;
+  norm?: 1 | 2 | 'inf';
+  shape?: 'anisotropic' | 'isotropic' | 'uniform';
+  hmin?: number;
+  hmax?: number;
+  anisomax?: number;
+  /** Gradation ratio dr of the control space (0: off). */
+  hgrad?: number;
+  iterations?: number;
+  maxElements?: number;
+}
+
+/** One adaptation iteration's figures (errorLinf/errorL2 for expression fields only). */
+export interface AdaptIteration {
+  vertices: number;
+  triangles: number;
+  complexity: number;
+  expectedVertices: number;
+  estimatedError: number;
+  errorLinf?: number;
+  errorL2?: number;
+  seconds: number;
+}
+
 export type MeshFormat = 'mesh' | 'vtk' | 'obj';
 
 export interface MeshCaseOptions {
@@ -165,6 +196,21 @@ export interface Anisomesh {
     metrics: Float64Array,
     options?: { hmin?: number; hmax?: number; hgrad?: number; maxElements?: number },
   ): { mesh: MeshArrays; stats: Record<string, unknown> };
+  /** The metric of fields (one value per vertex each) on a planar mesh: m11, m12, m22 per vertex. */
+  metricFromField(
+    mesh: MeshArrays,
+    fields: Float64Array | Float64Array[],
+    options: AdaptOptions,
+  ): { metrics: Float64Array; complexity: number; expectedVertices: number; hmin: number; hmax: number };
+  /**
+   * Adapts a planar mesh to fields: values per vertex (transferred between iterations) or
+   * expressions in x, y (re-sampled on each mesh; the iterations then report the errors).
+   */
+  adapt(
+    mesh: MeshArrays,
+    fields: Float64Array | Float64Array[] | string | string[],
+    options: AdaptOptions,
+  ): { mesh: MeshArrays; fields: Float64Array[]; iterations: AdaptIteration[] };
   /** The mesh as text in a file format ('svg' for a picture of a planar mesh). */
   writeMesh(mesh: MeshArrays, format?: MeshFormat | 'svg'): string;
   /** Parses mesh text. */

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "adapt_command.h"
 #include "anisomesh/anisomesh.h"
 #include "anisomesh/core/version.h"
 #include "anisomesh/io/case_json.h"
@@ -33,6 +34,8 @@ int usage(std::ostream& os, int code) {
         "  remesh IN.mesh -sol IN.sol -o OUT [-hgrad R] [-hmin H] [-hmax H] [--stats] [--max-elements N]\n"
         "                            remesh the domain of IN.mesh under the metric IN.sol, used as\n"
         "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1)\n"
+        "  adapt IN.mesh -sol F.sol|-field EXPR -o OUT (-err E|-nv N) ...\n"
+        "                            adapt IN.mesh to a solution (anisomesh adapt --help for the options)\n"
         "  metric ALPHA H1 H2        print the metric tensor for sizes (h1, h2) at angle ALPHA (radians)\n"
         "  --version                 print the version\n"
         "--stats prints one JSON object on stdout. Errors: exit 1 (bad input), 2 (bad usage).\n";
@@ -247,6 +250,7 @@ int main(int argc, char** argv) {
     }
     if (cmd == "mesh") return runMesh(argc, argv);
     if (cmd == "remesh") return runRemesh(argc, argv);
+    if (cmd == "adapt") return anisomesh::runAdaptCommand(argc, argv);
     std::cerr << "anisomesh: unknown command '" << cmd << "'\n";
     return usage(std::cerr, 2);
   } catch (const UsageError& e) {
