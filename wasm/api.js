@@ -2,14 +2,18 @@
 // It hides embind: plain objects in, plain objects and typed arrays out, and every
 // failure of the core thrown as an AnisomeshError carrying the core's code.
 
+// One class for the ESM entry points and the CommonJS one (wasm/index.cjs), whichever loads
+// first: `instanceof AnisomeshError` holds across them.
+const errorKey = Symbol.for('anisomesh.AnisomeshError');
+
 /** Error thrown by every anisomesh call that fails; `code` is stable (e.g. "INVALID_METRIC"). */
-export class AnisomeshError extends Error {
+export const AnisomeshError = (globalThis[errorKey] ??= class AnisomeshError extends Error {
   constructor(code, message) {
     super(message);
     this.name = 'AnisomeshError';
     this.code = code;
   }
-}
+});
 
 function unwrap(result) {
   if (result && typeof result.error === 'string') throw new AnisomeshError(result.error, result.message);
@@ -116,6 +120,28 @@ function checkAdaptOptions(options) {
   return out;
 }
 
+// options.svg: true or { uv, view: [azimuth, elevation] in degrees, controlSpace }, passed to
+// the core as { uv, azimuth, elevation (radians), controlSpace }.
+function checkSvgOption(svg) {
+  if (svg === undefined || svg === false) return undefined;
+  if (svg === true) return {};
+  if (svg === null || typeof svg !== 'object') throw argError('options.svg: expected true or { uv?, view?, controlSpace? }');
+  const out = {};
+  for (const key of ['uv', 'controlSpace']) {
+    if (svg[key] !== undefined && typeof svg[key] !== 'boolean') throw argError(`options.svg.${key}: expected a boolean`);
+    if (svg[key]) out[key] = true;
+  }
+  if (svg.view !== undefined) {
+    const v = svg.view;
+    if (!Array.isArray(v) || v.length !== 2 || !v.every((x) => typeof x === 'number' && Number.isFinite(x))) {
+      throw argError('options.svg.view: expected [azimuth, elevation] in degrees');
+    }
+    out.azimuth = v[0] * 0.017453292519943295;
+    out.elevation = v[1] * 0.017453292519943295;
+  }
+  return out;
+}
+
 // Frees control spaces the user forgot to dispose(), once they are garbage collected.
 const registry = typeof FinalizationRegistry === 'function' ? new FinalizationRegistry((handle) => handle.delete()) : null;
 
@@ -218,12 +244,15 @@ export function wrapCore(core) {
       if (maxElements !== undefined && !(Number.isInteger(maxElements) && maxElements > 0)) {
         throw argError('options.maxElements: expected a positive integer');
       }
-      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates']) {
+      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates', 'vtu']) {
         if (options[key] !== undefined && typeof options[key] !== 'boolean') throw argError(`options.${key}: expected a boolean`);
       }
-      const r = unwrap(core.meshCase(caseText(c), options));
+      const svg = checkSvgOption(options.svg);
+      const r = unwrap(core.meshCase(caseText(c), { ...options, svg }));
       return {
         mesh: r.mesh,
+        ...(svg !== undefined ? { svg: r.svg } : {}),
+        ...(options.vtu ? { vtu: r.vtu } : {}),
         stats: r.stats === null ? null : JSON.parse(r.stats),
         controlSpace: r.controlSpace ? JSON.parse(r.controlSpace) : null,
         vertexMetrics: r.vertexMetrics,
@@ -242,9 +271,9 @@ export function wrapCore(core) {
     /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22). */
     remesh(mesh, metrics, options = {}) {
       checkMesh(mesh);
-      checkMetrics(metrics, mesh.vertices.length / mesh.dimension);
+      if (metrics !== null) checkMetrics(metrics, mesh.vertices.length / mesh.dimension);
       if (options === null || typeof options !== 'object') throw argError('options: expected an object');
-      for (const key of ['hmin', 'hmax', 'hgrad']) {
+      for (const key of ['hmin', 'hmax', 'hgrad', 'hsiz']) {
         const v = options[key];
         if (v !== undefined && !(typeof v === 'number' && Number.isFinite(v) && v >= 0)) {
           throw argError(`options.${key}: expected a finite nonnegative number`);
@@ -253,8 +282,10 @@ export function wrapCore(core) {
       if (options.maxElements !== undefined && !(Number.isInteger(options.maxElements) && options.maxElements > 0)) {
         throw argError('options.maxElements: expected a positive integer');
       }
-      const r = unwrap(core.remesh(mesh, metrics, options));
-      return { mesh: r.mesh, stats: JSON.parse(r.stats) };
+      if (options.onProgress !== undefined && typeof options.onProgress !== 'function') throw argError('options.onProgress: expected a function');
+      const svg = checkSvgOption(options.svg);
+      const r = unwrap(core.remesh(mesh, metrics, { ...options, svg }));
+      return { mesh: r.mesh, stats: JSON.parse(r.stats), ...(svg !== undefined ? { svg: r.svg } : {}), ...(options.vtu ? { vtu: r.vtu } : {}) };
     },
     /**
      * The metric of one or several fields (Float64Array of one value per vertex each) on a

@@ -27,6 +27,9 @@
 #include "anisomesh/io/svg.h"
 #include "anisomesh/mesh/quality.h"
 #include "anisomesh/pipeline/case_control_space.h"
+#include "anisomesh/pipeline/case_svg.h"
+#include "anisomesh/pipeline/case_vtu.h"
+#include "anisomesh/pipeline/input_size_metrics.h"
 #include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/pipeline/run_case.h"
@@ -237,7 +240,9 @@ MeshFormat formatFromName(const std::string& name) {
   if (name == "mesh" || name == "medit") return MeshFormat::Medit;
   if (name == "vtk") return MeshFormat::Vtk;
   if (name == "obj") return MeshFormat::Obj;
-  throw Error(ErrorCode::InvalidArgument, "unknown mesh format '" + name + "' (expected mesh, vtk or obj)");
+  if (name == "msh") return MeshFormat::Gmsh;
+  if (name == "msh2") return MeshFormat::Gmsh22;
+  throw Error(ErrorCode::InvalidArgument, "unknown mesh format '" + name + "' (expected mesh, vtk, obj, msh or msh2)");
 }
 
 // Per-edge metric lengths, per-element metric qualities (triangles, then quads) and the
@@ -279,6 +284,21 @@ CaseRun& lastRun() {
 // false), controlSpace (JSON text or null), vertexMetrics, measures, timings }.
 // options: { inspectControlSpace, vertexMetrics, measures, stats, quads, allQuads,
 // maxElements, controlSpaceUpdates, onProgress(fraction) -> false to cancel }.
+// options.svg ({ uv, azimuth, elevation } in radians, or true): the run's .svg picture.
+bool wantsSvg(const val& options) {
+  return options["svg"].isTrue() || options["svg"].typeOf().as<std::string>() == "object";
+}
+
+CaseSvgOptions svgOptions(const val& options) {
+  CaseSvgOptions o;
+  const val svg = options["svg"];
+  if (svg.typeOf().as<std::string>() != "object") return o;
+  o.uv = svg["uv"].isTrue();
+  if (svg["azimuth"].isNumber()) o.azimuth = svg["azimuth"].as<double>();
+  if (svg["elevation"].isNumber()) o.elevation = svg["elevation"].as<double>();
+  return o;
+}
+
 val meshCaseJson(std::string jsonText, val options) {
   return guarded([&] {
     const double t0 = emscripten_get_now();
@@ -293,6 +313,7 @@ val meshCaseJson(std::string jsonText, val options) {
     if (options["maxElements"].isNumber())
       o.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
     if (options["controlSpaceUpdates"].isFalse()) o.controlSpaceUpdates = false;
+    if (wantsSvg(options) && options["svg"]["controlSpace"].isTrue()) o.controlSpaceGlyphs = true;
     const val onProgress = options["onProgress"];
     if (onProgress.typeOf().as<std::string>() == "function")
       o.progress = [onProgress](double fraction) { return !onProgress(fraction).isFalse(); };
@@ -300,6 +321,8 @@ val meshCaseJson(std::string jsonText, val options) {
     const double t1 = emscripten_get_now();
     val out = val::object();
     out.set("mesh", meshToJs(run.mesh));
+    if (wantsSvg(options)) out.set("svg", caseRunSvg(run, svgOptions(options)));
+    if (options["vtu"].isTrue()) out.set("vtu", caseRunVtu(run));
     out.set("stats", run.stats.is_null() ? val::null() : val(run.stats.dump()));
     out.set("controlSpace",
             o.inspectControlSpace && !run.controlSpace.is_null() ? val(run.controlSpace.dump()) : val::null());
@@ -396,7 +419,13 @@ val writeSolText(val metrics) {
 val remeshJs(val mesh, val metrics, val options) {
   return guarded([&] {
     const Mesh input = meshFromJs(mesh);
-    const std::vector<Metric> m = metricsFromFlat(emscripten::convertJSArrayToNumberVector<double>(metrics));
+    // metrics null: isotropic sizes from the mesh itself (options.hsiz everywhere, else
+    // each vertex's mean incident edge length), as the CLI does without -sol.
+    const double hsiz = options["hsiz"].isNumber() ? options["hsiz"].as<double>() : 0.0;
+    const std::vector<Metric> m = !metrics.isNull()
+                                      ? metricsFromFlat(emscripten::convertJSArrayToNumberVector<double>(metrics))
+                                  : hsiz > 0 ? uniformMetrics(input, hsiz)
+                                             : edgeLengthMetrics(input);
     require(
         m.size() == input.points.size(), ErrorCode::InvalidArgument,
         "metrics: " + std::to_string(m.size()) + " tensors for " + std::to_string(input.points.size()) + " vertices");
@@ -406,13 +435,20 @@ val remeshJs(val mesh, val metrics, val options) {
     if (options.hasOwnProperty("hgrad")) o.hgrad = options["hgrad"].as<double>();
     if (options.hasOwnProperty("maxElements"))
       o.mesher.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
+    const val onProgress = options["onProgress"];
+    if (onProgress.typeOf().as<std::string>() == "function")
+      o.mesher.progress = [onProgress](double fraction) { return !onProgress(fraction).isFalse(); };
     PipelineReport report;
     std::unique_ptr<AdaptiveControlSpace> cs;
-    const Mesh out = remesh(input, m, o, &report, &cs);
+    CaseRun run;
+    run.mesh = remesh(input, m, o, &report, &cs);
+    run.finalSpace = std::move(cs);
     val r = val::object();
-    r.set("mesh", meshToJs(out));
+    r.set("mesh", meshToJs(run.mesh));
+    if (wantsSvg(options)) r.set("svg", caseRunSvg(run, svgOptions(options)));
+    if (options["vtu"].isTrue()) r.set("vtu", caseRunVtu(run));
     // The same report as the native CLI's remesh --stats.
-    const nlohmann::json stats = pipelineStatsJson(out, *cs, report);
+    const nlohmann::json stats = pipelineStatsJson(run.mesh, *run.finalSpace, report);
     r.set("stats", stats.dump());
     return r;
   });

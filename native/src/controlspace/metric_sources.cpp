@@ -1,4 +1,5 @@
 #include "anisomesh/controlspace/metric_sources.h"
+#include "anisomesh/core/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +19,7 @@ void checkPoint(const Vec2& p, const char* what) {
 void checkRadius(double r, const char* what) {
   if (!(std::isfinite(r) && r >= 0.0))
     throw Error(ErrorCode::InvalidArgument,
-                std::string(what) + " radius must be finite and >= 0, got " + std::to_string(r));
+                std::string(what) + " radius must be finite and >= 0, got " + numberText(r));
 }
 
 bool isZeroLength(const Vec2& a, const Vec2& b) {

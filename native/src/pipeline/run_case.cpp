@@ -1,4 +1,5 @@
 #include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/json_syntax.h"
 
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/control_space_export.h"
@@ -11,6 +12,7 @@ namespace anisomesh {
 bool isSurfaceCase(const std::string& jsonText) { return isSurfaceCaseJson(jsonText); }
 
 CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
+  checkJsonSyntax(jsonText);  // one clean message for planar and surface cases
   CaseRun run;
   if (isSurfaceCaseJson(jsonText)) {
     SurfaceCaseSpec spec = parseSurfaceCaseJson(jsonText);
