@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "anisomesh/anisomesh.h"
+#include "anisomesh/core/version.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/medit.h"
@@ -233,7 +234,7 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   try {
     if (cmd == "--version") {
-      std::cout << "anisomesh 0.1.0\n";
+      std::cout << "anisomesh " << anisomesh::version() << "\n";
       return 0;
     }
     if (cmd == "--help" || cmd == "-h") return usage(std::cout, 0);
