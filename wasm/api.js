@@ -49,6 +49,16 @@ function caseText(c, name = 'case') {
   return JSON.stringify(c);
 }
 
+// A surface case (examples/SURFACE_FORMAT.md) has top-level "patches" (isSurfaceCaseJson in the core).
+function isSurfaceCaseText(text) {
+  try {
+    const c = JSON.parse(text);
+    return c !== null && typeof c === 'object' && !Array.isArray(c) && 'patches' in c;
+  } catch {
+    return false;  // the core reports the parse error
+  }
+}
+
 const meshArrays = {
   vertices: Float64Array, params: Float64Array, triangles: Uint32Array, quads: Uint32Array, edges: Uint32Array,
   vertexRefs: Int32Array, triangleRefs: Int32Array, quadRefs: Int32Array, edgeRefs: Int32Array,
@@ -244,7 +254,7 @@ export function wrapCore(core) {
       if (maxElements !== undefined && !(Number.isInteger(maxElements) && maxElements > 0)) {
         throw argError('options.maxElements: expected a positive integer');
       }
-      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates', 'vtu']) {
+      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates', 'vtu', 'controlSpaceGlyphs', 'patchParams']) {
         if (options[key] !== undefined && typeof options[key] !== 'boolean') throw argError(`options.${key}: expected a boolean`);
       }
       const svg = checkSvgOption(options.svg);
@@ -258,6 +268,10 @@ export function wrapCore(core) {
         vertexMetrics: r.vertexMetrics,
         measures: r.measures,
         timings: r.timings,
+        // Surface cases only, when asked for: the final control spaces drawn as ellipses
+        // ({ patch, offsets, uv, xyz }), each element's patch and its corners' (u, v) in it.
+        ...(r.glyphs ? { glyphs: r.glyphs } : {}),
+        ...(r.elementPatch ? { elementPatch: r.elementPatch, cornerParams: r.cornerParams } : {}),
       };
     },
     /**
@@ -339,11 +353,34 @@ export function wrapCore(core) {
       }
       return unwrap(core.checkExpression(text, u, v, variables[0], variables[1])).value;
     },
-    /** Builds the control space of a case (its controlSpace, sources and domain); call dispose() when done. */
-    createControlSpace(c) {
+    /**
+     * A planar case's "domain" ({ outer, holes }, examples/CASE_FORMAT.md) from an SVG
+     * drawing: its closed paths, polygons, rects, circles and ellipses (lines, arcs,
+     * quadratic and cubic Beziers), the one outermost shape the outer contour and the shapes
+     * inside it holes, scaled so the larger side is options.size (y flipped to stay upright
+     * unless options.flipY is false).
+     */
+    domainFromSvg(text, options = {}) {
+      if (typeof text !== 'string') throw argError('text: expected the SVG document as a string');
+      if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+      const { size = 1, flipY = true } = options;
+      if (typeof size !== 'number' || !(size > 0) || !Number.isFinite(size)) throw argError('options.size: expected a positive number');
+      if (typeof flipY !== 'boolean') throw argError('options.flipY: expected a boolean');
+      return JSON.parse(unwrap(core.domainFromSvg(text, size, flipY)).json);
+    },
+    /**
+     * Builds the control space of a case (its controlSpace, sources and domain); for a
+     * surface case (with "patches") the initial control space of one patch in its (u, v)
+     * plane (options.patch, default 0). Call dispose() when done.
+     */
+    createControlSpace(c, options = {}) {
+      if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+      const { patch = 0 } = options;
+      if (!Number.isInteger(patch) || patch < 0) throw argError('options.patch: expected a non-negative integer');
+      const text = caseText(c);
       const handle = new core.ControlSpaceHandle();
       try {
-        unwrap(handle.build(caseText(c)));
+        unwrap(isSurfaceCaseText(text) ? handle.buildPatch(text, patch) : handle.build(text));
       } catch (e) {
         handle.delete();
         throw e;

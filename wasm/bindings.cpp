@@ -25,6 +25,7 @@
 #include "anisomesh/io/medit.h"
 #include "anisomesh/io/mesh_formats.h"
 #include "anisomesh/io/svg.h"
+#include "anisomesh/io/svg_import.h"
 #include "anisomesh/mesh/quality.h"
 #include "anisomesh/pipeline/case_control_space.h"
 #include "anisomesh/pipeline/case_svg.h"
@@ -33,6 +34,7 @@
 #include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/surface/surface_case_json.h"
 
 using emscripten::val;
 using namespace anisomesh;
@@ -273,6 +275,30 @@ val meshMeasures(const Mesh& mesh, const ControlSpace* cs) {
   return out;
 }
 
+// Surface control-space glyphs (ellipses of the final per-patch control spaces) as flat
+// arrays: patch per glyph, offsets (glyph g has points offsets[g] .. offsets[g + 1]),
+// uv (2 per point) and xyz (3 per point, Float32 for WebGL).
+val glyphsToJs(const std::vector<ControlSpaceGlyph>& glyphs) {
+  std::vector<int> patch, offsets{0};
+  std::vector<double> uv;
+  std::vector<float> xyz;
+  for (const ControlSpaceGlyph& g : glyphs) {
+    patch.push_back(g.patch);
+    for (size_t k = 0; k < g.uv.size(); ++k) {
+      uv.insert(uv.end(), {g.uv[k].x(), g.uv[k].y()});
+      const Vec3 x = k < g.xyz.size() ? g.xyz[k] : Vec3::Zero();
+      xyz.insert(xyz.end(), {float(x.x()), float(x.y()), float(x.z())});
+    }
+    offsets.push_back(int(uv.size() / 2));
+  }
+  val out = val::object();
+  out.set("patch", typedCopy(patch.data(), patch.size()));
+  out.set("offsets", typedCopy(offsets.data(), offsets.size()));
+  out.set("uv", typedCopy(uv.data(), uv.size()));
+  out.set("xyz", typedCopy(xyz.data(), xyz.size()));
+  return out;
+}
+
 // The last planar run made with stats: false, kept for caseStats() (one at a time: the
 // web worker asks for the report right after it has sent the mesh on).
 CaseRun& lastRun() {
@@ -313,7 +339,9 @@ val meshCaseJson(std::string jsonText, val options) {
     if (options["maxElements"].isNumber())
       o.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
     if (options["controlSpaceUpdates"].isFalse()) o.controlSpaceUpdates = false;
-    if (wantsSvg(options) && options["svg"]["controlSpace"].isTrue()) o.controlSpaceGlyphs = true;
+    o.controlSpaceGlyphs = options["controlSpaceGlyphs"].isTrue() ||
+                           (wantsSvg(options) && options["svg"]["controlSpace"].isTrue());
+    o.patchParams = options["patchParams"].isTrue();
     const val onProgress = options["onProgress"];
     if (onProgress.typeOf().as<std::string>() == "function")
       o.progress = [onProgress](double fraction) { return !onProgress(fraction).isFalse(); };
@@ -330,7 +358,22 @@ val meshCaseJson(std::string jsonText, val options) {
             run.vertexMetrics.empty() ? val::null() : typedCopy(run.vertexMetrics.data(), run.vertexMetrics.size()));
     const double t2 = emscripten_get_now();
     if (measures) {
-      out.set("measures", meshMeasures(run.mesh, run.finalSpace.get()));
+      val m = meshMeasures(run.mesh, run.finalSpace.get());
+      if (!run.elementQuality.empty()) {  // surface: the 3D quality of each element from the run
+        const std::vector<float> quality(run.elementQuality.begin(), run.elementQuality.end());
+        m.set("quality", typedCopy(quality.data(), quality.size()));
+      }
+      out.set("measures", m);
+    }
+    if (o.controlSpaceGlyphs) out.set("glyphs", glyphsToJs(run.glyphs));
+    if (o.patchParams) {
+      std::vector<double> corners(2 * run.cornerParams.size());
+      for (size_t i = 0; i < run.cornerParams.size(); ++i) {
+        corners[2 * i] = run.cornerParams[i].x();
+        corners[2 * i + 1] = run.cornerParams[i].y();
+      }
+      out.set("elementPatch", typedCopy(run.elementPatch.data(), run.elementPatch.size()));
+      out.set("cornerParams", typedCopy(corners.data(), corners.size()));
     }
     const double t3 = emscripten_get_now();
     // Milliseconds: the case run (parse, control space, section 3.2 rounds, meshing, and
@@ -591,6 +634,22 @@ class ControlSpaceHandle {
       return out;
     });
   }
+  // The initial control space (section 3.1) of patch `patch` of a surface case
+  // (buildPatchControlSpace: curvature metric, its sources, contour curvature, 3D sources).
+  val buildPatch(std::string jsonText, int patch) {
+    return guarded([&] {
+      const SurfaceCaseSpec spec = parseSurfaceCaseJson(jsonText);
+      const int n = int(spec.model.patches.size());
+      require(patch >= 0 && patch < n, ErrorCode::InvalidArgument,
+              "patch " + std::to_string(patch) + " out of range (the case has " + std::to_string(n) + " patches)");
+      cs_ = std::shared_ptr<const ControlSpace>(
+          buildPatchControlSpace(spec.model.patches[size_t(patch)], spec.model.sources3d, spec.options));
+      val out = val::object();
+      out.set("ok", true);
+      out.set("patches", n);
+      return out;
+    });
+  }
   // The exact minimum of two built control spaces (MinimumControlSpace): the inputs are
   // shared, so disposing them later leaves this one valid.
   val buildMinimum(const ControlSpaceHandle& a, const ControlSpaceHandle& b) {
@@ -647,6 +706,18 @@ class ControlSpaceHandle {
   std::shared_ptr<const ControlSpace> cs_;
 };
 
+// A planar domain (JSON text of a case's "domain") from an SVG drawing (io/svg_import.h).
+val domainFromSvg(std::string svgText, double size, bool flipY) {
+  return guarded([&] {
+    SvgImportOptions o;
+    o.size = size;
+    o.flipY = flipY;
+    val out = val::object();
+    out.set("json", domainJsonFromSvg(svgText, o).dump());
+    return out;
+  });
+}
+
 std::string version() { return anisomesh::version(); }
 
 // Bytes of the wasm heap in use by malloc and the heap's total size: lets tests and
@@ -680,10 +751,12 @@ EMSCRIPTEN_BINDINGS(anisomesh) {
   emscripten::function("readSol", &readSolText);
   emscripten::function("writeSol", &writeSolText);
   emscripten::function("checkExpression", &checkExpression);
+  emscripten::function("domainFromSvg", &domainFromSvg);
   emscripten::class_<ControlSpaceHandle>("ControlSpaceHandle")
       .constructor<>()
       .function("build", &ControlSpaceHandle::build)
       .function("buildMinimum", &ControlSpaceHandle::buildMinimum)
+      .function("buildPatch", &ControlSpaceHandle::buildPatch)
       .function("metricsAt", &ControlSpaceHandle::metricsAt)
       .function("inspect", &ControlSpaceHandle::inspect)
       .function("toVtk", &ControlSpaceHandle::toVtk);
