@@ -49,6 +49,16 @@ function caseText(c, name = 'case') {
   return JSON.stringify(c);
 }
 
+// A surface case (examples/SURFACE_FORMAT.md) has top-level "patches" (isSurfaceCaseJson in the core).
+function isSurfaceCaseText(text) {
+  try {
+    const c = JSON.parse(text);
+    return c !== null && typeof c === 'object' && !Array.isArray(c) && 'patches' in c;
+  } catch {
+    return false;  // the core reports the parse error
+  }
+}
+
 const meshArrays = {
   vertices: Float64Array, params: Float64Array, triangles: Uint32Array, quads: Uint32Array, edges: Uint32Array,
   vertexRefs: Int32Array, triangleRefs: Int32Array, quadRefs: Int32Array, edgeRefs: Int32Array,
@@ -79,6 +89,45 @@ function checkMetrics(metrics, vertexCount, name = 'metrics') {
     throw argError(`${name}: ${metrics.length / 3} tensors (length ${metrics.length}) for ${vertexCount} vertices`);
   }
   return metrics;
+}
+
+// Fields for metricFromField/adapt: a non-empty array of Float64Array, vertexCount values each.
+function checkFieldValues(fields, vertexCount) {
+  const list = fields instanceof Float64Array ? [fields] : fields;
+  if (!Array.isArray(list) || list.length === 0) throw argError('fields: expected a non-empty array of Float64Array (or of expressions in x, y)');
+  list.forEach((f, i) => {
+    if (!(f instanceof Float64Array)) throw argError(`fields[${i}]: expected a Float64Array of one value per vertex`);
+    if (f.length !== vertexCount) throw argError(`fields[${i}]: ${f.length} values for ${vertexCount} vertices`);
+  });
+  return list;
+}
+
+// Options of metricFromField/adapt, checked for type (ranges are the core's).
+function checkAdaptOptions(options) {
+  if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+  const out = {};
+  for (const key of ['err', 'nv', 'hmin', 'hmax', 'anisomax', 'hgrad', 'maxElements', 'iterations']) {
+    const v = options[key];
+    if (v === undefined) continue;
+    if (!(typeof v === 'number' && Number.isFinite(v) && v >= 0)) throw argError(`options.${key}: expected a finite nonnegative number`);
+    out[key] = v;
+  }
+  if (out.iterations !== undefined && !(Number.isInteger(out.iterations) && out.iterations >= 1)) {
+    throw argError('options.iterations: expected a positive integer');
+  }
+  if (options.relative !== undefined) out.relative = Boolean(options.relative);
+  if (options.norm !== undefined) {
+    const n = String(options.norm);
+    if (!['1', '2', 'inf'].includes(n)) throw argError(`options.norm: expected 1, 2 or 'inf', got ${options.norm}`);
+    out.norm = n;
+  }
+  if (options.shape !== undefined) {
+    if (!['anisotropic', 'isotropic', 'uniform'].includes(options.shape)) {
+      throw argError("options.shape: expected 'anisotropic', 'isotropic' or 'uniform'");
+    }
+    out.shape = options.shape;
+  }
+  return out;
 }
 
 // options.svg: true or { uv, view: [azimuth, elevation] in degrees, controlSpace }, passed to
@@ -205,7 +254,7 @@ export function wrapCore(core) {
       if (maxElements !== undefined && !(Number.isInteger(maxElements) && maxElements > 0)) {
         throw argError('options.maxElements: expected a positive integer');
       }
-      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates', 'vtu']) {
+      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates', 'vtu', 'controlSpaceGlyphs', 'patchParams']) {
         if (options[key] !== undefined && typeof options[key] !== 'boolean') throw argError(`options.${key}: expected a boolean`);
       }
       const svg = checkSvgOption(options.svg);
@@ -219,6 +268,10 @@ export function wrapCore(core) {
         vertexMetrics: r.vertexMetrics,
         measures: r.measures,
         timings: r.timings,
+        // Surface cases only, when asked for: the final control spaces drawn as ellipses
+        // ({ patch, offsets, uv, xyz }), each element's patch and its corners' (u, v) in it.
+        ...(r.glyphs ? { glyphs: r.glyphs } : {}),
+        ...(r.elementPatch ? { elementPatch: r.elementPatch, cornerParams: r.cornerParams } : {}),
       };
     },
     /**
@@ -247,6 +300,26 @@ export function wrapCore(core) {
       const svg = checkSvgOption(options.svg);
       const r = unwrap(core.remesh(mesh, metrics, { ...options, svg }));
       return { mesh: r.mesh, stats: JSON.parse(r.stats), ...(svg !== undefined ? { svg: r.svg } : {}), ...(options.vtu ? { vtu: r.vtu } : {}) };
+    },
+    /**
+     * The metric of one or several fields (Float64Array of one value per vertex each) on a
+     * planar mesh: Hessian recovery, then error level (err) or target vertex count (nv).
+     */
+    metricFromField(mesh, fields, options = {}) {
+      checkMesh(mesh);
+      const values = checkFieldValues(fields, mesh.vertices.length / mesh.dimension);
+      return unwrap(core.metricFromField(mesh, values, checkAdaptOptions(options)));
+    },
+    /**
+     * Adapts a planar mesh to fields: per-vertex values (Float64Array, transferred between
+     * iterations) or expressions in x, y (strings, re-sampled on every mesh).
+     */
+    adapt(mesh, fields, options = {}) {
+      checkMesh(mesh);
+      const list = Array.isArray(fields) ? fields : [fields];
+      const expressions = list.every((f) => typeof f === 'string') ? list : [];
+      const values = expressions.length ? [] : checkFieldValues(list, mesh.vertices.length / mesh.dimension);
+      return unwrap(core.adapt(mesh, values, expressions, checkAdaptOptions(options)));
     },
     /** The mesh as text: 'mesh' (Medit), 'vtk', 'obj' or 'svg'. */
     writeMesh(mesh, format = 'mesh') {
@@ -280,11 +353,34 @@ export function wrapCore(core) {
       }
       return unwrap(core.checkExpression(text, u, v, variables[0], variables[1])).value;
     },
-    /** Builds the control space of a case (its controlSpace, sources and domain); call dispose() when done. */
-    createControlSpace(c) {
+    /**
+     * A planar case's "domain" ({ outer, holes }, examples/CASE_FORMAT.md) from an SVG
+     * drawing: its closed paths, polygons, rects, circles and ellipses (lines, arcs,
+     * quadratic and cubic Beziers), the one outermost shape the outer contour and the shapes
+     * inside it holes, scaled so the larger side is options.size (y flipped to stay upright
+     * unless options.flipY is false).
+     */
+    domainFromSvg(text, options = {}) {
+      if (typeof text !== 'string') throw argError('text: expected the SVG document as a string');
+      if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+      const { size = 1, flipY = true } = options;
+      if (typeof size !== 'number' || !(size > 0) || !Number.isFinite(size)) throw argError('options.size: expected a positive number');
+      if (typeof flipY !== 'boolean') throw argError('options.flipY: expected a boolean');
+      return JSON.parse(unwrap(core.domainFromSvg(text, size, flipY)).json);
+    },
+    /**
+     * Builds the control space of a case (its controlSpace, sources and domain); for a
+     * surface case (with "patches") the initial control space of one patch in its (u, v)
+     * plane (options.patch, default 0). Call dispose() when done.
+     */
+    createControlSpace(c, options = {}) {
+      if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+      const { patch = 0 } = options;
+      if (!Number.isInteger(patch) || patch < 0) throw argError('options.patch: expected a non-negative integer');
+      const text = caseText(c);
       const handle = new core.ControlSpaceHandle();
       try {
-        unwrap(handle.build(caseText(c)));
+        unwrap(isSurfaceCaseText(text) ? handle.buildPatch(text, patch) : handle.build(text));
       } catch (e) {
         handle.delete();
         throw e;

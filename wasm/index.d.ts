@@ -268,6 +268,18 @@ export interface SurfaceMeshStats {
 /** The quality report of a mesh: planar or surface (tell them apart with 'patches' in stats). */
 export type MeshStats = PlanarMeshStats | SurfaceMeshStats;
 
+/**
+ * Ellipses of the final control spaces of a surface case, at control elements inside
+ * each patch (half the requested sizes along the axes): glyph g has the points
+ * offsets[g] .. offsets[g + 1] - 1, in its patch's (u, v) (uv) and mapped to 3D (xyz).
+ */
+export interface ControlSpaceGlyphs {
+  patch: Int32Array;
+  offsets: Int32Array;
+  uv: Float64Array;
+  xyz: Float32Array;
+}
+
 export interface CaseResult<S extends MeshStats = MeshStats> {
   mesh: MeshArrays;
   /** The quality report; null for a planar run with stats: false (see caseStats()). */
@@ -283,9 +295,16 @@ export interface CaseResult<S extends MeshStats = MeshStats> {
   /**
    * With measures: the distinct element edges (a < b pairs), and for planar cases the metric
    * length of each edge, the metric quality of each element (triangles, then quads) and the
-   * smallest requested size at each vertex, measured as the quality report measures them.
+   * smallest requested size at each vertex, measured as the quality report measures them;
+   * for surface cases the 3D metric quality of each element (the report's quality3d).
    */
   measures?: { edges: Uint32Array; edgeLength?: Float32Array; quality?: Float32Array; vertexH?: Float32Array };
+  /** Surface cases with controlSpaceGlyphs: the final per-patch control spaces drawn as ellipses. */
+  glyphs?: ControlSpaceGlyphs;
+  /** Surface cases with patchParams: the patch index of each element (triangles, then quads). */
+  elementPatch?: Int32Array;
+  /** Surface cases with patchParams: (u, v) of each element corner in its own patch (3 per triangle, then 4 per quad). */
+  cornerParams?: Float64Array;
   /** Milliseconds spent in the core: the case run, copying the results out, the measures. */
   timings: { runMs: number; outputMs: number; measuresMs: number };
 }
@@ -300,6 +319,37 @@ export interface ControlSpace {
   /** Legacy VTK text for ParaView (adaptive structures only). */
   toVtk(): string;
   dispose(): void;
+}
+
+/** Options of adapt() and metricFromField(): exactly one of err or nv. */
+export interface AdaptOptions {
+  /** Error level: M = 2 c |H| / err (c = 2/9). */
+  err?: number;
+  /** err relative to the field's range. */
+  relative?: boolean;
+  /** Target vertex count (L^p continuous-mesh metric). */
+  nv?: number;
+  norm?: 1 | 2 | 'inf';
+  shape?: 'anisotropic' | 'isotropic' | 'uniform';
+  hmin?: number;
+  hmax?: number;
+  anisomax?: number;
+  /** Gradation ratio dr of the control space (0: off). */
+  hgrad?: number;
+  iterations?: number;
+  maxElements?: number;
+}
+
+/** One adaptation iteration's figures (errorLinf/errorL2 for expression fields only). */
+export interface AdaptIteration {
+  vertices: number;
+  triangles: number;
+  complexity: number;
+  expectedVertices: number;
+  estimatedError: number;
+  errorLinf?: number;
+  errorL2?: number;
+  seconds: number;
 }
 
 /** 'msh': Gmsh 4.1 ASCII, 'msh2': Gmsh 2.2 ASCII (readMesh takes either as 'msh'). */
@@ -321,6 +371,10 @@ export interface MeshCaseOptions {
   maxElements?: number;
   /** Planar cases: run the paper's section 3.2 control-space update loop (default true). */
   controlSpaceUpdates?: boolean;
+  /** Surface cases: also return CaseResult.glyphs (the final control spaces drawn). */
+  controlSpaceGlyphs?: boolean;
+  /** Surface cases: also return CaseResult.elementPatch and CaseResult.cornerParams. */
+  patchParams?: boolean;
   /** Progress in [0, 1]; return false to cancel. */
   onProgress?: (fraction: number) => boolean | void;
   /** Also return the .svg picture (CaseResult.svg), drawn as the CLI draws it. */
@@ -394,6 +448,21 @@ export interface Anisomesh {
     metrics: Float64Array | null,
     options?: RemeshOptions,
   ): { mesh: MeshArrays; stats: PlanarMeshStats; svg?: string; vtu?: string };
+  /** The metric of fields (one value per vertex each) on a planar mesh: m11, m12, m22 per vertex. */
+  metricFromField(
+    mesh: MeshArrays,
+    fields: Float64Array | Float64Array[],
+    options: AdaptOptions,
+  ): { metrics: Float64Array; complexity: number; expectedVertices: number; hmin: number; hmax: number };
+  /**
+   * Adapts a planar mesh to fields: values per vertex (transferred between iterations) or
+   * expressions in x, y (re-sampled on each mesh; the iterations then report the errors).
+   */
+  adapt(
+    mesh: MeshArrays,
+    fields: Float64Array | Float64Array[] | string | string[],
+    options: AdaptOptions,
+  ): { mesh: MeshArrays; fields: Float64Array[]; iterations: AdaptIteration[] };
   /** The mesh as text in a file format ('svg' for a picture of a planar mesh). */
   writeMesh(mesh: MeshArrays, format?: MeshFormat | 'svg'): string;
   /** Parses mesh text. */
@@ -404,8 +473,18 @@ export interface Anisomesh {
   writeSol(metrics: Float64Array): string;
   /** Evaluates an expression in u, v or in options.variables (throws PARSE_ERROR naming the column on bad input). */
   evaluateExpression(text: string, u?: number, v?: number, options?: { variables?: [string, string] }): number;
-  /** Builds a case's control space (its controlSpace, sources and domain). */
-  createControlSpace(c: Case | string): ControlSpace;
+  /**
+   * A planar case's domain from an SVG drawing: closed paths (lines, arcs, quadratic and cubic
+   * Beziers), polygons, rects, circles, ellipses; the outermost shape is the outer contour, the
+   * shapes inside it holes; scaled so the larger side is options.size (default 1), y flipped
+   * unless options.flipY is false. Throws PARSE_ERROR, OPEN_CONTOUR or INVALID_DOMAIN.
+   */
+  domainFromSvg(text: string, options?: { size?: number; flipY?: boolean }): { outer: unknown[]; holes: unknown[][] };
+  /**
+   * Builds a case's control space (its controlSpace, sources and domain); for a surface case
+   * the initial control space of patch options.patch (default 0) in its (u, v) plane.
+   */
+  createControlSpace(c: Case | string, options?: { patch?: number }): ControlSpace;
   /**
    * The exact minimum (metric intersection) of two or more control spaces, evaluated at each
    * query: its unit ellipse lies inside every input's. The inputs stay owned by the caller

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "adapt_command.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/version.h"
 #include "cli.h"
@@ -21,7 +22,9 @@ const std::vector<Command>& commands() {
 int usage(std::ostream& os, int code) {
   os << "usage: anisomesh <command> [options]\ncommands:\n";
   for (const Command& c : commands()) os << c.usage;
-  os << "  --version                 print the version\n"
+  os << "  adapt IN.mesh -sol F.sol|-field EXPR -o OUT (-err E|-nv N) ...\n"
+        "                            adapt IN.mesh to a solution (anisomesh adapt --help for the options)\n"
+        "  --version                 print the version\n"
         "--stats prints one JSON object on stdout. Errors: exit 1 (bad input), 2 (bad usage).\n";
   return code;
 }
@@ -42,6 +45,7 @@ int main(int argc, char** argv) {
       Args args(argc, argv);
       return c.run(args);
     }
+    if (cmd == "adapt") return anisomesh::runAdaptCommand(argc, argv);
     std::cerr << "anisomesh: unknown command '" << cmd << "'\n";
     return usage(std::cerr, 2);
   } catch (const UsageError& e) {

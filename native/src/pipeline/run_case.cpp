@@ -5,6 +5,7 @@
 #include "anisomesh/io/control_space_export.h"
 #include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
+#include "anisomesh/surface/patch_params.h"
 #include "anisomesh/surface/surface_case_json.h"
 
 namespace anisomesh {
@@ -26,6 +27,10 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
     run.stats = surfaceMeshReportToJson(report);
     run.elementQuality = std::move(report.elementQuality);
     run.glyphs = std::move(report.controlSpaceGlyphs);
+    if (options.patchParams) {
+      run.elementPatch = elementPatches(spec.model, run.mesh);
+      run.cornerParams = patchCornerParams(spec.model, run.mesh);
+    }
     // The keys every report has (planar reports carry the same), measured in 3D here.
     const nlohmann::json& q = run.stats["quality3d"];
     run.stats["quads"] = run.mesh.quads.size();
