@@ -585,7 +585,7 @@ val domainFromSvg(std::string svgText, double size, bool flipY) {
   });
 }
 
-std::string version() { return anisomesh::version(); }
+std::string coreVersion() { return anisomesh::version(); }
 
 // Bytes of the wasm heap in use by malloc and the heap's total size: lets tests and
 // users check that repeated runs leak nothing.
@@ -600,7 +600,7 @@ val memoryStats() {
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(anisomesh) {
-  emscripten::function("version", &version);
+  emscripten::function("version", &coreVersion);
   emscripten::function("metricCreate", &metricCreate);
   emscripten::function("metricIntersect", &metricIntersect);
   emscripten::function("metricInterpolate", &metricInterpolate);
