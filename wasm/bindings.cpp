@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -362,6 +363,17 @@ val meshCaseJson(std::string jsonText, val options) {
       if (!run.elementQuality.empty()) {  // surface: the 3D quality of each element from the run
         const std::vector<float> quality(run.elementQuality.begin(), run.elementQuality.end());
         m.set("quality", typedCopy(quality.data(), quality.size()));
+      }
+      if (!run.edgeLengths.empty()) {  // surface: the run's 3D metric edge lengths, in the order of "edges"
+        std::map<std::pair<int, int>, double> byEdge;
+        for (const SurfaceEdgeLength& e : run.edgeLengths) byEdge[{e.a, e.b}] = e.length;
+        const std::vector<std::array<int, 2>> edges = distinctElementEdges(run.mesh);
+        std::vector<float> lengths(edges.size(), 0.0f);
+        for (size_t k = 0; k < edges.size(); ++k) {
+          const auto it = byEdge.find({std::min(edges[k][0], edges[k][1]), std::max(edges[k][0], edges[k][1])});
+          if (it != byEdge.end()) lengths[k] = float(it->second);
+        }
+        m.set("edgeLength", typedCopy(lengths.data(), lengths.size()));
       }
       out.set("measures", m);
     }

@@ -707,7 +707,7 @@ function renderStats(s) {
 
 function renderHistograms(m, stats) {
   drawHistogram($('hist-length'), m?.edgeLength, {
-    lo: 0, hi: 2, bins: 48, title: state.surface ? '3D metric edge length (not measured per edge for surfaces)' : 'metric edge length',
+    lo: 0, hi: 2, bins: 48, title: state.surface ? '3D metric edge length' : 'metric edge length',
     color: (x) => css(lengthColor(x)), band: [Math.SQRT1_2, Math.SQRT2], ticks: [0, 0.5, 1, 1.5, 2], marker: stats.edgeLength?.mean,
   });
   drawHistogram($('hist-quality'), m?.quality, {

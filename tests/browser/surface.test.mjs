@@ -61,6 +61,9 @@ test('a surface preset shows its control space, quality colours and histogram da
       qmin: q ? Math.min(...q) : null, qmean: a.state.lastStats.quality.mean,
       qmeanPage: q ? q.reduce((s, x) => s + x, 0) / q.length : null,
       lines3: a.views.control3.children.length,
+      lengths: a.state.lastMeasures.edgeLength?.length ?? 0, edges: a.state.lastMeasures.edges.length / 2,
+      lmeanPage: a.state.lastMeasures.edgeLength ? a.state.lastMeasures.edgeLength.reduce((s, x) => s + x, 0) / a.state.lastMeasures.edgeLength.length : null,
+      lmean: a.state.lastStats.edgeLength.mean,
     };
   });
   assert.ok(r.glyphs > 20, `control-space ellipses: ${r.glyphs}`);
@@ -70,15 +73,20 @@ test('a surface preset shows its control space, quality colours and histogram da
   // One 3D quality per element, the ones the report averages.
   assert.equal(r.quality, r.elements);
   assert.ok(Math.abs(r.qmeanPage - r.qmean) < 1e-4, `${r.qmeanPage} vs report ${r.qmean}`);
+  // One 3D metric length per distinct edge, the ones the report averages.
+  assert.equal(r.lengths, r.edges);
+  assert.ok(Math.abs(r.lmeanPage - r.lmean) < 1e-4, `${r.lmeanPage} vs report ${r.lmean}`);
   // The quality histogram has data: its canvas is not only the "no data" text.
-  const hist = await page.evaluate(() => {
-    const c = document.getElementById('hist-quality');
+  for (const id of ['hist-quality', 'hist-length']) {
+  const hist = await page.evaluate((id) => {
+    const c = document.getElementById(id);
     const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
     let coloured = 0;
     for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - d[i + 1]) > 40 || Math.abs(d[i + 1] - d[i + 2]) > 40) coloured++;
     return coloured;
-  });
-  assert.ok(hist > 200, `coloured histogram pixels: ${hist}`);
+  }, id);
+  assert.ok(hist > 200, `${id}: coloured histogram pixels: ${hist}`);
+  }
   assert.deepEqual(errors, []);
   await page.close();
 });

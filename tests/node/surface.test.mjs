@@ -36,6 +36,9 @@ test('meshCase of a surface: glyphs, element patches, corner parameters and 3D q
   assert.equal(r.measures.quality.length, nt + nq);
   const mean = r.measures.quality.reduce((s, x) => s + x, 0) / (nt + nq);
   assert.ok(Math.abs(mean - r.stats.quality.mean) < 1e-4, `${mean} vs ${r.stats.quality.mean}`);
+  assert.equal(r.measures.edgeLength.length, r.measures.edges.length / 2);
+  const lmean = r.measures.edgeLength.reduce((s, x) => s + x, 0) / r.measures.edgeLength.length;
+  assert.ok(Math.abs(lmean - r.stats.edgeLength.mean) < 1e-4, `${lmean} vs ${r.stats.edgeLength.mean}`);
   const g = r.glyphs;
   assert.ok(g.patch.length > 10 && g.offsets.length === g.patch.length + 1);
   assert.equal(g.uv.length / 2, g.offsets.at(-1));

@@ -26,6 +26,7 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
     run.mesh = meshSurfaceCase(spec, &report);
     run.stats = surfaceMeshReportToJson(report);
     run.elementQuality = std::move(report.elementQuality);
+    run.edgeLengths = std::move(report.edgeLengths);
     run.glyphs = std::move(report.controlSpaceGlyphs);
     if (options.patchParams) {
       run.elementPatch = elementPatches(spec.model, run.mesh);

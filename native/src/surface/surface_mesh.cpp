@@ -116,6 +116,7 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
   out.params.resize(size_t(nextId_));
   Surface3DQuality q;
   std::set<std::array<int, 2>> seenEdges, sharedEdges;
+  std::vector<SurfaceEdgeLength> edgeLengths;  // 3D metric length of every merged edge, as measured once
   double lenSum = 0.0, qSum = 0.0;
   int triCount = 0, within = 0;
   q.edgeLengthMin = q.qualityMin = std::numeric_limits<double>::infinity();
@@ -259,6 +260,7 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
                         edgeLength3D(x0, x1, metric3(u1))) /
                        6.0;
       lenSum += l;
+      edgeLengths.push_back({g0, g1, l});
       q.edgeLengthMin = std::min(q.edgeLengthMin, l);
       q.edgeLengthMax = std::max(q.edgeLengthMax, l);
       if (l >= std::sqrt(0.5) && l <= std::sqrt(2.0)) ++within;
@@ -352,11 +354,14 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
       se.insert({std::min(a, b), std::max(a, b)});
     }
     sharedEdges = std::move(se);
+    for (auto& e : edgeLengths) e.a = remap[size_t(e.a)], e.b = remap[size_t(e.b)];
   }
   out.pointRefs.assign(out.points.size(), 0);
 
   if (report) {
     report->elementQuality = elementQuality_;
+    report->edgeLengths.clear();
+    for (const auto& e : edgeLengths) report->edgeLengths.push_back({std::min(e.a, e.b), std::max(e.a, e.b), e.length});
     if (o_.controlSpaceGlyphs) report->controlSpaceGlyphs = glyphs();
     report->patches = int(m_.patches.size());
     report->rounds = round;

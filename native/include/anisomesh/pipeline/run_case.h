@@ -41,6 +41,7 @@ struct CaseRun {
   std::vector<double> vertexMetrics;                 // m11, m12, m22 per vertex (RunCaseOptions::vertexMetrics)
   std::unique_ptr<AdaptiveControlSpace> finalSpace;  // planar: the control space meshed with
   std::vector<double> elementQuality;                // surface: 3D quality per element (triangles, then quads)
+  std::vector<SurfaceEdgeLength> edgeLengths;        // surface: 3D metric length of every distinct edge
   std::vector<ControlSpaceGlyph> glyphs;             // surface: with RunCaseOptions::controlSpaceGlyphs
   std::vector<int> elementPatch;                     // surface, patchParams: patch index per element
   std::vector<Vec2> cornerParams;                    // surface, patchParams: (u, v) per element corner in its patch

@@ -129,6 +129,13 @@ struct Surface3DQuality {
   int inverted = 0;                        // clockwise triangles in their patch's (u, v)
 };
 
+// The 3D metric length of one merged-mesh edge (vertices a < b) as the report measures it
+// (Simpson's rule over the edge in its patch's control space).
+struct SurfaceEdgeLength {
+  int a = 0, b = 0;
+  double length = 0.0;
+};
+
 struct SurfaceMeshReport {
   int patches = 0;
   int rounds = 0;         // Algorithm 1 rounds until no contour was invalid
@@ -147,6 +154,7 @@ struct SurfaceMeshReport {
   std::vector<int> patchTriangles;                 // per patch
   std::vector<std::array<int, 2>> sharedEdgeList;  // merged-mesh vertex pairs (i < j) on shared curves
   std::vector<double> elementQuality;  // 3D quality of each element (triangles, then quads), with measureQuality
+  std::vector<SurfaceEdgeLength> edgeLengths;         // every distinct edge's 3D metric length, with measureQuality
   std::vector<ControlSpaceGlyph> controlSpaceGlyphs;  // final control spaces, with options.controlSpaceGlyphs
 };
 
