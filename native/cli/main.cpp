@@ -1,13 +1,18 @@
 // anisomesh command-line interface (native).
+#include <sys/resource.h>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "anisomesh/anisomesh.h"
+#include "anisomesh/core/parallel.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/medit.h"
@@ -179,10 +184,45 @@ int runMesh(int argc, char** argv) {
   return 0;
 }
 
+// -v: one stderr line per finished stage (wall and process CPU seconds), then peak RSS.
+class StageLog {
+ public:
+  explicit StageLog(bool on) : on_(on) {}
+  // Ends the running stage (if any) and starts `name`.
+  void start(const char* name) {
+    if (!on_) return;
+    finish();
+    name_ = name;
+    wall0_ = std::chrono::steady_clock::now();
+    cpu0_ = std::clock();
+  }
+  void finish() {
+    if (!on_ || name_.empty()) return;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
+    const double cpu = double(std::clock() - cpu0_) / CLOCKS_PER_SEC;
+    std::fprintf(stderr, "anisomesh: stage %-14s wall %.3f s cpu %.3f s\n", name_.c_str(), wall, cpu);
+    name_.clear();
+  }
+  void end() {
+    if (!on_) return;
+    finish();
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    std::fprintf(stderr, "anisomesh: peak RSS %.1f MiB\n", double(ru.ru_maxrss) / 1024.0);
+  }
+
+ private:
+  bool on_;
+  std::string name_;
+  std::chrono::steady_clock::time_point wall0_;
+  std::clock_t cpu0_ = 0;
+};
+
 int runRemesh(int argc, char** argv) {
   Args args(argc, argv);
   std::string input, sol, output;
-  bool stats = false;
+  bool stats = false, verbose = false;
+  long long threads = 1;
   RemeshOptions options;
   while (!args.done()) {
     const std::string a = args.next();
@@ -198,6 +238,10 @@ int runRemesh(int argc, char** argv) {
       options.hmax = parseNumber(a, args.value(a));
     else if (a == "--stats")
       stats = true;
+    else if (a == "-v" || a == "--verbose")
+      verbose = true;
+    else if (a == "-threads" || a == "--threads")
+      threads = parseCount(a, args.value(a));
     else if (a == "--max-elements")
       options.mesher.maxElements = parseCount(a, args.value(a));
     else if (!a.empty() && a[0] == '-')
@@ -214,15 +258,31 @@ int runRemesh(int argc, char** argv) {
     throw UsageError{"-hmin must not exceed -hmax"};
   if (options.hgrad > 0 && options.hgrad < 1) throw UsageError{"-hgrad expects a ratio >= 1 (or 0: off)"};
 
-  const Mesh in = readMeditFile(input);
-  const std::vector<Metric> metrics = solToMetrics(readSolFile(sol), in.vertexCount());
+  setThreadCount(int(std::min<long long>(threads, 256)));
+  StageLog log(verbose);
+  log.start("read");
+  Mesh in;
+  SolData solData;
+  parallelInvoke([&] { in = readMeditFile(input); }, [&] { solData = readSolFile(sol); });
+  const std::vector<Metric> metrics = solToMetrics(solData, in.vertexCount());
+  std::vector<double>().swap(solData.values);  // the metrics hold them now
   PipelineReport report;
   std::unique_ptr<AdaptiveControlSpace> cs;
   CaseRun run;
+  options.onStage = [&log](const char* stage) { log.start(stage); };
   run.mesh = remesh(in, metrics, options, &report, &cs);
   run.finalSpace = std::move(cs);
+  log.start("write");
   writeOutput(output, run, SvgChoice{});
-  if (stats) std::cout << pipelineStatsJson(run.mesh, *run.finalSpace, report).dump() << "\n";
+  if (stats) {
+    log.start("report");
+    std::cout << pipelineStatsJson(run.mesh, *run.finalSpace, report).dump() << "\n";
+  }
+  log.finish();
+  if (verbose)
+    std::fprintf(stderr, "anisomesh: %d triangles; mesher insertion %.3f s, improvement %.3f s (wall)\n",
+                 int(run.mesh.triangles.size()), report.mesherTimings.insertion, report.mesherTimings.improvement);
+  log.end();
   return 0;
 }
 

@@ -18,6 +18,7 @@ class TriangleMeshMetricField : public ControlSpace {
   // nearest triangle found in the grid with its coordinates clamped to it.
   Metric metricAt(const Vec2& p) const override;
   Box2 bounds() const override { return box_; }
+  bool concurrentQueries() const override { return true; }
 
  private:
   int cellIndex(int x, int y) const { return y * nx_ + x; }
@@ -29,6 +30,7 @@ class TriangleMeshMetricField : public ControlSpace {
   Vec2 cell_{1, 1};
   std::vector<int> cellStart_;  // CSR: triangles of cell c are cellTris_[cellStart_[c] .. cellStart_[c + 1])
   std::vector<int> cellTris_;
+  std::vector<int> emptyRings_;  // per cell: Chebyshev distance (cells) to the nearest nonempty cell
 };
 
 }  // namespace anisomesh
