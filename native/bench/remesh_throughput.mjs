@@ -11,6 +11,11 @@
 //          [--threads 1,2] [--no-bamg] [--bamg-max 1e6] [--keep DIR [--generate-only]]
 //   --size: target output triangles (the scale of each case is calibrated for it);
 //   --bamg-max: largest size ffbamg runs on (it takes ~20x longer).
+//   --carrier-factor F: carrier spacing = requested size / F (default 2; ~6.3 puts a 2,000-
+//   triangle output on an 80k-triangle carrier).
+//   --baseline CLI: also runs another anisomesh build (e.g. the one before a change) on the
+//   same files, one thread; a CLI without -v reports the wall seconds of --stats only.
+//   Every row is also printed as JSON on stderr as soon as it is measured.
 import { spawnSync } from 'node:child_process';
 import { closeSync, existsSync, mkdirSync, mkdtempSync, openSync, readFileSync, rmSync, writeSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -39,16 +44,17 @@ function mappedGrid(ss, ts, map) {
   return { pts, tris, edges };
 }
 
+let carrierFactor = 2;  // carrier spacing = requested size / carrierFactor
 const uniform = (h) => {
   const n = Math.ceil(1 / h), out = [];
   for (let i = 0; i <= n; i++) out.push(i / n);
   return out;
 };
-// Coordinates in [0, 1], symmetric about 0.5, with spacing hn(|t - 0.5|) / 2.
+// Coordinates in [0, 1], symmetric about 0.5, with spacing hn(|t - 0.5|) / carrierFactor.
 const graded = (hn) => {
   const half = [0.5];
   for (let t = 0.5; t < 1; ) {
-    t += hn(t - 0.5) / 2;
+    t += hn(t - 0.5) / carrierFactor;
     half.push(Math.min(t, 1));
   }
   return [...half.slice(1).map((t) => 1 - t).reverse(), ...half];
@@ -63,7 +69,7 @@ const aligned = (nx, ny, hn, ht) => {
 function boundaryLayer(scale) {
   const ht = 0.1 / scale, hn = (d) => Math.min((0.001 + 0.2 * Math.abs(d)) / scale, ht);
   const metric = (x, y) => aligned(0, 1, hn(y - 0.5), ht);
-  return { metric, carrier: () => mappedGrid(uniform(ht / 2), graded(hn), (s, t) => [s, t]) };
+  return { metric, carrier: () => mappedGrid(uniform(ht / carrierFactor), graded(hn), (s, t) => [s, t]) };
 }
 
 // The same layer on the unit square rotated by 30 degrees about its centre.
@@ -75,7 +81,7 @@ function rotatedLayer(scale) {
     const v = 0.5 - s * (x - 0.5) + c * (y - 0.5);  // the rotated frame's second coordinate
     return aligned(-s, c, hn(v - 0.5), ht);
   };
-  return { metric, carrier: () => mappedGrid(uniform(ht / 2), graded(hn), map) };
+  return { metric, carrier: () => mappedGrid(uniform(ht / carrierFactor), graded(hn), map) };
 }
 
 // A front along y = 0.5 + 0.1 sin(2 pi x): size across from 0.0015 / scale, 0.1 / scale along.
@@ -90,7 +96,7 @@ function curvedFront(scale) {
   // over x (the shear shrinks distances by 1 / g at most).
   const gmax = Math.hypot(0.2 * Math.PI, 1);
   const hc = (d) => hn(d) / gmax;
-  return { metric, carrier: () => mappedGrid(uniform(ht / 2), graded(hc), (s, t) => [s, t + f(s)]) };
+  return { metric, carrier: () => mappedGrid(uniform(ht / carrierFactor), graded(hc), (s, t) => [s, t + f(s)]) };
 }
 
 const builders = { boundary: boundaryLayer, rotated: rotatedLayer, front: curvedFront };
@@ -221,7 +227,7 @@ function timed(cmd, args, dir) {
 
 // ---- main
 const argv = process.argv.slice(2);
-let generateOnly = false;
+let generateOnly = false, baseline = null;
 let sizes = [1e5, 1e6], cases = ['boundary', 'rotated', 'front'], threads = [1, 2], bamg = true, bamgMax = 1e6, keep = null;
 for (let i = 0; i < argv.length; i++) {
   const a = argv[i];
@@ -232,6 +238,8 @@ for (let i = 0; i < argv.length; i++) {
   else if (a === '--bamg-max') bamgMax = Number(argv[++i]);
   else if (a === '--keep') keep = argv[++i];
   else if (a === '--generate-only') generateOnly = true;
+  else if (a === '--baseline') baseline = resolve(argv[++i]);
+  else if (a === '--carrier-factor') carrierFactor = Number(argv[++i]);
   else { console.error(`unknown argument ${a}`); process.exit(2); }
 }
 for (const k of cases) if (!builders[k]) { console.error(`unknown case ${k}`); process.exit(2); }
@@ -242,31 +250,47 @@ const cliVerbose = help.includes('[-v]');
 
 const stageNames = ['read', 'boundary', 'control space', 'discretization', 'meshing', 'write', 'report'];
 const rows = [];
+const pushRow = (row) => {
+  rows.push(row);
+  const { stderr, ...rest } = row;
+  console.error(JSON.stringify(rest));
+};
+const measured = (row, file, metric) => {
+  if (!existsSync(file)) return { ...row, failed: undefined, note: `no output ${file}` };
+  return { ...row, ...measure(readMedit(file), metric) };
+};
 for (const kind of cases)
   for (const size of sizes) {
     const scale = Math.sqrt(size / trianglesAtScale1[kind]);
     const c = builders[kind](scale);
-    const dir = keep ? join(keep, `${kind}-${size}`) : mkdtempSync(join(tmpdir(), 'anisomesh-tput-'));
+    const dir = keep ? join(keep, `${kind}-${size}-c${carrierFactor}`) : mkdtempSync(join(tmpdir(), 'anisomesh-tput-'));
     mkdirSync(dir, { recursive: true });
     const carrier = writeCarrier(c, dir);
     if (generateOnly) continue;
     const label = `${kind} ${size.toExponential(0)} (carrier ${(carrier.triangles / 1e6).toFixed(2)}M tri)`;
-    for (const t of threads) {
-      if (t > 1 && !cliThreads) { rows.push({ label, tool: `anisomesh ${t}t`, note: 'no -threads option' }); continue; }
+    const tools = threads.map((t) => ({ tool: `anisomesh ${t}t`, bin: cli, t, v: cliVerbose, threads: cliThreads }));
+    if (baseline) {
+      const h = spawnSync(baseline, ['--help'], { encoding: 'utf8' }).stdout || '';
+      tools.unshift({ tool: 'baseline 1t', bin: baseline, t: 1, v: h.includes('[-v]'), threads: h.includes('-threads') });
+    }
+    for (const { tool, bin, t, v, threads: hasThreads } of tools) {
+      if (t > 1 && !hasThreads) { pushRow({ label, tool, note: 'no -threads option' }); continue; }
       const args = ['remesh', 'in.mesh', '-sol', 'in.sol', '-o', 'out.mesh', '--stats'];
-      if (cliVerbose) args.push('-v');
-      if (cliThreads) args.push('-threads', String(t));
-      const r = timed(cli, args, dir);
-      if (r.failed) { rows.push({ label, tool: `anisomesh ${t}t`, note: r.failed }); continue; }
-      rows.push({ label, tool: `anisomesh ${t}t`, ...r, ...measure(readMedit(join(dir, 'out.mesh')), c.metric) });
+      if (v) args.push('-v');
+      if (hasThreads) args.push('-threads', String(t));
+      rmSync(join(dir, 'out.mesh'), { force: true });
+      const r = timed(bin, args, dir);
+      if (r.failed) { pushRow({ label, tool, note: r.failed }); continue; }
+      pushRow(measured({ label, tool, ...r }, join(dir, 'out.mesh'), c.metric));
     }
     if (bamg && haveBamg && size <= bamgMax) {
       // -nbv: the vertex budget BAMG allocates up front (a fixed 5e7 costs 4 GB and a minute).
       const nbv = String(Math.round(2 * size + 100000));
+      rmSync(join(dir, 'bamg.mesh'), { force: true });
       const r = timed('ffbamg', ['-b', 'in.mesh', '-M', 'in.mtr', '-o', 'bamg.mesh', '-v', '0', '-nbv', nbv], dir);
-      if (r.failed) rows.push({ label, tool: 'ffbamg', note: r.failed });
-      else rows.push({ label, tool: 'ffbamg', ...r, ...measure(readMedit(join(dir, 'bamg.mesh')), c.metric) });
-    } else if (bamg) rows.push({ label, tool: 'ffbamg', note: haveBamg ? `skipped (> ${bamgMax})` : 'ffbamg not installed' });
+      if (r.failed) pushRow({ label, tool: 'ffbamg', note: r.failed });
+      else pushRow(measured({ label, tool: 'ffbamg', ...r }, join(dir, 'bamg.mesh'), c.metric));
+    } else if (bamg) pushRow({ label, tool: 'ffbamg', note: haveBamg ? `skipped (> ${bamgMax})` : 'ffbamg not installed' });
     if (!keep) rmSync(dir, { recursive: true, force: true });
   }
 
@@ -275,8 +299,8 @@ const stageCell = (r, s) => (r.stages && r.stages[s]
   ? (r.stages[s].cpu === undefined ? f(r.stages[s].wall, 2) : `${f(r.stages[s].wall, 2)}/${f(r.stages[s].cpu, 2)}`) : '');
 const header = ['case', 'tool', 'triangles', 'wall s', 'CPU s', 'tri/s wall', 'peak RSS MiB', ...stageNames.map((s) => `${s} w/c`),
   'l in [.71,1.41]', 'min Q', 'mean Q', 'inv'];
-const lines = rows.map((r) => r.note
-  ? [r.label, r.tool, ...header.slice(2, -1).map(() => ''), r.note]
+const lines = rows.map((r) => r.note || r.triangles === undefined
+  ? [r.label, r.tool, ...header.slice(2, -1).map(() => ''), r.note ?? '']
   : [r.label, r.tool, String(r.triangles), f(r.wall, 2), f(r.cpu, 2), String(Math.round(r.triangles / r.wall)), f(r.rssMiB, 0),
     ...stageNames.map((s) => stageCell(r, s)), f(100 * r.inA, 2) + '%', f(r.qmin, 3), f(r.qmean, 3), String(r.inverted)]);
 const widths = header.map((h, i) => Math.max(h.length, ...lines.map((l) => l[i].length)));
@@ -288,7 +312,7 @@ for (const l of lines) console.log(fmt(l));
 for (const label of [...new Set(rows.map((r) => r.label))]) {
   const b = rows.find((r) => r.label === label && r.tool === 'ffbamg' && !r.note);
   if (!b) continue;
-  const parts = rows.filter((r) => r.label === label && r.tool.startsWith('anisomesh') && !r.note)
+  const parts = rows.filter((r) => r.label === label && r.tool !== 'ffbamg' && !r.note)
     .map((r) => `${r.tool}: ${(b.wall / r.wall).toFixed(1)}x wall`);
   console.log(`${label}: ffbamg ${b.wall.toFixed(2)} s; ${parts.join(', ')}`);
 }

@@ -392,6 +392,7 @@ void insertMetricFunction(AdaptiveControlSpace& cs, const MetricFunction& f,
   cs.applyConstraints();
   cs.refine(
       [&](const ControlElement& e) {
+        if (options.domain && !options.domain(e.box)) return false;
         if (options.minMetricSize > 0.0 && e.size < options.minMetricSize * smallestNodeSize(e)) return false;
         if (elementNodesDiffer(cs, e, options.threshold)) return true;
         if (!options.checkSamples) return false;

@@ -46,6 +46,7 @@ std::unique_ptr<AdaptiveControlSpace> buildAdaptiveControlSpace(const ControlSpa
     o.threshold = spec.refineThreshold;
     o.minMetricSize = spec.refineMinMetricSize;
     o.concurrent = spec.analyticConcurrent;
+    o.domain = spec.analyticDomain;
     insertMetricFunction(*cs, spec.analytic, o);
     any = true;
   }

@@ -11,6 +11,11 @@ namespace anisomesh {
 namespace {
 
 std::atomic<int> gThreads{1};
+#if defined(__EMSCRIPTEN__)
+constexpr bool kSingleThreaded = true;  // no -pthread build: one thread, the same chunks
+#else
+constexpr bool kSingleThreaded = false;
+#endif
 
 }  // namespace
 
@@ -30,7 +35,7 @@ void parallelChunks(size_t n, size_t grain, const std::function<void(size_t, siz
   if (grain == 0) grain = 1;
   const size_t chunks = chunkCount(n, grain);
   const size_t workers = std::min<size_t>(size_t(threadCount()), chunks);
-  if (workers <= 1) {
+  if (workers <= 1 || kSingleThreaded) {
     for (size_t c = 0; c < chunks; ++c) f(c, c * grain, std::min(n, (c + 1) * grain));
     return;
   }
@@ -57,7 +62,7 @@ void parallelChunks(size_t n, size_t grain, const std::function<void(size_t, siz
 }
 
 void parallelInvoke(const std::function<void()>& a, const std::function<void()>& b) {
-  if (threadCount() <= 1) {
+  if (threadCount() <= 1 || kSingleThreaded) {
     a();
     b();
     return;

@@ -20,7 +20,7 @@ std::string readTextFile(const std::string& path) {
   // A regular file: one read into a string of its size. Anything else (a pipe, a device)
   // or a file that grows meanwhile: the rest in 64 KiB steps.
   struct stat st;
-  const long long size = fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) ? (long long)st.st_size : -1;
+  const long long size = ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) ? (long long)st.st_size : -1;
   if (size > 0) {
     out.resize(size_t(size));
     out.resize(std::fread(&out[0], 1, size_t(size), f));

@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "anisomesh/controlspace/concurrency.h"
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/mesh/predicates.h"
 #include "mesh_internal.h"
@@ -51,7 +52,7 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace,
     uv[v] =
         mesh.params.size() == static_cast<size_t>(nv) ? mesh.params[v] : Vec2(mesh.points[v].x(), mesh.points[v].y());
   std::vector<SymMt> mt(nv);
-  if (controlSpace.concurrentQueries())
+  if (queriesAreConcurrent(controlSpace))  // the vertices' metrics in parallel chunks
     parallelChunks(size_t(nv), 4096, [&](size_t, size_t b, size_t e) {
       for (size_t v = b; v < e; ++v) mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
     });

@@ -57,6 +57,14 @@ TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<M
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) cellTris_[size_t(fill[cellIndex(x, y)]++)] = i;
   }
+  coveredSum_.assign(size_t(nx_ + 1) * (ny_ + 1), 0);
+  for (int y = 0; y < ny_; ++y)
+    for (int x = 0; x < nx_; ++x) {
+      const int c = cellIndex(x, y);
+      coveredSum_[size_t(y + 1) * (nx_ + 1) + x + 1] =
+          (cellStart_[c + 1] > cellStart_[c] ? 1 : 0) + coveredSum_[size_t(y) * (nx_ + 1) + x + 1] +
+          coveredSum_[size_t(y + 1) * (nx_ + 1) + x] - coveredSum_[size_t(y) * (nx_ + 1) + x];
+    }
   // Chebyshev distance (in cells) from each cell to the nearest cell holding a triangle:
   // two chamfer passes with unit weights over the 8 neighbours are exact for it.
   const int far = nx_ + ny_;
@@ -77,6 +85,17 @@ TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<M
     for (int x = nx_ - 1; x >= 0; --x) {
       relax(x, y, 1, 0), relax(x, y, 1, 1), relax(x, y, 0, 1), relax(x, y, -1, 1);
     }
+}
+
+bool TriangleMeshMetricField::meets(const Box2& b) const {
+  auto cell = [](double v, double lo, double size, int n) {
+    return std::min(n - 1, std::max(0, int(std::floor((v - lo) / size))));
+  };
+  if (!(b.lo.allFinite() && b.hi.allFinite())) return true;
+  const int x0 = cell(b.lo.x(), box_.lo.x(), cell_.x(), nx_), x1 = cell(b.hi.x(), box_.lo.x(), cell_.x(), nx_);
+  const int y0 = cell(b.lo.y(), box_.lo.y(), cell_.y(), ny_), y1 = cell(b.hi.y(), box_.lo.y(), cell_.y(), ny_);
+  auto sum = [&](int x, int y) { return coveredSum_[size_t(y) * (nx_ + 1) + x]; };
+  return sum(x1 + 1, y1 + 1) - sum(x0, y1 + 1) - sum(x1 + 1, y0) + sum(x0, y0) > 0;
 }
 
 Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
@@ -146,7 +165,7 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     if (best >= 0 && foundRing < 0) foundRing = r;
     if (foundRing >= 0 && r >= foundRing + 1) break;
   }
-  require(best >= 0, ErrorCode::InvalidArgument, "metric field: every triangle of the mesh is degenerate");
+  if (best < 0) throw Error(ErrorCode::InvalidArgument, "metric field: every triangle of the mesh is degenerate");
   return interpolateAt(best, bestPoint);
 }
 

@@ -328,6 +328,7 @@ std::unique_ptr<AdaptiveControlSpace> buildRemeshControlSpace(const Mesh& input,
     s.refineThreshold = options.refineThreshold;
     s.refineMinMetricSize = options.refineMinMetricSize;
     s.analyticConcurrent = true;  // TriangleMeshMetricField queries are const and pure
+    s.analyticDomain = [field](const Box2& b) { return field->meets(b); };
   } else {
     NodeSource nodes;
     for (const Vec3& p : input.points) nodes.points.push_back(p.head<2>());

@@ -20,8 +20,8 @@ template <class F>
 void forEachBoundaryEdge(const Mesh& mesh, F&& emit) {
   const size_t nv = mesh.points.size();
   const size_t halfEdges = 3 * mesh.triangles.size() + 4 * mesh.quads.size();
-  require(halfEdges < (size_t(1) << 32) && nv < (size_t(1) << 31), ErrorCode::InvalidArgument,
-          "the mesh is too large to extract its boundary");
+  require(std::uint64_t(halfEdges) < (std::uint64_t(1) << 32) && std::uint64_t(nv) < (std::uint64_t(1) << 31),
+          ErrorCode::InvalidArgument, "the mesh is too large to extract its boundary");
   auto forEachElementEdge = [&](auto&& f) {
     auto visit = [&](const int* v, int n) {
       for (int k = 0; k < n; ++k) f(v[k], v[(k + 1) % n]);
@@ -31,10 +31,10 @@ void forEachBoundaryEdge(const Mesh& mesh, F&& emit) {
   };
   std::vector<std::uint32_t> start(nv + 1, 0);
   forEachElementEdge([&](int a, int b) {
-    require(a >= 0 && b >= 0 && size_t(a) < nv && size_t(b) < nv, ErrorCode::InvalidArgument,
-            "an element refers to vertex " +
-                std::to_string(std::min(a, b) < 0 ? std::min(a, b) + 1 : std::max(a, b) + 1) + " of " +
-                std::to_string(nv));
+    if (a < 0 || b < 0 || size_t(a) >= nv || size_t(b) >= nv)
+      throw Error(ErrorCode::InvalidArgument, "an element refers to vertex " +
+                                                  std::to_string((a < 0 || size_t(a) >= nv ? a : b) + 1) + " of " +
+                                                  std::to_string(nv));
     ++start[size_t(std::min(a, b)) + 1];
   });
   for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
@@ -69,9 +69,9 @@ void forEachBoundaryEdge(const Mesh& mesh, F&& emit) {
 
 std::vector<BoundaryLoop> boundaryLoopsFromMesh(const Mesh& mesh) {
   for (size_t i = 0; i < mesh.points.size(); ++i)
-    require(mesh.points[i].z() == 0.0, ErrorCode::InvalidDomain,
-            "remeshing needs a planar mesh (z = 0), vertex " + std::to_string(i + 1) +
-                " has z = " + std::to_string(mesh.points[i].z()));
+    if (mesh.points[i].z() != 0.0)  // (the message is built only on failure: 1M+ vertices)
+      throw Error(ErrorCode::InvalidDomain, "remeshing needs a planar mesh (z = 0), vertex " + std::to_string(i + 1) +
+                                                " has z = " + std::to_string(mesh.points[i].z()));
   // The Edges section's references by (smaller, larger) vertex; of repeated edges the last.
   std::vector<std::pair<std::uint64_t, int>> edgeRef;  // key, index into mesh.edges
   edgeRef.reserve(mesh.edges.size());
@@ -107,8 +107,9 @@ std::vector<BoundaryLoop> boundaryLoopsFromMesh(const Mesh& mesh) {
   std::vector<int> degree(nv, 0), inc0(nv, -1), inc1(nv, -1);
   for (int i = 0; i < int(bnd.size()); ++i)
     for (const int v : {bnd[size_t(i)].a, bnd[size_t(i)].b}) {
-      require(v >= 0 && size_t(v) < nv, ErrorCode::InvalidArgument,
-              "an edge refers to vertex " + std::to_string(v + 1) + " of " + std::to_string(nv));
+      if (v < 0 || size_t(v) >= nv)
+        throw Error(ErrorCode::InvalidArgument,
+                    "an edge refers to vertex " + std::to_string(v + 1) + " of " + std::to_string(nv));
       int& d = degree[size_t(v)];
       (d == 0 ? inc0 : inc1)[size_t(v)] = d < 2 ? i : inc1[size_t(v)];
       ++d;

@@ -40,8 +40,6 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
 
   // Interpolated metric (eq. 11); points outside the box are clamped onto it.
   Metric metricAt(const Vec2& p) const override;
-  // Queries are pure once the locator is up to date (outside refine()).
-  bool concurrentQueries() const override { return !locatorStale_; }
   // Interpolated Mt entries at p (the allocation-free core of metricAt).
   SymMt mtAt(const Vec2& p) const;
   // Triangle containing p (clamped onto the box), by walking.

@@ -19,9 +19,6 @@ class ControlSpace {
   virtual Mat2 parameterizationAt(const Vec2& /*p*/) const { return Mat2::Identity(); }
   // The rectangle the control space is defined on.
   virtual Box2 bounds() const = 0;
-  // True when metricAt may run on several threads at once (no state changes in queries);
-  // parallel stages query on one thread otherwise.
-  virtual bool concurrentQueries() const { return false; }
 };
 
 // The same metric everywhere.
@@ -30,7 +27,6 @@ class UniformControlSpace : public ControlSpace {
   UniformControlSpace(const Box2& bounds, const Metric& metric) : bounds_(bounds), metric_(metric) {}
   Metric metricAt(const Vec2&) const override { return metric_; }
   Box2 bounds() const override { return bounds_; }
-  bool concurrentQueries() const override { return true; }
 
  private:
   Box2 bounds_;

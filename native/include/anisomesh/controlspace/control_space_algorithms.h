@@ -44,6 +44,9 @@ struct ContinuousInsertionOptions {
   // their nodes are not split (the mesher cannot see variation below its edge length).
   double minMetricSize = 0.0;
   bool concurrent = false;  // f may be called from several threads: new nodes are evaluated in parallel
+  // When set: elements whose bounding box it rejects (outside the region the mesher will
+  // query, e.g. the carrier of a remesh) are not split.
+  std::function<bool(const Box2&)> domain;
 };
 
 // Continuous source (section 2.3): every free node takes f (intersected with its metric

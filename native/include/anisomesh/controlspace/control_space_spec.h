@@ -38,6 +38,9 @@ struct ControlSpaceSpec {
   // > 0: continuous insertion leaves elements smaller than this times the smallest size
   // requested at their nodes unsplit (their interpolation error is below one mesh edge).
   double refineMinMetricSize = 0.0;
+  // When set: continuous insertion splits only elements whose box it accepts (the region
+  // the mesher will query); elsewhere the structure stays coarse.
+  std::function<bool(const Box2&)> analyticDomain;
   std::optional<Metric> defaultMetric;  // when no source/function: default isotropic(box diagonal / 10)
   double hmin = 0.0;                    // 0 = no lower clamp
   double hmax = 0.0;                    // 0 = no upper clamp

@@ -43,7 +43,6 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
 
   // Interpolated metric (eq. 10); points outside the box are clamped onto it.
   Metric metricAt(const Vec2& p) const override;
-  bool concurrentQueries() const override { return true; }
   // Interpolated Mt entries at p (the allocation-free core of metricAt).
   SymMt mtAt(const Vec2& p) const;
   // Index of the leaf cell containing p (clamped onto the box).
