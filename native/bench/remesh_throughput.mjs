@@ -244,9 +244,10 @@ for (let i = 0; i < argv.length; i++) {
 }
 for (const k of cases) if (!builders[k]) { console.error(`unknown case ${k}`); process.exit(2); }
 const haveBamg = spawnSync('which', ['ffbamg']).status === 0;
-const help = spawnSync(cli, ['--help'], { encoding: 'utf8' }).stdout || '';
-const cliThreads = help.includes('-threads');
-const cliVerbose = help.includes('[-v]');
+// Which options a CLI knows: an unknown one is named in its usage error.
+const knows = (bin, ...opt) => !(spawnSync(bin, ['remesh', ...opt], { encoding: 'utf8' }).stderr || '').includes('unknown option');
+const cliThreads = knows(cli, '-threads', '1');
+const cliVerbose = knows(cli, '-v');
 
 const stageNames = ['read', 'boundary', 'control space', 'discretization', 'meshing', 'write', 'report'];
 const rows = [];
@@ -270,8 +271,7 @@ for (const kind of cases)
     const label = `${kind} ${size.toExponential(0)} (carrier ${(carrier.triangles / 1e6).toFixed(2)}M tri)`;
     const tools = threads.map((t) => ({ tool: `anisomesh ${t}t`, bin: cli, t, v: cliVerbose, threads: cliThreads }));
     if (baseline) {
-      const h = spawnSync(baseline, ['--help'], { encoding: 'utf8' }).stdout || '';
-      tools.unshift({ tool: 'baseline 1t', bin: baseline, t: 1, v: h.includes('[-v]'), threads: h.includes('-threads') });
+      tools.unshift({ tool: 'baseline 1t', bin: baseline, t: 1, v: knows(baseline, '-v'), threads: knows(baseline, '-threads', '1') });
     }
     for (const { tool, bin, t, v, threads: hasThreads } of tools) {
       if (t > 1 && !hasThreads) { pushRow({ label, tool, note: 'no -threads option' }); continue; }

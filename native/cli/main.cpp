@@ -35,8 +35,11 @@ int usage(std::ostream& os, int code) {
         "                            .svg of a surface: 3D view from azimuth AZ, elevation EL (degrees;\n"
         "                            default -63,34), or the parameter plane; control-space ellipses over it\n"
         "  remesh IN.mesh -sol IN.sol -o OUT [-hgrad R] [-hmin H] [-hmax H] [--stats] [--max-elements N]\n"
+        "      [-v] [-threads N]\n"
         "                            remesh the domain of IN.mesh under the metric IN.sol, used as\n"
-        "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1)\n"
+        "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1;\n"
+        "                            -v: per-stage wall and CPU seconds and peak RSS on stderr;\n"
+        "                            -threads N: worker threads, same output for any N)\n"
         "  metric ALPHA H1 H2        print the metric tensor for sizes (h1, h2) at angle ALPHA (radians)\n"
         "  --version                 print the version\n"
         "--stats prints one JSON object on stdout. Errors: exit 1 (bad input), 2 (bad usage).\n";
