@@ -247,7 +247,7 @@ const haveBamg = spawnSync('which', ['ffbamg']).status === 0;
 // Which options a CLI knows: an unknown one is named in its usage error.
 const knows = (bin, ...opt) => !(spawnSync(bin, ['remesh', ...opt], { encoding: 'utf8' }).stderr || '').includes('unknown option');
 const cliThreads = knows(cli, '-threads', '1');
-const cliVerbose = knows(cli, '-v');
+const cliVerbose = knows(cli, '-v', '1');
 
 const stageNames = ['read', 'boundary', 'control space', 'discretization', 'meshing', 'write', 'report'];
 const rows = [];
@@ -271,12 +271,12 @@ for (const kind of cases)
     const label = `${kind} ${size.toExponential(0)} (carrier ${(carrier.triangles / 1e6).toFixed(2)}M tri)`;
     const tools = threads.map((t) => ({ tool: `anisomesh ${t}t`, bin: cli, t, v: cliVerbose, threads: cliThreads }));
     if (baseline) {
-      tools.unshift({ tool: 'baseline 1t', bin: baseline, t: 1, v: knows(baseline, '-v'), threads: knows(baseline, '-threads', '1') });
+      tools.unshift({ tool: 'baseline 1t', bin: baseline, t: 1, v: knows(baseline, '-v', '1'), threads: knows(baseline, '-threads', '1') });
     }
     for (const { tool, bin, t, v, threads: hasThreads } of tools) {
       if (t > 1 && !hasThreads) { pushRow({ label, tool, note: 'no -threads option' }); continue; }
       const args = ['remesh', 'in.mesh', '-sol', 'in.sol', '-o', 'out.mesh', '--stats'];
-      if (v) args.push('-v');
+      if (v) args.push('-v', '1');
       if (hasThreads) args.push('-threads', String(t));
       rmSync(join(dir, 'out.mesh'), { force: true });
       const r = timed(bin, args, dir);
