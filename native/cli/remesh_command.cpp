@@ -1,8 +1,14 @@
 // anisomesh remesh IN.mesh [-sol IN.sol] -o OUT ...: remeshes a mesh's domain under a
 // metric (MMG's flags where MMG has them).
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
 #include <iostream>
 #include <memory>
 
+#include "anisomesh/core/parallel.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/io/mesh_formats.h"
 #include "anisomesh/pipeline/input_size_metrics.h"
@@ -14,11 +20,47 @@ namespace anisomesh::cli {
 
 namespace {
 
+// -v 1 and more: one stderr line per finished stage (wall and process CPU seconds), then
+// the peak RSS.
+class StageLog {
+ public:
+  explicit StageLog(bool on) : on_(on) {}
+  // Ends the running stage (if any) and starts `name`.
+  void start(const char* name) {
+    if (!on_) return;
+    finish();
+    name_ = name;
+    wall0_ = std::chrono::steady_clock::now();
+    cpu0_ = std::clock();
+  }
+  void finish() {
+    if (!on_ || name_.empty()) return;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
+    const double cpu = double(std::clock() - cpu0_) / CLOCKS_PER_SEC;
+    std::fprintf(stderr, "anisomesh: stage %-14s wall %.3f s cpu %.3f s\n", name_.c_str(), wall, cpu);
+    name_.clear();
+  }
+  void end() {
+    if (!on_) return;
+    finish();
+    struct rusage ru {};
+    getrusage(RUSAGE_SELF, &ru);
+    std::fprintf(stderr, "anisomesh: peak RSS %.1f MiB\n", double(ru.ru_maxrss) / 1024.0);
+  }
+
+ private:
+  bool on_;
+  std::string name_;
+  std::chrono::steady_clock::time_point wall0_;
+  std::clock_t cpu0_ = 0;
+};
+
 int runRemesh(Args& args) {
   std::string input, sol, output;
   bool stats = false;
   double hsiz = 0;
   int verbosity = 0;
+  long long threads = 1;
   RemeshOptions options;
   while (!args.done()) {
     const std::string a = args.next();
@@ -47,6 +89,8 @@ int runRemesh(Args& args) {
       verbosity = static_cast<int>(parseSignedNumber(a, args.value(a)));
     else if (a == "--stats")
       stats = true;
+    else if (a == "-threads" || a == "--threads")
+      threads = parseCount(a, args.value(a));
     else if (a == "--max-elements")
       options.mesher.maxElements = parseCount(a, args.value(a));
     else if (!a.empty() && a[0] == '-')
@@ -65,17 +109,36 @@ int runRemesh(Args& args) {
     throw UsageError{"-hmin must not exceed -hmax"};
   options.mesher.progress = progressPrinter(verbosity);
 
-  const Mesh in = readMeshFile(input);  // .mesh, .msh, .vtk or .obj by extension
-  const std::vector<Metric> metrics = !sol.empty() ? solToMetrics(readSolFile(sol), in.vertexCount())
+  setThreadCount(int(std::min<long long>(threads, 256)));
+  StageLog log(verbosity >= 1);
+  log.start("read");
+  Mesh in;  // .mesh, .msh, .vtk or .obj by extension; the .sol read beside it
+  SolData solData;
+  parallelInvoke([&] { in = readMeshFile(input); },
+                 [&] {
+                   if (!sol.empty()) solData = readSolFile(sol);
+                 });
+  const std::vector<Metric> metrics = !sol.empty() ? solToMetrics(solData, in.vertexCount())
                                       : hsiz > 0   ? uniformMetrics(in, hsiz)
                                                    : edgeLengthMetrics(in);
+  std::vector<double>().swap(solData.values);  // the metrics hold them now
   PipelineReport report;
   std::unique_ptr<AdaptiveControlSpace> cs;
   CaseRun run;
+  options.onStage = [&log](const char* stage) { log.start(stage); };
   run.mesh = remesh(in, metrics, options, &report, &cs);
   run.finalSpace = std::move(cs);
+  log.start("write");
   writeOutput(output, run, CaseSvgOptions{});
-  if (stats) std::cout << pipelineStatsJson(run.mesh, *run.finalSpace, report).dump() << "\n";
+  if (stats) {
+    log.start("report");
+    std::cout << pipelineStatsJson(run.mesh, *run.finalSpace, report).dump() << "\n";
+  }
+  log.finish();
+  if (verbosity >= 1)
+    std::fprintf(stderr, "anisomesh: %d triangles; mesher insertion %.3f s, improvement %.3f s (wall)\n",
+                 int(run.mesh.triangles.size()), report.mesherTimings.insertion, report.mesherTimings.improvement);
+  log.end();
   return 0;
 }
 
@@ -84,11 +147,13 @@ int runRemesh(Args& args) {
 Command remeshCommand() {
   return {"remesh",
           "  remesh IN.mesh [-sol IN.sol] -o OUT [-hgrad R] [-hmin H] [-hmax H] [-hsiz H] [-v N] [--stats]\n"
-          "         [--max-elements N]\n"
+          "         [--max-elements N] [-threads N]\n"
           "                            remesh the domain of IN.mesh (or .msh, .vtk, .obj) under the metric IN.sol, as\n"
           "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1,\n"
           "                            -1 or 0: off); without -sol: isotropic sizes, -hsiz H everywhere or\n"
-          "                            the input's edge lengths clamped to [-hmin, -hmax]; -in / -out as in MMG\n",
+          "                            the input's edge lengths clamped to [-hmin, -hmax]; -in / -out as in MMG;\n"
+          "                            -v 1: also per-stage wall and CPU seconds and peak RSS on stderr;\n"
+          "                            -threads N: worker threads (the same output for any N)\n",
           runRemesh};
 }
 

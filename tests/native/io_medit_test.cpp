@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 
 #include "anisomesh/core/error.h"
@@ -205,4 +209,67 @@ TEST(IoFile, Extension) {
 
 TEST(IoFile, ReadingADirectoryIsIoError) {
   expectError([] { readTextFile(::testing::TempDir()); }, ErrorCode::IoError, "");
+}
+
+// Issue #15: numbers that do not fit are refused with the line, never changed silently.
+TEST(IoMedit, StrictNumbersAndReferences) {
+  const std::string head = "MeshVersionFormatted 2\nDimension 2\n";
+  expectError([&] { parseMedit(head + "Vertices\n1\n1e999 0 0\nEnd\n"); }, ErrorCode::ParseError,
+              "line 5: coordinate x of vertex 1 '1e999' overflows a double");
+  expectError([&] { parseMedit(head + "Vertices\n1\n0 -1e400 0\nEnd\n"); }, ErrorCode::ParseError,
+              "line 5: coordinate y of vertex 1 '-1e400' overflows a double");
+  expectError([&] { parseMedit(head + "Vertices\n1\n0 0 99999999999\nEnd\n"); }, ErrorCode::ParseError,
+              "line 5: the reference of vertex 1 99999999999 does not fit in a 32-bit integer");
+  expectError([&] { parseMedit(head + "Vertices\n3\n0 0 0\n1 0 0\n0 1 0\nTriangles\n1\n1 2 3\n-99999999999\n"); },
+              ErrorCode::ParseError, "line 11: the reference of Triangles 1 -99999999999 does not fit in a 32-bit");
+  expectError([&] { parseMedit(head + "Vertices\n1\n0 0 99999999999999999999\n"); }, ErrorCode::ParseError,
+              "line 5: the reference of vertex 1 '99999999999999999999' does not fit in a 64-bit integer");
+  // The largest references that fit, and an underflow (the nearest double, as strtod).
+  const Mesh m = parseMedit(head + "Vertices\n2\n1e-400 0 2147483647\n+0.5 0x1p-2 -2147483648\nEnd\n");
+  EXPECT_EQ(m.pointRefs, (std::vector<int>{2147483647, -2147483648}));
+  EXPECT_EQ(m.points[0].x(), 0.0);
+  EXPECT_EQ(m.points[1].x(), 0.5);   // '+' sign (strtod's syntax kept)
+  EXPECT_EQ(m.points[1].y(), 0.25);  // hexadecimal (strtod's syntax kept)
+  expectError([&] { parseSol(head + "SolAtVertices\n1\n1 1\n1e999\nEnd\n"); }, ErrorCode::ParseError,
+              "line 6: value 1 of vertex 1 '1e999' overflows a double");
+}
+
+// Issue #15: Dimension appears once, before the data (a late one would reinterpret it).
+TEST(IoMedit, DimensionOnceBeforeTheData) {
+  expectError([] { parseMedit("MeshVersionFormatted 2\nDimension 2\nDimension 3\nVertices\n0\nEnd\n"); },
+              ErrorCode::ParseError, "Dimension appears twice");
+  expectError([] { parseMedit("MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 1 0\nDimension 2\nEnd\n"); },
+              ErrorCode::ParseError, "Dimension after the data");
+  expectError([] { parseSol("MeshVersionFormatted 2\nDimension 2\nDimension 2\nSolAtVertices\n0\n1 1\nEnd\n"); },
+              ErrorCode::ParseError, "Dimension appears twice");
+  expectError([] { parseSol("MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n1\n1 1\n0.5\nDimension 3\nEnd\n"); },
+              ErrorCode::ParseError, "Dimension after the data");
+}
+
+// from_chars / to_chars (native) and strtod / %.17g (wasm) give the same values and bytes.
+TEST(IoMedit, NumbersRoundTripBitExactly) {
+  Mesh m;
+  m.dimension = 2;
+  std::uint64_t state = 0x9e3779b97f4a7c15ull;
+  char expected[64];
+  std::string lines;
+  for (int i = 0; i < 20000; ++i) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    double x;
+    std::uint64_t bits = state;
+    std::memcpy(&x, &bits, sizeof x);
+    if (!std::isfinite(x) || i % 3 == 0) x = double(state >> 11) * 0x1.0p-40 - 4096.0;
+    const double y = i % 5 == 0 ? 1e-310 * (i + 1) : 1.0 / (i + 1);  // subnormals too
+    m.points.push_back(Vec3(x, y, 0));
+    m.pointRefs.push_back(i);
+    std::snprintf(expected, sizeof expected, "%.17g %.17g %d\n", x, y, i);
+    lines += expected;
+  }
+  const std::string text = writeMedit(m);
+  EXPECT_NE(text.find(lines), std::string::npos);  // printf's bytes
+  const Mesh back = parseMedit(text);
+  ASSERT_EQ(back.points.size(), m.points.size());
+  for (size_t i = 0; i < m.points.size(); ++i) {
+    EXPECT_EQ(std::memcmp(&back.points[i], &m.points[i], sizeof(Vec3)), 0) << i;
+  }
 }

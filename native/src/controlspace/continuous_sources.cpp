@@ -8,6 +8,7 @@
 #include <string>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/parallel.h"
 
 namespace anisomesh {
 
@@ -45,17 +46,42 @@ void insertMetricFunction(AdaptiveControlSpace& cs, const MetricFunction& f,
     const Metric v = f(p);
     return fresh ? v : intersect(original->metricAt(p), v);
   };
+  std::vector<Metric> values;
   auto setFromFunction = [&](int first, int last) {
+    if (options.concurrent && fresh) {
+      // f's values computed in parallel chunks, stored in node order (same result).
+      values.resize(size_t(last - first));
+      parallelChunks(values.size(), 1024, [&](size_t, size_t b, size_t e) {
+        for (size_t k = b; k < e; ++k) {
+          const int i = first + int(k);
+          if (cs.nodeIsFree(i)) values[k] = f(cs.nodePosition(i));
+        }
+      });
+      for (int i = first; i < last; ++i)
+        if (cs.nodeIsFree(i)) cs.setNodeMetric(i, values[size_t(i - first)]);
+      return;
+    }
     for (int i = first; i < last; ++i) {
       if (!cs.nodeIsFree(i)) continue;
       const Vec2& p = cs.nodePosition(i);
       cs.setNodeMetric(i, fresh || !cs.nodeIsInitialized(i) ? f(p) : target(p));
     }
   };
+  // The smallest size requested at the element's nodes (1 / the largest eigenvalue of Mt).
+  auto smallestNodeSize = [&](const ControlElement& e) {
+    double h = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < e.nodeCount; ++k) {
+      const SymMt& m = cs.nodeMt(e.nodes[k]);
+      h = std::min(h, 1.0 / (0.5 * (m.a + m.c) + std::hypot(0.5 * (m.a - m.c), m.b)));
+    }
+    return h;
+  };
   setFromFunction(0, cs.nodeCount());
   cs.applyConstraints();
   cs.refine(
       [&](const ControlElement& e) {
+        if (options.domain && !options.domain(e.box)) return false;
+        if (options.minMetricSize > 0.0 && e.size < options.minMetricSize * smallestNodeSize(e)) return false;
         if (elementNodesDiffer(cs, e, options.threshold)) return true;
         if (!options.checkSamples) return false;
         for (int k = 0; k < e.sampleCount; ++k)

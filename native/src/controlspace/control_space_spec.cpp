@@ -44,6 +44,9 @@ std::unique_ptr<AdaptiveControlSpace> buildAdaptiveControlSpace(const ControlSpa
   if (spec.analytic) {
     ContinuousInsertionOptions o;
     o.threshold = spec.refineThreshold;
+    o.minMetricSize = spec.refineMinMetricSize;
+    o.concurrent = spec.analyticConcurrent;
+    o.domain = spec.analyticDomain;
     insertMetricFunction(*cs, spec.analytic, o);
     any = true;
   }

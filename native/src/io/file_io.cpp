@@ -7,6 +7,8 @@
 #include <cstring>
 #include <random>
 
+#include <sys/stat.h>
+
 #include "anisomesh/core/error.h"
 
 namespace anisomesh {
@@ -15,6 +17,14 @@ std::string readTextFile(const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
   require(f != nullptr, ErrorCode::IoError, "cannot open '" + path + "' for reading: " + std::strerror(errno));
   std::string out;
+  // A regular file: one read into a string of its size. Anything else (a pipe, a device)
+  // or a file that grows meanwhile: the rest in 64 KiB steps.
+  struct stat st;
+  const long long size = ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) ? (long long)st.st_size : -1;
+  if (size > 0) {
+    out.resize(size_t(size));
+    out.resize(std::fread(&out[0], 1, size_t(size), f));
+  }
   char buf[1 << 16];
   size_t n;
   while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
@@ -27,6 +37,10 @@ std::string readTextFile(const std::string& path) {
 }
 
 void writeTextFileAtomic(const std::string& path, const std::string& contents) {
+  writeTextFileAtomic(path, std::vector<std::string>{contents});
+}
+
+void writeTextFileAtomic(const std::string& path, const std::vector<std::string>& pieces) {
   require(!path.empty(), ErrorCode::IoError, "empty output path");
   // A unique sibling name, so the rename stays on one file system.
   std::random_device rd;
@@ -35,7 +49,8 @@ void writeTextFileAtomic(const std::string& path, const std::string& contents) {
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   require(f != nullptr, ErrorCode::IoError,
           "cannot create '" + tmp + "' to write '" + path + "': " + std::strerror(errno));
-  const bool written = std::fwrite(contents.data(), 1, contents.size(), f) == contents.size();
+  bool written = true;
+  for (const std::string& p : pieces) written = written && std::fwrite(p.data(), 1, p.size(), f) == p.size();
   const bool closed = std::fclose(f) == 0;
   if (!written || !closed) {
     std::remove(tmp.c_str());

@@ -3,6 +3,7 @@
 #include <map>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/parallel.h"
 #include "anisomesh/io/file_io.h"
 #include "bamg_sections.h"
 #include "tokens.h"
@@ -50,30 +51,74 @@ void readElements(TokenStream& ts, const char* name, int vertexCount, std::vecto
       e[k] = int(v - 1);
     }
     elems->push_back(e);
-    refs->push_back(
-        int(ts.integer([&] { return std::string("the reference of ") + name + " " + std::to_string(i + 1); })));
+    refs->push_back(ts.int32([&] { return std::string("the reference of ") + name + " " + std::to_string(i + 1); }));
   }
 }
 
+// Lines per formatting chunk: the pieces are independent of the thread count, so the
+// text is the same for any.
+constexpr size_t kLinesPerPiece = 16384;
+
+// Appends one piece per chunk of [0, n): line(out, i) formats item i, in parallel.
+template <class Line>
+void appendPieces(std::vector<std::string>* pieces, size_t n, size_t bytesPerLine, const Line& line) {
+  const size_t first = pieces->size();
+  pieces->resize(first + chunkCount(n, kLinesPerPiece));
+  parallelChunks(n, kLinesPerPiece, [&](size_t chunk, size_t begin, size_t end) {
+    std::string& out = (*pieces)[first + chunk];
+    out.reserve((end - begin) * bytesPerLine);
+    for (size_t i = begin; i < end; ++i) line(&out, i);
+  });
+}
+
 template <size_t N>
-void writeElements(std::string* out, const char* name, const std::vector<std::array<int, N>>& elems,
+void writeElements(std::vector<std::string>* pieces, const char* name, const std::vector<std::array<int, N>>& elems,
                    const std::vector<int>& refs) {
   if (elems.empty()) return;
-  out->append(name);
-  out->append("\n");
-  appendInt(out, (long long)elems.size());
-  out->append("\n");
-  for (size_t i = 0; i < elems.size(); ++i) {
+  std::string head = std::string(name) + "\n";
+  appendInt(&head, (long long)elems.size());
+  head += "\n";
+  pieces->push_back(std::move(head));
+  appendPieces(pieces, elems.size(), 8 * (N + 1), [&](std::string* out, size_t i) {
     for (size_t k = 0; k < N; ++k) {
       appendInt(out, elems[i][k] + 1LL);
       out->push_back(' ');
     }
     appendInt(out, i < refs.size() ? refs[i] : 0);
     out->push_back('\n');
-  }
+  });
 }
 
-void readHeader(TokenStream& ts, const std::string& key, int* version, int* dimension) {
+// The Medit text as consecutive pieces (formatted in parallel).
+std::vector<std::string> meditPieces(const Mesh& mesh) {
+  require(mesh.dimension == 2 || mesh.dimension == 3, ErrorCode::InvalidArgument,
+          "Medit output needs dimension 2 or 3, got " + std::to_string(mesh.dimension));
+  std::vector<std::string> pieces;
+  pieces.push_back("MeshVersionFormatted 2\nDimension " + std::to_string(mesh.dimension) + "\n\n");
+  pieces.back() += "Vertices\n" + std::to_string(mesh.points.size()) + "\n";
+  appendPieces(&pieces, mesh.points.size(), 24 * size_t(mesh.dimension) + 4, [&](std::string* out, size_t i) {
+    for (int k = 0; k < mesh.dimension; ++k) {
+      appendNumber(out, mesh.points[i][k]);
+      out->push_back(' ');
+    }
+    appendInt(out, i < mesh.pointRefs.size() ? mesh.pointRefs[i] : 0);
+    out->push_back('\n');
+  });
+  writeElements<2>(&pieces, "Edges", mesh.edges, mesh.edgeRefs);
+  writeElements<3>(&pieces, "Triangles", mesh.triangles, mesh.triangleRefs);
+  writeElements<4>(&pieces, "Quadrilaterals", mesh.quads, mesh.quadRefs);
+  pieces.push_back("End\n");
+  return pieces;
+}
+
+// MeshVersionFormatted or Dimension; dataStarted: a data section has been read already.
+// Dimension appears once, before the data (a later one would silently change how the
+// vertices already read are understood).
+void readHeader(TokenStream& ts, const std::string& key, int* version, int* dimension, bool dataStarted) {
+  if (key == "Dimension") {
+    if (dataStarted) ts.failAt(ts.line(), "Dimension after the data (it must appear once, before the data)");
+    if (*dimension != 0) ts.failAt(ts.line(), "Dimension appears twice (it must appear once, before the data)");
+  }
   if (key == "MeshVersionFormatted") {
     const int line = ts.line();
     *version = int(ts.integer("the version number after MeshVersionFormatted"));
@@ -89,22 +134,12 @@ void readHeader(TokenStream& ts, const std::string& key, int* version, int* dime
 }  // namespace
 
 std::string writeMedit(const Mesh& mesh) {
-  require(mesh.dimension == 2 || mesh.dimension == 3, ErrorCode::InvalidArgument,
-          "Medit output needs dimension 2 or 3, got " + std::to_string(mesh.dimension));
-  std::string out = "MeshVersionFormatted 2\nDimension " + std::to_string(mesh.dimension) + "\n\n";
-  out += "Vertices\n" + std::to_string(mesh.points.size()) + "\n";
-  for (size_t i = 0; i < mesh.points.size(); ++i) {
-    for (int k = 0; k < mesh.dimension; ++k) {
-      appendNumber(&out, mesh.points[i][k]);
-      out.push_back(' ');
-    }
-    appendInt(&out, i < mesh.pointRefs.size() ? mesh.pointRefs[i] : 0);
-    out.push_back('\n');
-  }
-  writeElements<2>(&out, "Edges", mesh.edges, mesh.edgeRefs);
-  writeElements<3>(&out, "Triangles", mesh.triangles, mesh.triangleRefs);
-  writeElements<4>(&out, "Quadrilaterals", mesh.quads, mesh.quadRefs);
-  out += "End\n";
+  const std::vector<std::string> pieces = meditPieces(mesh);
+  size_t size = 0;
+  for (const std::string& p : pieces) size += p.size();
+  std::string out;
+  out.reserve(size);
+  for (const std::string& p : pieces) out += p;
   return out;
 }
 
@@ -112,13 +147,14 @@ Mesh parseMedit(const std::string& text) {
   TokenStream ts(text, "Medit mesh", '#');
   Mesh mesh;
   int version = 0, dimension = 0;
-  bool haveVertices = false;
+  bool haveVertices = false, dataStarted = false;
   while (!ts.atEnd()) {
     const int line = ts.line();
     const std::string key = ts.next().str();
     if (key == "End") break;
+    if (key != "MeshVersionFormatted" && key != "Dimension") dataStarted = true;
     if (key == "MeshVersionFormatted" || key == "Dimension") {
-      readHeader(ts, key, &version, &dimension);
+      readHeader(ts, key, &version, &dimension, dataStarted);
     } else if (key == "Vertices") {
       if (version == 0) ts.failAt(line, "expected MeshVersionFormatted before Vertices");
       if (dimension == 0) ts.failAt(line, "expected Dimension before Vertices");
@@ -131,7 +167,7 @@ Mesh parseMedit(const std::string& text) {
           p[k] =
               ts.number([&] { return std::string("coordinate ") + "xyz"[k] + " of vertex " + std::to_string(i + 1); });
         mesh.points.push_back(p);
-        mesh.pointRefs.push_back(int(ts.integer([&] { return "the reference of vertex " + std::to_string(i + 1); })));
+        mesh.pointRefs.push_back(ts.int32([&] { return "the reference of vertex " + std::to_string(i + 1); }));
       }
       haveVertices = true;
     } else if (key == "Edges" || key == "Triangles" || key == "Quadrilaterals") {
@@ -162,7 +198,7 @@ Mesh parseMedit(const std::string& text) {
 
 Mesh readMeditFile(const std::string& path) { return parseMedit(readTextFile(path)); }
 
-void writeMeditFile(const std::string& path, const Mesh& mesh) { writeTextFileAtomic(path, writeMedit(mesh)); }
+void writeMeditFile(const std::string& path, const Mesh& mesh) { writeTextFileAtomic(path, meditPieces(mesh)); }
 
 std::string writeSol(const SolData& sol) {
   require(sol.type == 1 || sol.type == 3, ErrorCode::InvalidArgument,
@@ -191,7 +227,7 @@ SolData parseSol(const std::string& text) {
     const std::string key = ts.next().str();
     if (key == "End") break;
     if (key == "MeshVersionFormatted" || key == "Dimension") {
-      readHeader(ts, key, &version, &dimension);
+      readHeader(ts, key, &version, &dimension, haveField);
     } else if (key == "SolAtVertices") {
       if (dimension == 0) ts.failAt(line, "expected Dimension before SolAtVertices");
       if (haveField) ts.failAt(line, "only one SolAtVertices section is supported");

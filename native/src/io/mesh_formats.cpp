@@ -309,7 +309,9 @@ Mesh parseMeshString(const std::string& text, MeshFormat format) {
 }
 
 void writeMeshFile(const std::string& path, const Mesh& mesh) {
-  writeTextFileAtomic(path, writeMeshString(mesh, meshFormatFromPath(path)));
+  const MeshFormat format = meshFormatFromPath(path);
+  if (format == MeshFormat::Medit) return writeMeditFile(path, mesh);  // written piece by piece
+  writeTextFileAtomic(path, writeMeshString(mesh, format));
 }
 
 Mesh readMeshFile(const std::string& path) { return parseMeshString(readTextFile(path), meshFormatFromPath(path)); }

@@ -2,9 +2,13 @@
 // Private: whitespace tokenizer with line numbers for the text mesh formats, so every
 // parse error can name the line and what was expected.
 #include <cerrno>
+#include <charconv>
+#include <climits>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -71,30 +75,43 @@ class TokenStream {
     throw Error(ErrorCode::ParseError, format_ + " line " + std::to_string(line) + ": " + message);
   }
 
-  // The next token as a double; fails naming what was expected.
+  // The next token as a double; fails naming what was expected, or when the value
+  // overflows a double (underflow gives the nearest representable value, as strtod).
   // what is a string or a callable returning one (built only on failure: hot loops).
   template <class What>
   double number(const What& what) {
     if (atEnd()) fail(describe(what));
-    // strtod directly on the text (it is NUL-terminated) stops at the token's end.
-    const Token t = peek();
-    char* stop = nullptr;
-    const double v = std::strtod(t.begin, &stop);
-    if (t.size == 0 || stop != t.begin + t.size) fail(describe(what));
-    next();
+    double v = 0.0;
+    bool overflow = false;
+    const char* stop = parseDouble(p_, end_, &v, &overflow);
+    if (stop == p_ || !endsToken(stop)) fail(describe(what));
+    if (overflow) failAt(line_, describe(what) + " '" + peek().str() + "' overflows a double");
+    advance(stop);
     return v;
   }
-  // The next token as an integer; fails naming what was expected.
+  // The next token as an integer; fails naming what was expected (also on overflow).
   template <class What>
   long long integer(const What& what) {
     if (atEnd()) fail(describe(what));
-    const Token t = peek();
-    char* stop = nullptr;
-    errno = 0;
-    const long long v = std::strtoll(t.begin, &stop, 10);
-    if (t.size == 0 || stop != t.begin + t.size || errno == ERANGE) fail(describe(what));
-    next();
+    long long v = 0;
+    const char* b = p_;
+    if (b < end_ && *b == '+' && b + 1 < end_ && b[1] != '-') ++b;  // strtoll's sign, kept
+    const std::from_chars_result r = std::from_chars(b, end_, v);
+    if (r.ptr == b || !endsToken(r.ptr)) fail(describe(what));
+    if (r.ec == std::errc::result_out_of_range)
+      failAt(line_, describe(what) + " '" + peek().str() + "' does not fit in a 64-bit integer");
+    advance(r.ptr);
     return v;
+  }
+  // The next token as an integer that fits in int32 (element and vertex references):
+  // larger values are refused, never truncated.
+  template <class What>
+  int int32(const What& what) {
+    const int ln = line();
+    const long long v = integer(what);
+    if (v < INT_MIN || v > INT_MAX)
+      failAt(ln, describe(what) + " " + std::to_string(v) + " does not fit in a 32-bit integer");
+    return int(v);
   }
   // A count: a nonnegative integer that the remaining text can hold (every token takes
   // at least two characters with its separator), which guards huge allocations.
@@ -111,6 +128,36 @@ class TokenStream {
 
  private:
   static bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+  // True when a token may end at q (end of text, a blank or a comment).
+  bool endsToken(const char* q) const { return q >= end_ || isSpace(*q) || (comment_ && *q == comment_); }
+  // Consumes the token ending at stop.
+  void advance(const char* stop) {
+    lastLine_ = line_;
+    p_ = stop;
+    skipSpace();
+  }
+  // Parses a double at b: std::from_chars where the library has it (correctly rounded, as
+  // strtod), strtod otherwise and for what from_chars refuses (a '+' sign, hexadecimal,
+  // out of range): the same value either way. Returns the end of the number (b if none).
+  static const char* parseDouble(const char* b, const char* e, double* v, bool* overflow) {
+#if defined(__cpp_lib_to_chars)
+    const std::from_chars_result r = std::from_chars(b, e, *v);
+    if (r.ec == std::errc() && r.ptr > b && (r.ptr >= e || !isNumberChar(*r.ptr))) return r.ptr;
+#else
+    (void)e;
+#endif
+    // The text is NUL-terminated (a std::string) and b starts a token: strtod stops in it.
+    char* stop = nullptr;
+    errno = 0;
+    *v = std::strtod(b, &stop);
+    *overflow = errno == ERANGE && std::isinf(*v);
+    return stop;
+  }
+  // Characters that may continue a number strtod would read further (hexadecimal, exponent).
+  static bool isNumberChar(char c) {
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '.' || c == '+' ||
+           c == '-';
+  }
   // Moves past blanks, newlines (counting them) and comments.
   void skipSpace() {
     while (p_ < end_) {
@@ -135,11 +182,17 @@ class TokenStream {
   const char* end_ = nullptr;
 };
 
-// Appends v with round-trip precision.
+// Appends v with round-trip precision: the bytes of printf's %.17g (std::to_chars with
+// precision 17 is specified to match it; snprintf where the library lacks floating to_chars).
 inline void appendNumber(std::string* out, double v) {
   char buf[32];
+#if defined(__cpp_lib_to_chars)
+  const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 17);
+  out->append(buf, size_t(r.ptr - buf));
+#else
   const int n = std::snprintf(buf, sizeof buf, "%.17g", v);
   out->append(buf, size_t(n));
+#endif
 }
 
 // Appends "x y z\n" (each as appendNumber writes it).
@@ -152,7 +205,11 @@ inline void appendXyzLine(std::string* out, const Vec3& p) {
   out->push_back('\n');
 }
 
-inline void appendInt(std::string* out, long long v) { out->append(std::to_string(v)); }
+inline void appendInt(std::string* out, long long v) {
+  char buf[24];
+  const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v);
+  out->append(buf, size_t(r.ptr - buf));
+}
 
 }  // namespace io_detail
 }  // namespace anisomesh

@@ -6,6 +6,8 @@
 #include <limits>
 #include <vector>
 
+#include "anisomesh/controlspace/concurrency.h"
+#include "anisomesh/core/parallel.h"
 #include "anisomesh/mesh/predicates.h"
 #include "mesh_internal.h"
 
@@ -50,7 +52,12 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace,
     uv[v] =
         mesh.params.size() == static_cast<size_t>(nv) ? mesh.params[v] : Vec2(mesh.points[v].x(), mesh.points[v].y());
   std::vector<SymMt> mt(nv);
-  for (int v = 0; v < nv; ++v) mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
+  if (queriesAreConcurrent(controlSpace))  // the vertices' metrics in parallel chunks
+    parallelChunks(size_t(nv), 4096, [&](size_t, size_t b, size_t e) {
+      for (size_t v = b; v < e; ++v) mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
+    });
+  else
+    for (int v = 0; v < nv; ++v) mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
 
   const std::vector<std::array<int, 2>> edges = distinctElementEdges(mesh);
   r.edges = static_cast<int>(edges.size());

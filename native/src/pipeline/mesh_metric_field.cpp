@@ -57,6 +57,45 @@ TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<M
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) cellTris_[size_t(fill[cellIndex(x, y)]++)] = i;
   }
+  coveredSum_.assign(size_t(nx_ + 1) * (ny_ + 1), 0);
+  for (int y = 0; y < ny_; ++y)
+    for (int x = 0; x < nx_; ++x) {
+      const int c = cellIndex(x, y);
+      coveredSum_[size_t(y + 1) * (nx_ + 1) + x + 1] =
+          (cellStart_[c + 1] > cellStart_[c] ? 1 : 0) + coveredSum_[size_t(y) * (nx_ + 1) + x + 1] +
+          coveredSum_[size_t(y + 1) * (nx_ + 1) + x] - coveredSum_[size_t(y) * (nx_ + 1) + x];
+    }
+  // Chebyshev distance (in cells) from each cell to the nearest cell holding a triangle:
+  // two chamfer passes with unit weights over the 8 neighbours are exact for it.
+  const int far = nx_ + ny_;
+  emptyRings_.assign(size_t(nx_) * ny_, far);
+  for (int c = 0; c < nx_ * ny_; ++c)
+    if (cellStart_[c + 1] > cellStart_[c]) emptyRings_[size_t(c)] = 0;
+  auto relax = [&](int x, int y, int dx, int dy) {
+    const int nxp = x + dx, nyp = y + dy;
+    if (nxp < 0 || nyp < 0 || nxp >= nx_ || nyp >= ny_) return;
+    int& d = emptyRings_[size_t(cellIndex(x, y))];
+    d = std::min(d, emptyRings_[size_t(cellIndex(nxp, nyp))] + 1);
+  };
+  for (int y = 0; y < ny_; ++y)
+    for (int x = 0; x < nx_; ++x) {
+      relax(x, y, -1, 0), relax(x, y, -1, -1), relax(x, y, 0, -1), relax(x, y, 1, -1);
+    }
+  for (int y = ny_ - 1; y >= 0; --y)
+    for (int x = nx_ - 1; x >= 0; --x) {
+      relax(x, y, 1, 0), relax(x, y, 1, 1), relax(x, y, 0, 1), relax(x, y, -1, 1);
+    }
+}
+
+bool TriangleMeshMetricField::meets(const Box2& b) const {
+  auto cell = [](double v, double lo, double size, int n) {
+    return std::min(n - 1, std::max(0, int(std::floor((v - lo) / size))));
+  };
+  if (!(b.lo.allFinite() && b.hi.allFinite())) return true;
+  const int x0 = cell(b.lo.x(), box_.lo.x(), cell_.x(), nx_), x1 = cell(b.hi.x(), box_.lo.x(), cell_.x(), nx_);
+  const int y0 = cell(b.lo.y(), box_.lo.y(), cell_.y(), ny_), y1 = cell(b.hi.y(), box_.lo.y(), cell_.y(), ny_);
+  auto sum = [&](int x, int y) { return coveredSum_[size_t(y) * (nx_ + 1) + x]; };
+  return sum(x1 + 1, y1 + 1) - sum(x0, y1 + 1) - sum(x1 + 1, y0) + sum(x0, y0) > 0;
 }
 
 Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
@@ -86,34 +125,47 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
   int best = -1, foundRing = -1;
   double bestDist = INFINITY;
   Vec2 bestPoint = p;
-  // Rings of cells around p's cell: a containing triangle ends the search; otherwise the
-  // nearest triangle seen up to one ring past the first ring with candidates.
-  for (int r = 0; r <= std::max(nx_, ny_); ++r) {
-    for (int y = cy - r; y <= cy + r; ++y)
-      for (int x = cx - r; x <= cx + r; ++x) {
-        if (x < 0 || y < 0 || x >= nx_ || y >= ny_) continue;
-        if (std::max(std::abs(x - cx), std::abs(y - cy)) != r) continue;
-        const int c = cellIndex(x, y);
-        for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
-          const int t = cellTris_[size_t(k)];
-          const auto& tri = tris_[size_t(t)];
-          const Vec2 &a = pts_[tri[0]], &b = pts_[tri[1]], &d = pts_[tri[2]];
-          const double det = (b.x() - a.x()) * (d.y() - a.y()) - (b.y() - a.y()) * (d.x() - a.x());
-          if (det == 0) continue;
-          const double l1 = ((p.x() - a.x()) * (d.y() - a.y()) - (p.y() - a.y()) * (d.x() - a.x())) / det;
-          const double l2 = ((b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x())) / det;
-          if (l1 >= -1e-12 && l2 >= -1e-12 && 1.0 - l1 - l2 >= -1e-12) return interpolateAt(t, p);
-          for (int e = 0; e < 3; ++e) {
-            const Vec2 q = closestOnSegment(p, pts_[tri[e]], pts_[tri[(e + 1) % 3]]);
-            const double dist = (q - p).squaredNorm();
-            if (dist < bestDist) bestDist = dist, best = t, bestPoint = q;
-          }
-        }
+  // Cell c's triangles: a containing one ends the search (true), otherwise the nearest
+  // point of each is a candidate (the first of equal distances wins).
+  auto visitCell = [&](int c) {
+    for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
+      const int t = cellTris_[size_t(k)];
+      const auto& tri = tris_[size_t(t)];
+      const Vec2 &a = pts_[tri[0]], &b = pts_[tri[1]], &d = pts_[tri[2]];
+      const double det = (b.x() - a.x()) * (d.y() - a.y()) - (b.y() - a.y()) * (d.x() - a.x());
+      if (det == 0) continue;
+      const double l1 = ((p.x() - a.x()) * (d.y() - a.y()) - (p.y() - a.y()) * (d.x() - a.x())) / det;
+      const double l2 = ((b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x())) / det;
+      if (l1 >= -1e-12 && l2 >= -1e-12 && 1.0 - l1 - l2 >= -1e-12) {
+        best = t;
+        return true;
       }
+      for (int e = 0; e < 3; ++e) {
+        const Vec2 q = closestOnSegment(p, pts_[tri[e]], pts_[tri[(e + 1) % 3]]);
+        const double dist = (q - p).squaredNorm();
+        if (dist < bestDist) bestDist = dist, best = t, bestPoint = q;
+      }
+    }
+    return false;
+  };
+  auto visit = [&](int x, int y) { return x >= 0 && y >= 0 && x < nx_ && y < ny_ && visitCell(cellIndex(x, y)); };
+  // Rings of cells around p's cell, each in row order: a containing triangle ends the
+  // search; otherwise the nearest triangle seen up to one ring past the first ring with
+  // candidates. Rings closer than the nearest nonempty cell hold nothing: skipped.
+  for (int r = emptyRings_[size_t(cellIndex(cx, cy))]; r <= std::max(nx_, ny_); ++r) {
+    for (int y = cy - r; y <= cy + r; ++y) {
+      if (y == cy - r || y == cy + r) {
+        for (int x = cx - r; x <= cx + r; ++x)
+          if (visit(x, y)) return interpolateAt(best, p);
+      } else {
+        if (visit(cx - r, y)) return interpolateAt(best, p);
+        if (r > 0 && visit(cx + r, y)) return interpolateAt(best, p);
+      }
+    }
     if (best >= 0 && foundRing < 0) foundRing = r;
     if (foundRing >= 0 && r >= foundRing + 1) break;
   }
-  require(best >= 0, ErrorCode::InvalidArgument, "metric field: every triangle of the mesh is degenerate");
+  if (best < 0) throw Error(ErrorCode::InvalidArgument, "metric field: every triangle of the mesh is degenerate");
   return interpolateAt(best, bestPoint);
 }
 

@@ -181,6 +181,9 @@ std::unique_ptr<AdaptiveControlSpace> buildRemeshControlSpace(const Mesh& input,
     auto field = std::make_shared<const TriangleMeshMetricField>(input, metrics);
     s.analytic = [field](const Vec2& p) { return field->metricAt(p); };
     s.refineThreshold = options.refineThreshold;
+    s.refineMinMetricSize = options.refineMinMetricSize;
+    s.analyticConcurrent = true;  // TriangleMeshMetricField queries are const and pure
+    s.analyticDomain = [field](const Box2& b) { return field->meets(b); };
   } else {
     NodeSource nodes;
     for (const Vec3& p : input.points) nodes.points.push_back(p.head<2>());
@@ -197,15 +200,21 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
             std::unique_ptr<AdaptiveControlSpace>* controlSpace) {
   PipelineReport local;
   PipelineReport& r = report ? *report : local;
+  auto stage = [&](const char* name) {
+    if (options.onStage) options.onStage(name);
+  };
+  stage("boundary");
   auto t = Clock::now();
   const Domain domain = domainFromBoundaryLoops(boundaryLoopsFromMesh(input));
   validateDomain(domain);
   r.secondsGeometry = secondsSince(t);
+  stage("control space");
   t = Clock::now();
   std::unique_ptr<AdaptiveControlSpace> cs = buildRemeshControlSpace(input, metrics, options);
   r.secondsControlSpace = secondsSince(t);
   r.controlElements = cs->elementCount();
   r.controlNodes = cs->nodeCount();
+  stage("discretization");
   t = Clock::now();
   DiscretizeOptions d;
   d.maxSegments = std::max<std::int64_t>(1, options.mesher.maxElements);
@@ -213,6 +222,7 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
       throughCache(*cs, options.queryCache, r, [&](const ControlSpace& q) { return discretizeDomain(domain, q, d); });
   r.secondsDiscretization = secondsSince(t);
   countBoundary(loops, report);
+  stage("meshing");
   t = Clock::now();
   PlanarMesherOptions finalOptions = options.mesher;
   finalOptions.timings = &r.mesherTimings;

@@ -1,8 +1,10 @@
 #include "anisomesh/pipeline/remesh_geometry.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
-#include <map>
+#include <cstdint>
+#include <string>
 #include <utility>
 
 #include "anisomesh/core/error.h"
@@ -11,19 +13,80 @@
 namespace anisomesh {
 namespace {
 
-using EdgeKey = std::pair<int, int>;
-EdgeKey key(int a, int b) { return a < b ? EdgeKey{a, b} : EdgeKey{b, a}; }
+// Boundary edges of the elements: the element edges used once, in the order of their
+// (smaller, larger) vertex pair. Linear time and 4 bytes per element edge: the edges are
+// bucketed by their smaller vertex (counting sort), each bucket (a few entries) sorted.
+template <class F>
+void forEachBoundaryEdge(const Mesh& mesh, F&& emit) {
+  const size_t nv = mesh.points.size();
+  const size_t halfEdges = 3 * mesh.triangles.size() + 4 * mesh.quads.size();
+  require(std::uint64_t(halfEdges) < (std::uint64_t(1) << 32) && std::uint64_t(nv) < (std::uint64_t(1) << 31),
+          ErrorCode::InvalidArgument, "the mesh is too large to extract its boundary");
+  auto forEachElementEdge = [&](auto&& f) {
+    auto visit = [&](const int* v, int n) {
+      for (int k = 0; k < n; ++k) f(v[k], v[(k + 1) % n]);
+    };
+    for (const auto& t : mesh.triangles) visit(t.data(), 3);
+    for (const auto& q : mesh.quads) visit(q.data(), 4);
+  };
+  std::vector<std::uint32_t> start(nv + 1, 0);
+  forEachElementEdge([&](int a, int b) {
+    if (a < 0 || b < 0 || size_t(a) >= nv || size_t(b) >= nv)
+      throw Error(ErrorCode::InvalidArgument, "an element refers to vertex " +
+                                                  std::to_string((a < 0 || size_t(a) >= nv ? a : b) + 1) + " of " +
+                                                  std::to_string(nv));
+    ++start[size_t(std::min(a, b)) + 1];
+  });
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  // Entry: larger vertex << 1 | 1 when the element runs from the larger to the smaller.
+  std::vector<std::uint32_t> other(halfEdges);
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  forEachElementEdge([&](int a, int b) {
+    const int lo = std::min(a, b), hi = std::max(a, b);
+    other[fill[size_t(lo)]++] = (std::uint32_t(hi) << 1) | (a == hi ? 1u : 0u);
+  });
+  std::vector<std::uint32_t>().swap(fill);
+  for (size_t v = 0; v < nv; ++v) {
+    std::uint32_t* b = other.data() + start[v];
+    std::uint32_t* e = other.data() + start[v + 1];
+    std::sort(b, e);
+    for (std::uint32_t* i = b; i < e;) {
+      std::uint32_t* j = i + 1;
+      while (j < e && (*j >> 1) == (*i >> 1)) ++j;
+      if (j - i == 1) {
+        const int hi = int(*i >> 1);
+        if (*i & 1u)
+          emit(hi, int(v));
+        else
+          emit(int(v), hi);
+      }
+      i = j;
+    }
+  }
+}
 
 }  // namespace
 
 std::vector<BoundaryLoop> boundaryLoopsFromMesh(const Mesh& mesh) {
   for (size_t i = 0; i < mesh.points.size(); ++i)
-    require(mesh.points[i].z() == 0.0, ErrorCode::InvalidDomain,
-            "remeshing needs a planar mesh (z = 0), vertex " + std::to_string(i + 1) +
-                " has z = " + std::to_string(mesh.points[i].z()));
-  std::map<EdgeKey, int> edgeRef;
-  for (size_t i = 0; i < mesh.edges.size(); ++i)
-    edgeRef[key(mesh.edges[i][0], mesh.edges[i][1])] = i < mesh.edgeRefs.size() ? mesh.edgeRefs[i] : 0;
+    if (mesh.points[i].z() != 0.0)  // (the message is built only on failure: 1M+ vertices)
+      throw Error(ErrorCode::InvalidDomain, "remeshing needs a planar mesh (z = 0), vertex " + std::to_string(i + 1) +
+                                                " has z = " + std::to_string(mesh.points[i].z()));
+  // The Edges section's references by (smaller, larger) vertex; of repeated edges the last.
+  std::vector<std::pair<std::uint64_t, int>> edgeRef;  // key, index into mesh.edges
+  edgeRef.reserve(mesh.edges.size());
+  auto key = [](int a, int b) {
+    return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
+  };
+  for (size_t i = 0; i < mesh.edges.size(); ++i) edgeRef.push_back({key(mesh.edges[i][0], mesh.edges[i][1]), int(i)});
+  std::sort(edgeRef.begin(), edgeRef.end());
+  auto refOf = [&](int a, int b) {
+    const std::uint64_t k = key(a, b);
+    auto it = std::upper_bound(edgeRef.begin(), edgeRef.end(), std::make_pair(k, INT_MAX));
+    if (it == edgeRef.begin() || (it - 1)->first != k) return 0;
+    const size_t i = size_t((it - 1)->second);
+    return i < mesh.edgeRefs.size() ? mesh.edgeRefs[i] : 0;
+  };
 
   // Directed boundary edges (a, b, ref).
   struct Directed {
@@ -31,39 +94,32 @@ std::vector<BoundaryLoop> boundaryLoopsFromMesh(const Mesh& mesh) {
   };
   std::vector<Directed> bnd;
   if (!mesh.triangles.empty() || !mesh.quads.empty()) {
-    std::map<EdgeKey, std::pair<int, EdgeKey>> uses;  // count, one directed instance
-    auto addElement = [&](const int* v, int n) {
-      for (int k = 0; k < n; ++k) {
-        const int a = v[k], b = v[(k + 1) % n];
-        auto& u = uses[key(a, b)];
-        ++u.first;
-        u.second = {a, b};
-      }
-    };
-    for (const auto& t : mesh.triangles) addElement(t.data(), 3);
-    for (const auto& q : mesh.quads) addElement(q.data(), 4);
-    for (const auto& u : uses)
-      if (u.second.first == 1) {
-        const auto it = edgeRef.find(u.first);
-        bnd.push_back({u.second.second.first, u.second.second.second, it == edgeRef.end() ? 0 : it->second});
-      }
+    forEachBoundaryEdge(mesh, [&](int a, int b) { bnd.push_back({a, b, refOf(a, b)}); });
   } else {
     for (size_t i = 0; i < mesh.edges.size(); ++i)
       bnd.push_back({mesh.edges[i][0], mesh.edges[i][1], i < mesh.edgeRefs.size() ? mesh.edgeRefs[i] : 0});
   }
   require(!bnd.empty(), ErrorCode::OpenContour, "the mesh has no boundary edges");
 
-  // Undirected chaining: every boundary vertex must have exactly two boundary edges.
-  std::map<int, std::vector<int>> incident;
-  for (int i = 0; i < int(bnd.size()); ++i) {
-    incident[bnd[i].a].push_back(i);
-    incident[bnd[i].b].push_back(i);
-  }
-  for (const auto& v : incident) {
-    const Vec3& p = mesh.points[size_t(v.first)];
-    require(v.second.size() == 2, ErrorCode::OpenContour,
-            "boundary vertex " + std::to_string(v.first + 1) + " " + formatPoint(p.head<2>()) + " has " +
-                std::to_string(v.second.size()) +
+  // Undirected chaining: every boundary vertex must have exactly two boundary edges
+  // (the first two incident edges kept per vertex, in the order of bnd).
+  const size_t nv = mesh.points.size();
+  std::vector<int> degree(nv, 0), inc0(nv, -1), inc1(nv, -1);
+  for (int i = 0; i < int(bnd.size()); ++i)
+    for (const int v : {bnd[size_t(i)].a, bnd[size_t(i)].b}) {
+      if (v < 0 || size_t(v) >= nv)
+        throw Error(ErrorCode::InvalidArgument,
+                    "an edge refers to vertex " + std::to_string(v + 1) + " of " + std::to_string(nv));
+      int& d = degree[size_t(v)];
+      (d == 0 ? inc0 : inc1)[size_t(v)] = d < 2 ? i : inc1[size_t(v)];
+      ++d;
+    }
+  for (size_t v = 0; v < nv; ++v) {
+    if (degree[v] == 0 || degree[v] == 2) continue;
+    const Vec3& p = mesh.points[v];
+    require(false, ErrorCode::OpenContour,
+            "boundary vertex " + std::to_string(v + 1) + " " + formatPoint(p.head<2>()) + " has " +
+                std::to_string(degree[v]) +
                 " boundary edges (2 expected): the boundary edges do not form closed loops");
   }
   std::vector<bool> used(bnd.size(), false);
@@ -77,8 +133,7 @@ std::vector<BoundaryLoop> boundaryLoopsFromMesh(const Mesh& mesh) {
       const int to = bnd[size_t(e)].a == from ? bnd[size_t(e)].b : bnd[size_t(e)].a;
       loop.points.push_back(mesh.points[size_t(from)].head<2>());
       loop.edgeRefs.push_back(bnd[size_t(e)].ref);
-      const auto& inc = incident[to];
-      e = inc[0] == e ? inc[1] : inc[0];
+      e = inc0[size_t(to)] == e ? inc1[size_t(to)] : inc0[size_t(to)];
       from = to;
     }
     require(loop.points.size() >= 3, ErrorCode::OpenContour, "a boundary loop has fewer than 3 edges");

@@ -40,6 +40,13 @@ struct ContinuousInsertionOptions {
   double threshold = 0.05;        // difference() between an element's nodes that splits it
   bool checkSamples = true;       // also compare interpolated and analytic metric inside elements
   double sampleThreshold = -1.0;  // difference() at samples that splits (< 0: same as threshold)
+  // > 0: elements whose longest side is below minMetricSize times the smallest size at
+  // their nodes are not split (the mesher cannot see variation below its edge length).
+  double minMetricSize = 0.0;
+  bool concurrent = false;  // f may be called from several threads: new nodes are evaluated in parallel
+  // When set: elements whose bounding box it rejects (outside the region the mesher will
+  // query, e.g. the carrier of a remesh) are not split.
+  std::function<bool(const Box2&)> domain;
 };
 
 // Continuous source (section 2.3): every free node takes f (intersected with its metric

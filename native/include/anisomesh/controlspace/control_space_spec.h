@@ -33,7 +33,14 @@ struct ControlSpaceSpec {
   double refineThreshold = 0.05;  // difference() that splits an element (continuous sources)
   double gradation = 0.0;         // dr; 0 = no smoothing
   std::vector<MetricSource> sources;
-  MetricFunction analytic;              // empty = none
+  MetricFunction analytic;          // empty = none
+  bool analyticConcurrent = false;  // analytic may be called from several threads at once
+  // > 0: continuous insertion leaves elements smaller than this times the smallest size
+  // requested at their nodes unsplit (their interpolation error is below one mesh edge).
+  double refineMinMetricSize = 0.0;
+  // When set: continuous insertion splits only elements whose box it accepts (the region
+  // the mesher will query); elsewhere the structure stays coarse.
+  std::function<bool(const Box2&)> analyticDomain;
   std::optional<Metric> defaultMetric;  // when no source/function: default isotropic(box diagonal / 10)
   double hmin = 0.0;                    // 0 = no lower clamp
   double hmax = 0.0;                    // 0 = no upper clamp

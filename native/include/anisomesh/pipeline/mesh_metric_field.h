@@ -18,6 +18,8 @@ class TriangleMeshMetricField : public ControlSpace {
   // nearest triangle found in the grid with its coordinates clamped to it.
   Metric metricAt(const Vec2& p) const override;
   Box2 bounds() const override { return box_; }
+  // True when b meets a grid cell holding a triangle (outside, the field is only extrapolated).
+  bool meets(const Box2& b) const;
 
  private:
   int cellIndex(int x, int y) const { return y * nx_ + x; }
@@ -29,6 +31,8 @@ class TriangleMeshMetricField : public ControlSpace {
   Vec2 cell_{1, 1};
   std::vector<int> cellStart_;  // CSR: triangles of cell c are cellTris_[cellStart_[c] .. cellStart_[c + 1])
   std::vector<int> cellTris_;
+  std::vector<int> coveredSum_;  // (nx + 1) x (ny + 1) summed-area table of the nonempty cells
+  std::vector<int> emptyRings_;  // per cell: Chebyshev distance (cells) to the nearest nonempty cell
 };
 
 }  // namespace anisomesh

@@ -73,8 +73,15 @@ struct RemeshOptions {
   double hgrad = 0.0;  // gradation ratio dr of the control space smoothing (0: off, else >= 1)
   RemeshMetricInsertion insertion = RemeshMetricInsertion::PiecewiseLinear;
   double refineThreshold = 0.2;  // PiecewiseLinear: metric difference that splits a control element
+  // PiecewiseLinear: control elements below this times the smallest requested size at their
+  // nodes are not split, so the control space grows with the output, not with the carrier
+  // (0: split down to the carrier's resolution).
+  double refineMinMetricSize = 0.5;
   double queryCache = 0.0;       // section 4 query cache tolerance (metric distance); 0: off
   PlanarMesherOptions mesher;
+  // Called as each stage starts ("boundary", "control space", "discretization", "meshing"):
+  // progress lines and per-stage timings (CLI -v).
+  std::function<void(const char* stage)> onStage;
 };
 
 // The background-mesh control space of a remeshing run (buildAdaptiveControlSpace with

@@ -1,0 +1,32 @@
+#pragma once
+// A small fork-join layer over std::thread for the stages that parallelise (reading,
+// control-space evaluation, the quality report, writing). Work is cut into chunks whose
+// boundaries depend on the work size only, never on the number of threads, and results
+// are combined in chunk order: the output is the same for any thread count.
+//
+// Why std::thread and not oneTBB: the parallel stages are a handful of flat loops run once
+// per stage (thread start-up, ~50 us, is noise against them), the WebAssembly build must
+// compile the same sources without threads, and a dependency would have to be built for
+// both targets. The WebAssembly build always runs on one thread.
+#include <cstddef>
+#include <functional>
+
+namespace anisomesh {
+
+// Worker threads used by parallelChunks / parallelInvoke (process-wide; default 1).
+int threadCount();
+// Sets the worker threads, clamped to [1, 256] (always 1 in the WebAssembly build).
+void setThreadCount(int threads);
+
+// Calls f(chunk, begin, end) for the chunks [k * grain, min(n, (k + 1) * grain)) of [0, n),
+// on up to threadCount() threads. f must only write what its chunk owns. If calls throw,
+// the exception of the lowest chunk is rethrown after every thread has finished.
+void parallelChunks(size_t n, size_t grain, const std::function<void(size_t chunk, size_t begin, size_t end)>& f);
+
+// Number of chunks parallelChunks cuts [0, n) into.
+inline size_t chunkCount(size_t n, size_t grain) { return grain == 0 ? 0 : (n + grain - 1) / grain; }
+
+// Runs a and b, concurrently when threadCount() > 1; rethrows a's exception first.
+void parallelInvoke(const std::function<void()>& a, const std::function<void()>& b);
+
+}  // namespace anisomesh
