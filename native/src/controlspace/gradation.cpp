@@ -1,6 +1,7 @@
 // Gradation smoothing of a control space (section 2.5): the slope a_max, the pairwise rule
 // limiting a neighbour's metric, the work-set propagation over the structure.
 #include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/core/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +14,7 @@ namespace anisomesh {
 
 double gradationSlope(double ratio) {
   require(std::isfinite(ratio) && ratio >= 1.0, ErrorCode::InvalidArgument,
-          "gradation ratio dr must be finite and >= 1, got " + std::to_string(ratio));
+          "gradation ratio dr must be finite and >= 1, got " + numberText(ratio));
   return 2.0 * (ratio - 1.0) / (ratio + 1.0);
 }
 

@@ -1,9 +1,11 @@
 #include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/json_syntax.h"
 
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/control_space_export.h"
 #include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
+#include "anisomesh/surface/patch_params.h"
 #include "anisomesh/surface/surface_case_json.h"
 
 namespace anisomesh {
@@ -11,6 +13,7 @@ namespace anisomesh {
 bool isSurfaceCase(const std::string& jsonText) { return isSurfaceCaseJson(jsonText); }
 
 CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
+  checkJsonSyntax(jsonText);  // one clean message for planar and surface cases
   CaseRun run;
   if (isSurfaceCaseJson(jsonText)) {
     SurfaceCaseSpec spec = parseSurfaceCaseJson(jsonText);
@@ -24,6 +27,10 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
     run.stats = surfaceMeshReportToJson(report);
     run.elementQuality = std::move(report.elementQuality);
     run.glyphs = std::move(report.controlSpaceGlyphs);
+    if (options.patchParams) {
+      run.elementPatch = elementPatches(spec.model, run.mesh);
+      run.cornerParams = patchCornerParams(spec.model, run.mesh);
+    }
     // The keys every report has (planar reports carry the same), measured in 3D here.
     const nlohmann::json& q = run.stats["quality3d"];
     run.stats["quads"] = run.mesh.quads.size();

@@ -27,6 +27,7 @@ struct RunCaseOptions {
   bool inspectControlSpace = false;  // also export the final control space (nodes, cells) as JSON
   bool vertexMetrics = false;        // planar: also the final control space's metric at every vertex
   bool controlSpaceGlyphs = false;   // surface: also CaseRun::glyphs (the final control spaces drawn)
+  bool patchParams = false;          // surface: also CaseRun::elementPatch and CaseRun::cornerParams
   bool stats = true;                 // planar: false leaves CaseRun::stats null (caseRunStats() later)
   // Called with a fraction in [0, 1] while meshing; returning false cancels (ErrorCode::Cancelled).
   std::function<bool(double)> progress;
@@ -41,6 +42,8 @@ struct CaseRun {
   std::unique_ptr<AdaptiveControlSpace> finalSpace;  // planar: the control space meshed with
   std::vector<double> elementQuality;                // surface: 3D quality per element (triangles, then quads)
   std::vector<ControlSpaceGlyph> glyphs;             // surface: with RunCaseOptions::controlSpaceGlyphs
+  std::vector<int> elementPatch;                     // surface, patchParams: patch index per element
+  std::vector<Vec2> cornerParams;                    // surface, patchParams: (u, v) per element corner in its patch
   PipelineReport report;                             // planar: stage times and section 3.2 counts
 };
 
