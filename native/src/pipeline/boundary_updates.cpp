@@ -248,6 +248,7 @@ std::vector<char> keepValidContours(std::vector<BoundaryLoop>& loops, const std:
   // that crosses one is re-discretized too.
   for (size_t round = 0; round <= loops.size(); ++round) {
     std::vector<std::vector<Vec2>> polygons;
+    polygons.reserve(loops.size());
     for (const BoundaryLoop& l : loops) polygons.push_back(l.points);
     PolygonCrossing x;
     if (!findPolygonCrossing(polygons, &x)) break;
