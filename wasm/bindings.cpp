@@ -18,6 +18,7 @@
 
 #include "anisomesh/anisomesh.h"
 #include "anisomesh/controlspace/adaptive_control_space.h"
+#include "anisomesh/core/version.h"
 #include "anisomesh/geometry/expression.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/control_space_export.h"
@@ -610,7 +611,7 @@ class ControlSpaceHandle {
   std::shared_ptr<const ControlSpace> cs_;
 };
 
-std::string version() { return "0.1.0"; }
+std::string version() { return anisomesh::version(); }
 
 // Bytes of the wasm heap in use by malloc and the heap's total size: lets tests and
 // users check that repeated runs leak nothing.

@@ -9,6 +9,7 @@
 
 #include "adapt_command.h"
 #include "anisomesh/anisomesh.h"
+#include "anisomesh/core/version.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/medit.h"
@@ -236,7 +237,7 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   try {
     if (cmd == "--version") {
-      std::cout << "anisomesh 0.1.0\n";
+      std::cout << "anisomesh " << anisomesh::version() << "\n";
       return 0;
     }
     if (cmd == "--help" || cmd == "-h") return usage(std::cout, 0);

@@ -110,7 +110,7 @@ std::vector<SourcePiece> sourcePieces(const std::vector<MetricSource>& sources, 
       const double tol = 0.25 * std::max(s->radius, s->metric.sizes().h1);
       std::vector<Vec2> pts;
       auto eval = [&](double t) {
-        const Vec2 p = s->curve(t);
+        Vec2 p = s->curve(t);
         checkPoint(p, "curve source point");
         return p;
       };
