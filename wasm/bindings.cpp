@@ -626,7 +626,7 @@ val memoryStats() {
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(anisomesh) {
-  emscripten::function("version", &version);
+  emscripten::function("version", static_cast<std::string (*)()>(&version));
   emscripten::function("metricCreate", &metricCreate);
   emscripten::function("metricIntersect", &metricIntersect);
   emscripten::function("metricInterpolate", &metricInterpolate);
