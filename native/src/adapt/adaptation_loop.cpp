@@ -95,9 +95,9 @@ std::vector<double> sampleField(const Mesh& mesh, const FieldFunction& f) {
   std::vector<double> v(mesh.points.size());
   for (size_t i = 0; i < v.size(); ++i) {
     v[i] = f(mesh.points[i].head<2>());
-    require(std::isfinite(v[i]), ErrorCode::InvalidArgument,
-            "field: the function is not finite at vertex " + std::to_string(i + 1) + " " +
-                formatPoint(mesh.points[i].head<2>()));
+    if (!std::isfinite(v[i]))
+      throw Error(ErrorCode::InvalidArgument, "field: the function is not finite at vertex " + std::to_string(i + 1) +
+                                                  " " + formatPoint(mesh.points[i].head<2>()));
   }
   return v;
 }

@@ -71,26 +71,28 @@ void validateField(const Mesh& mesh, const std::vector<double>& field) {
   require(int(field.size()) == mesh.vertexCount(), ErrorCode::InvalidArgument,
           "field: " + std::to_string(field.size()) + " values for " + std::to_string(mesh.vertexCount()) + " vertices");
   require(mesh.elementCount() > 0, ErrorCode::InvalidArgument, "field: the mesh has no triangles or quadrilaterals");
+  // (Messages are built only on failure: these loops run once per vertex and element.)
   for (size_t i = 0; i < field.size(); ++i)
-    require(
-        std::isfinite(field[i]), ErrorCode::InvalidArgument,
-        "field: the value at vertex " + std::to_string(i + 1) + " is not finite (" + std::to_string(field[i]) + ")");
+    if (!std::isfinite(field[i]))
+      throw Error(ErrorCode::InvalidArgument, "field: the value at vertex " + std::to_string(i + 1) +
+                                                  " is not finite (" + std::to_string(field[i]) + ")");
   const int n = mesh.vertexCount();
   for (size_t i = 0; i < mesh.points.size(); ++i)
-    require(mesh.points[i].z() == 0.0 && std::isfinite(mesh.points[i].x()) && std::isfinite(mesh.points[i].y()),
-            ErrorCode::InvalidDomain,
-            "field: vertex " + std::to_string(i + 1) + " is not a finite planar point (z = 0)");
+    if (!(mesh.points[i].z() == 0.0 && std::isfinite(mesh.points[i].x()) && std::isfinite(mesh.points[i].y())))
+      throw Error(ErrorCode::InvalidDomain,
+                  "field: vertex " + std::to_string(i + 1) + " is not a finite planar point (z = 0)");
   auto check = [&](const int* v, int k, size_t index, const char* kind) {
     double area2 = 0;
     for (int a = 0; a < k; ++a) {
-      require(v[a] >= 0 && v[a] < n, ErrorCode::InvalidArgument,
-              std::string("field: ") + kind + " " + std::to_string(index + 1) + " has a vertex out of range");
+      if (v[a] < 0 || v[a] >= n)
+        throw Error(ErrorCode::InvalidArgument,
+                    std::string("field: ") + kind + " " + std::to_string(index + 1) + " has a vertex out of range");
       const Vec3 &p = mesh.points[size_t(v[a])], &q = mesh.points[size_t(v[(a + 1) % k])];
       area2 += p.x() * q.y() - p.y() * q.x();
     }
-    require(area2 > 0, ErrorCode::InvalidDomain,
-            std::string("field: ") + kind + " " + std::to_string(index + 1) +
-                (area2 < 0 ? " is inverted (clockwise)" : " has zero area"));
+    if (!(area2 > 0))
+      throw Error(ErrorCode::InvalidDomain, std::string("field: ") + kind + " " + std::to_string(index + 1) +
+                                                (area2 < 0 ? " is inverted (clockwise)" : " has zero area"));
   };
   for (size_t t = 0; t < mesh.triangles.size(); ++t) check(mesh.triangles[t].data(), 3, t, "triangle");
   for (size_t q = 0; q < mesh.quads.size(); ++q) check(mesh.quads[q].data(), 4, q, "quadrilateral");
@@ -168,9 +170,10 @@ RecoveredDerivatives recoverHessian(const Mesh& mesh, const std::vector<double>&
       out.hessianNoise[size_t(i)] = 1e3 * eps * fmax * (t.transpose() * t).norm();
       solved = true;
     }
-    require(solved, ErrorCode::InvalidArgument,
-            "Hessian recovery: the patch of vertex " + std::to_string(i + 1) + " " + formatPoint(xi) +
-                " does not determine a quadratic (its vertices are nearly collinear)");
+    if (!solved)
+      throw Error(ErrorCode::InvalidArgument,
+                  "Hessian recovery: the patch of vertex " + std::to_string(i + 1) + " " + formatPoint(xi) +
+                      " does not determine a quadratic (its vertices are nearly collinear)");
   }
   return out;
 }
