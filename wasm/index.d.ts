@@ -14,6 +14,7 @@ export type AnisomeshErrorCode =
   | 'PARSE_ERROR'
   | 'IO_ERROR'
   | 'CANCELLED'
+  | 'OUT_OF_MEMORY'
   | 'INTERNAL';
 
 /** Thrown by every call that fails. The module stays usable afterwards. */

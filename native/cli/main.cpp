@@ -1,4 +1,5 @@
 // anisomesh command-line interface (native).
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -25,15 +26,19 @@ int usage(std::ostream& os, int code) {
   os << "usage: anisomesh <command> [options]\n"
         "commands:\n"
         "  mesh CASE.json -o OUT [--quads] [--all-quads] [--stats] [--max-elements N] [--no-updates]\n"
+        "      [--max-control-nodes N] [--max-input-bytes N]\n"
         "                            mesh a JSON case, planar or surface (OUT: .mesh, .vtk, .obj or .svg)\n"
         "      [--svg-uv] [--svg-view AZ,EL] [--svg-control-space]\n"
         "                            .svg of a surface: 3D view from azimuth AZ, elevation EL (degrees;\n"
         "                            default -63,34), or the parameter plane; control-space ellipses over it\n"
         "  remesh IN.mesh -sol IN.sol -o OUT [-hgrad R] [-hmin H] [-hmax H] [--stats] [--max-elements N]\n"
+        "      [--max-control-nodes N] [--max-input-bytes N]\n"
         "                            remesh the domain of IN.mesh under the metric IN.sol, used as\n"
         "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1)\n"
         "  metric ALPHA H1 H2        print the metric tensor for sizes (h1, h2) at angle ALPHA (radians)\n"
         "  --version                 print the version\n"
+        "--max-control-nodes: control-space node budget (default: max-elements / 8 + 65536);\n"
+        "--max-input-bytes: larger input files are refused (default 536870912).\n"
         "--stats prints one JSON object on stdout. Errors: exit 1 (bad input), 2 (bad usage).\n";
   return code;
 }
@@ -53,9 +58,19 @@ double parseNumber(const std::string& option, const char* text) {
 
 long long parseCount(const std::string& option, const char* text) {
   char* end = nullptr;
+  errno = 0;
   const long long v = std::strtoll(text, &end, 10);
-  if (end == text || *end != '\0' || v <= 0)
+  if (end == text || *end != '\0' || v <= 0 || errno == ERANGE)
     throw UsageError{option + " expects a positive integer, got '" + text + "'"};
+  return v;
+}
+
+// A finite number (any sign) for the positional argument named name.
+double parseReal(const std::string& name, const char* text) {
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !std::isfinite(v))
+    throw UsageError{name + " expects a finite number, got '" + text + "'"};
   return v;
 }
 
@@ -124,7 +139,7 @@ int runMesh(int argc, char** argv) {
   Args args(argc, argv);
   std::string input, output;
   bool stats = false, quads = false, allQuads = false, updates = true;
-  long long maxElements = -1;
+  long long maxElements = -1, maxControlNodes = -1;
   SvgChoice svg;
   while (!args.done()) {
     const std::string a = args.next();
@@ -156,6 +171,10 @@ int runMesh(int argc, char** argv) {
       updates = false;
     else if (a == "--max-elements")
       maxElements = parseCount(a, args.value(a));
+    else if (a == "--max-control-nodes")
+      maxControlNodes = parseCount(a, args.value(a));
+    else if (a == "--max-input-bytes")
+      setDefaultMaxInputBytes(parseCount(a, args.value(a)));
     else if (!a.empty() && a[0] == '-')
       throw UsageError{"unknown option '" + a + "' for mesh"};
     else if (input.empty())
@@ -171,10 +190,11 @@ int runMesh(int argc, char** argv) {
   if (quads) o.quads = true;
   if (allQuads) o.allQuads = true;
   o.maxElements = maxElements;
+  o.maxControlNodes = maxControlNodes;
   o.controlSpaceUpdates = updates;
   o.controlSpaceGlyphs = svg.controlSpace && isSvg(output);
-  const CaseRun run = runCase(readTextFile(input), o);
-  writeOutput(output, run, svg);
+  const CaseRun run = runCase(withStage("reading the case file", [&] { return readTextFile(input); }), o);
+  withStage("writing the output", [&] { writeOutput(output, run, svg); });
   if (stats) std::cout << run.stats.dump() << "\n";
   return 0;
 }
@@ -200,6 +220,10 @@ int runRemesh(int argc, char** argv) {
       stats = true;
     else if (a == "--max-elements")
       options.mesher.maxElements = parseCount(a, args.value(a));
+    else if (a == "--max-control-nodes")
+      options.maxControlNodes = parseCount(a, args.value(a));
+    else if (a == "--max-input-bytes")
+      setDefaultMaxInputBytes(parseCount(a, args.value(a)));
     else if (!a.empty() && a[0] == '-')
       throw UsageError{"unknown option '" + a + "' for remesh"};
     else if (input.empty())
@@ -214,14 +238,15 @@ int runRemesh(int argc, char** argv) {
     throw UsageError{"-hmin must not exceed -hmax"};
   if (options.hgrad > 0 && options.hgrad < 1) throw UsageError{"-hgrad expects a ratio >= 1 (or 0: off)"};
 
-  const Mesh in = readMeditFile(input);
-  const std::vector<Metric> metrics = solToMetrics(readSolFile(sol), in.vertexCount());
+  const Mesh in = withStage("reading IN.mesh", [&] { return readMeditFile(input); });
+  const std::vector<Metric> metrics =
+      withStage("reading IN.sol", [&] { return solToMetrics(readSolFile(sol), in.vertexCount()); });
   PipelineReport report;
   std::unique_ptr<AdaptiveControlSpace> cs;
   CaseRun run;
   run.mesh = remesh(in, metrics, options, &report, &cs);
   run.finalSpace = std::move(cs);
-  writeOutput(output, run, SvgChoice{});
+  withStage("writing the output", [&] { writeOutput(output, run, SvgChoice{}); });
   if (stats) std::cout << pipelineStatsJson(run.mesh, *run.finalSpace, report).dump() << "\n";
   return 0;
 }
@@ -239,7 +264,8 @@ int main(int argc, char** argv) {
     if (cmd == "--help" || cmd == "-h") return usage(std::cout, 0);
     if (cmd == "metric") {
       if (argc != 5) return usage(std::cerr, 2);
-      const auto m = anisomesh::Metric::fromSizes(std::stod(argv[2]), std::stod(argv[3]), std::stod(argv[4]));
+      const auto m = anisomesh::Metric::fromSizes(parseReal("metric ALPHA", argv[2]), parseReal("metric H1", argv[3]),
+                                                  parseReal("metric H2", argv[4]));
       const auto t = m.tensor();
       std::cout << "{\"m11\":" << t(0, 0) << ",\"m12\":" << t(0, 1) << ",\"m22\":" << t(1, 1) << "}\n";
       return 0;
@@ -254,8 +280,11 @@ int main(int argc, char** argv) {
   } catch (const anisomesh::Error& e) {
     std::cerr << "anisomesh: error " << anisomesh::errorCodeName(e.code()) << ": " << e.what() << "\n";
     return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "anisomesh: error OUT_OF_MEMORY: out of memory\n";
+    return 1;
   } catch (const std::exception& e) {
-    std::cerr << "anisomesh: error: " << e.what() << "\n";
+    std::cerr << "anisomesh: error INTERNAL: " << e.what() << "\n";
     return 1;
   }
 }

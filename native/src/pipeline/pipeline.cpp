@@ -15,6 +15,7 @@
 #include "anisomesh/core/portable_math.h"
 #include "anisomesh/geometry/discretize.h"
 #include "anisomesh/pipeline/case_control_space.h"
+#include "anisomesh/pipeline/element_estimate.h"
 #include "anisomesh/pipeline/mesh_metric_field.h"
 #include "anisomesh/pipeline/remesh_geometry.h"
 
@@ -233,11 +234,15 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   r.secondsGeometry = secondsSince(t);
 
   t = Clock::now();
-  std::unique_ptr<AdaptiveControlSpace> cs = buildCaseControlSpace(spec);
+  std::unique_ptr<AdaptiveControlSpace> cs =
+      withStage("control-space construction", [&] { return buildCaseControlSpace(spec, progress); });
   r.secondsControlSpace = secondsSince(t);
   const MetricFunction analytic = caseAnalyticMetric(spec);
   PlanarMesherOptions mesher = mesherOptionsFromCase(spec);
   mesher.progress = progress;
+  withStage("element estimate", [&] {
+    checkElementEstimate(spec.domain, *cs, mesher.maxElements, "element estimate before contour discretization");
+  });
   DiscretizeOptions d;
   d.maxSegments = std::max<std::int64_t>(1, mesher.maxElements);
 
@@ -246,7 +251,7 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   r.updatesConverged = true;
   for (int round = 0;; ++round) {
     t = Clock::now();
-    loops = discretizeDomain(spec.domain, *cs, d);
+    loops = withStage("contour discretization", [&] { return discretizeDomain(spec.domain, *cs, d); });
     r.secondsDiscretization += secondsSince(t);
     r.updateRounds = round + 1;
     if (!updates.enabled) break;
@@ -276,13 +281,16 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
     b.timings = nullptr;
     // The update rounds report no progress of their own but can still be cancelled.
     if (progress) b.progress = [&progress](double) { return progress(0.0); };
-    const Mesh boundaryMesh = meshPlanarBoundary(loops, *cs, b);
-    const int gaps = proximitySources(loops, boundaryMesh, *cs, updates, &sources);
+    int gaps = 0, refined = 0;
+    withStage("section 3.2 control-space updates", [&] {
+      const Mesh boundaryMesh = meshPlanarBoundary(loops, *cs, b);
+      gaps = proximitySources(loops, boundaryMesh, *cs, updates, &sources);
+      refined = refineNearSegments(*cs, shortOnes, analytic);
+      if (!sources.empty() || refined > 0) addCaseSources(*cs, spec, sources);
+    });
     r.chordSources += chords;
     r.proximitySources += gaps;
-    const int refined = refineNearSegments(*cs, shortOnes, analytic);
     r.refinedElements += refined;
-    if (!sources.empty() || refined > 0) addCaseSources(*cs, spec, sources);
     r.secondsUpdates += secondsSince(t);
     // Nothing changed: the discretization is final (contours whose lengths stay outside
     // [1/2, 2], e.g. curves shorter than half a size, cannot improve by re-discretizing).
@@ -295,7 +303,7 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   t = Clock::now();
   PlanarMesherOptions finalOptions = mesher;
   finalOptions.timings = &r.mesherTimings;
-  Mesh mesh = meshPlanarBoundary(loops, *cs, finalOptions);
+  Mesh mesh = withStage("meshing", [&] { return meshPlanarBoundary(loops, *cs, finalOptions); });
   r.secondsMeshing = secondsSince(t);
   if (controlSpace) *controlSpace = std::move(cs);
   return mesh;
@@ -335,6 +343,9 @@ std::unique_ptr<AdaptiveControlSpace> buildRemeshControlSpace(const Mesh& input,
   s.hmin = options.hmin;
   s.hmax = options.hmax;
   s.gradation = options.hgrad;
+  s.limits.maxNodes =
+      options.maxControlNodes > 0 ? options.maxControlNodes : controlSpaceNodeBudget(options.mesher.maxElements);
+  s.limits.progress = options.mesher.progress;
   return buildAdaptiveControlSpace(s);
 }
 
@@ -347,20 +358,25 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
   validateDomain(domain);
   r.secondsGeometry = secondsSince(t);
   t = Clock::now();
-  std::unique_ptr<AdaptiveControlSpace> cs = buildRemeshControlSpace(input, metrics, options);
+  std::unique_ptr<AdaptiveControlSpace> cs =
+      withStage("control-space construction", [&] { return buildRemeshControlSpace(input, metrics, options); });
   r.secondsControlSpace = secondsSince(t);
   r.controlElements = cs->elementCount();
   r.controlNodes = cs->nodeCount();
+  withStage("element estimate", [&] {
+    checkElementEstimate(domain, *cs, options.mesher.maxElements, "element estimate before contour discretization");
+  });
   t = Clock::now();
   DiscretizeOptions d;
   d.maxSegments = std::max<std::int64_t>(1, options.mesher.maxElements);
-  const std::vector<BoundaryLoop> loops = discretizeDomain(domain, *cs, d);
+  const std::vector<BoundaryLoop> loops =
+      withStage("contour discretization", [&] { return discretizeDomain(domain, *cs, d); });
   r.secondsDiscretization = secondsSince(t);
   countBoundary(loops, report);
   t = Clock::now();
   PlanarMesherOptions finalOptions = options.mesher;
   finalOptions.timings = &r.mesherTimings;
-  Mesh mesh = meshPlanarBoundary(loops, *cs, finalOptions);
+  Mesh mesh = withStage("meshing", [&] { return meshPlanarBoundary(loops, *cs, finalOptions); });
   r.secondsMeshing = secondsSince(t);
   if (controlSpace) *controlSpace = std::move(cs);
   return mesh;

@@ -82,7 +82,8 @@ struct RemeshOptions {
   double hmax = 0.0;   // clamp every requested size to <= hmax (0: off)
   double hgrad = 0.0;  // gradation ratio dr of the control space smoothing (0: off, else >= 1)
   RemeshMetricInsertion insertion = RemeshMetricInsertion::PiecewiseLinear;
-  double refineThreshold = 0.2;  // PiecewiseLinear: metric difference that splits a control element
+  double refineThreshold = 0.2;      // PiecewiseLinear: metric difference that splits a control element
+  std::int64_t maxControlNodes = 0;  // control-space node budget; 0: controlSpaceNodeBudget(mesher.maxElements)
   PlanarMesherOptions mesher;
 };
 
