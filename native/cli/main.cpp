@@ -37,7 +37,7 @@ int usage(std::ostream& os, int code) {
         "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1)\n"
         "  metric ALPHA H1 H2        print the metric tensor for sizes (h1, h2) at angle ALPHA (radians)\n"
         "  --version                 print the version\n"
-        "--max-control-nodes: control-space node budget (default: max-elements / 8 + 65536);\n"
+        "--max-control-nodes: control-space node budget (default: max-elements / 64 + 262144);\n"
         "--max-input-bytes: larger input files are refused (default 536870912).\n"
         "--stats prints one JSON object on stdout. Errors: exit 1 (bad input), 2 (bad usage).\n";
   return code;

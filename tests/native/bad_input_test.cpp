@@ -62,7 +62,7 @@ std::string generatedDir() {
       const int n = 1000000;
       char buf[64];
       for (int i = 0; i <= n; ++i) {
-        const double t = 2.0 * M_PI * (i % n) / n;
+        const double t = 6.283185307179586 * (i % n) / n;
         std::snprintf(buf, sizeof buf, "%s[%.12f,%.12f]", i ? "," : "", std::cos(t), std::sin(t));
         f << buf;
       }

@@ -1,5 +1,6 @@
 // Bounds on control-space construction: the node budget checked before each batch of
 // splits, and the time-throttled progress callback that makes refinement cancellable.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -10,7 +11,7 @@
 namespace anisomesh {
 
 std::int64_t controlSpaceNodeBudget(std::int64_t maxElements) {
-  return std::max<std::int64_t>(0, maxElements) / 8 + 65536;
+  return std::max<std::int64_t>(0, maxElements) / 64 + 262144;
 }
 
 void AdaptiveControlSpace::checkRefinementEstimate(std::int64_t splits, double nodesPerSplit) const {

@@ -79,7 +79,7 @@ class PathTracker : public nlohmann::json_sax<json> {
 
 std::string jsonOverflowPath(const std::string& text) {
   PathTracker t;
-  json::sax_parse(text, &t, json::input_format_t::json, false);
+  (void)json::sax_parse(text, &t, json::input_format_t::json, false);
   return t.overflowPath;
 }
 

@@ -1,5 +1,6 @@
 #include "anisomesh/pipeline/run_case.h"
 
+#include "anisomesh/core/error.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/control_space_export.h"
 #include "anisomesh/io/json_text.h"

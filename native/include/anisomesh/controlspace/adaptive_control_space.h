@@ -62,12 +62,12 @@ using NewNodesCallback = std::function<void(int first, int last)>;
 struct ControlSpaceLimits {
   // Node budget: refine() estimates each batch of splits first and throws
   // ElementBudgetExceeded (naming the estimate) when it would pass this many nodes.
-  std::int64_t maxNodes = 6315000;  // controlSpaceNodeBudget() of the default element budget (50 million)
+  std::int64_t maxNodes = 6315000;  // standalone structures; pipelines set controlSpaceNodeBudget()
   // Called with 0 at least every ~50 ms of refinement work; returning false throws Cancelled.
   std::function<bool(double)> progress;
 };
 
-// The node budget derived from an element budget: an eighth of it plus 65536 (a control
+// The node budget derived from an element budget: a 64th of it plus 262144 (a control
 // space needs far fewer nodes than the mesh has elements; the examples use at most 124k).
 std::int64_t controlSpaceNodeBudget(std::int64_t maxElements);
 
