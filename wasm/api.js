@@ -2,14 +2,18 @@
 // It hides embind: plain objects in, plain objects and typed arrays out, and every
 // failure of the core thrown as an AnisomeshError carrying the core's code.
 
+// One class for the ESM entry points and the CommonJS one (wasm/index.cjs), whichever loads
+// first: `instanceof AnisomeshError` holds across them.
+const errorKey = Symbol.for('anisomesh.AnisomeshError');
+
 /** Error thrown by every anisomesh call that fails; `code` is stable (e.g. "INVALID_METRIC"). */
-export class AnisomeshError extends Error {
+export const AnisomeshError = (globalThis[errorKey] ??= class AnisomeshError extends Error {
   constructor(code, message) {
     super(message);
     this.name = 'AnisomeshError';
     this.code = code;
   }
-}
+});
 
 function unwrap(result) {
   if (result && typeof result.error === 'string') throw new AnisomeshError(result.error, result.message);
@@ -45,6 +49,16 @@ function caseText(c, name = 'case') {
   return JSON.stringify(c);
 }
 
+// A surface case (examples/SURFACE_FORMAT.md) has top-level "patches" (isSurfaceCaseJson in the core).
+function isSurfaceCaseText(text) {
+  try {
+    const c = JSON.parse(text);
+    return c !== null && typeof c === 'object' && !Array.isArray(c) && 'patches' in c;
+  } catch {
+    return false;  // the core reports the parse error
+  }
+}
+
 const meshArrays = {
   vertices: Float64Array, params: Float64Array, triangles: Uint32Array, quads: Uint32Array, edges: Uint32Array,
   vertexRefs: Int32Array, triangleRefs: Int32Array, quadRefs: Int32Array, edgeRefs: Int32Array,
@@ -75,6 +89,67 @@ function checkMetrics(metrics, vertexCount, name = 'metrics') {
     throw argError(`${name}: ${metrics.length / 3} tensors (length ${metrics.length}) for ${vertexCount} vertices`);
   }
   return metrics;
+}
+
+// Fields for metricFromField/adapt: a non-empty array of Float64Array, vertexCount values each.
+function checkFieldValues(fields, vertexCount) {
+  const list = fields instanceof Float64Array ? [fields] : fields;
+  if (!Array.isArray(list) || list.length === 0) throw argError('fields: expected a non-empty array of Float64Array (or of expressions in x, y)');
+  list.forEach((f, i) => {
+    if (!(f instanceof Float64Array)) throw argError(`fields[${i}]: expected a Float64Array of one value per vertex`);
+    if (f.length !== vertexCount) throw argError(`fields[${i}]: ${f.length} values for ${vertexCount} vertices`);
+  });
+  return list;
+}
+
+// Options of metricFromField/adapt, checked for type (ranges are the core's).
+function checkAdaptOptions(options) {
+  if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+  const out = {};
+  for (const key of ['err', 'nv', 'hmin', 'hmax', 'anisomax', 'hgrad', 'maxElements', 'iterations']) {
+    const v = options[key];
+    if (v === undefined) continue;
+    if (!(typeof v === 'number' && Number.isFinite(v) && v >= 0)) throw argError(`options.${key}: expected a finite nonnegative number`);
+    out[key] = v;
+  }
+  if (out.iterations !== undefined && !(Number.isInteger(out.iterations) && out.iterations >= 1)) {
+    throw argError('options.iterations: expected a positive integer');
+  }
+  if (options.relative !== undefined) out.relative = Boolean(options.relative);
+  if (options.norm !== undefined) {
+    const n = String(options.norm);
+    if (!['1', '2', 'inf'].includes(n)) throw argError(`options.norm: expected 1, 2 or 'inf', got ${options.norm}`);
+    out.norm = n;
+  }
+  if (options.shape !== undefined) {
+    if (!['anisotropic', 'isotropic', 'uniform'].includes(options.shape)) {
+      throw argError("options.shape: expected 'anisotropic', 'isotropic' or 'uniform'");
+    }
+    out.shape = options.shape;
+  }
+  return out;
+}
+
+// options.svg: true or { uv, view: [azimuth, elevation] in degrees, controlSpace }, passed to
+// the core as { uv, azimuth, elevation (radians), controlSpace }.
+function checkSvgOption(svg) {
+  if (svg === undefined || svg === false) return undefined;
+  if (svg === true) return {};
+  if (svg === null || typeof svg !== 'object') throw argError('options.svg: expected true or { uv?, view?, controlSpace? }');
+  const out = {};
+  for (const key of ['uv', 'controlSpace']) {
+    if (svg[key] !== undefined && typeof svg[key] !== 'boolean') throw argError(`options.svg.${key}: expected a boolean`);
+    if (svg[key]) out[key] = true;
+  }
+  if (svg.view !== undefined) {
+    const v = svg.view;
+    if (!Array.isArray(v) || v.length !== 2 || !v.every((x) => typeof x === 'number' && Number.isFinite(x))) {
+      throw argError('options.svg.view: expected [azimuth, elevation] in degrees');
+    }
+    out.azimuth = v[0] * 0.017453292519943295;
+    out.elevation = v[1] * 0.017453292519943295;
+  }
+  return out;
 }
 
 // Frees control spaces the user forgot to dispose(), once they are garbage collected.
@@ -179,17 +254,24 @@ export function wrapCore(core) {
       if (maxElements !== undefined && !(Number.isInteger(maxElements) && maxElements > 0)) {
         throw argError('options.maxElements: expected a positive integer');
       }
-      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates']) {
+      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates', 'vtu', 'controlSpaceGlyphs', 'patchParams']) {
         if (options[key] !== undefined && typeof options[key] !== 'boolean') throw argError(`options.${key}: expected a boolean`);
       }
-      const r = unwrap(core.meshCase(caseText(c), options));
+      const svg = checkSvgOption(options.svg);
+      const r = unwrap(core.meshCase(caseText(c), { ...options, svg }));
       return {
         mesh: r.mesh,
+        ...(svg !== undefined ? { svg: r.svg } : {}),
+        ...(options.vtu ? { vtu: r.vtu } : {}),
         stats: r.stats === null ? null : JSON.parse(r.stats),
         controlSpace: r.controlSpace ? JSON.parse(r.controlSpace) : null,
         vertexMetrics: r.vertexMetrics,
         measures: r.measures,
         timings: r.timings,
+        // Surface cases only, when asked for: the final control spaces drawn as ellipses
+        // ({ patch, offsets, uv, xyz }), each element's patch and its corners' (u, v) in it.
+        ...(r.glyphs ? { glyphs: r.glyphs } : {}),
+        ...(r.elementPatch ? { elementPatch: r.elementPatch, cornerParams: r.cornerParams } : {}),
       };
     },
     /**
@@ -203,9 +285,9 @@ export function wrapCore(core) {
     /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22). */
     remesh(mesh, metrics, options = {}) {
       checkMesh(mesh);
-      checkMetrics(metrics, mesh.vertices.length / mesh.dimension);
+      if (metrics !== null) checkMetrics(metrics, mesh.vertices.length / mesh.dimension);
       if (options === null || typeof options !== 'object') throw argError('options: expected an object');
-      for (const key of ['hmin', 'hmax', 'hgrad']) {
+      for (const key of ['hmin', 'hmax', 'hgrad', 'hsiz']) {
         const v = options[key];
         if (v !== undefined && !(typeof v === 'number' && Number.isFinite(v) && v >= 0)) {
           throw argError(`options.${key}: expected a finite nonnegative number`);
@@ -214,8 +296,30 @@ export function wrapCore(core) {
       if (options.maxElements !== undefined && !(Number.isInteger(options.maxElements) && options.maxElements > 0)) {
         throw argError('options.maxElements: expected a positive integer');
       }
-      const r = unwrap(core.remesh(mesh, metrics, options));
-      return { mesh: r.mesh, stats: JSON.parse(r.stats) };
+      if (options.onProgress !== undefined && typeof options.onProgress !== 'function') throw argError('options.onProgress: expected a function');
+      const svg = checkSvgOption(options.svg);
+      const r = unwrap(core.remesh(mesh, metrics, { ...options, svg }));
+      return { mesh: r.mesh, stats: JSON.parse(r.stats), ...(svg !== undefined ? { svg: r.svg } : {}), ...(options.vtu ? { vtu: r.vtu } : {}) };
+    },
+    /**
+     * The metric of one or several fields (Float64Array of one value per vertex each) on a
+     * planar mesh: Hessian recovery, then error level (err) or target vertex count (nv).
+     */
+    metricFromField(mesh, fields, options = {}) {
+      checkMesh(mesh);
+      const values = checkFieldValues(fields, mesh.vertices.length / mesh.dimension);
+      return unwrap(core.metricFromField(mesh, values, checkAdaptOptions(options)));
+    },
+    /**
+     * Adapts a planar mesh to fields: per-vertex values (Float64Array, transferred between
+     * iterations) or expressions in x, y (strings, re-sampled on every mesh).
+     */
+    adapt(mesh, fields, options = {}) {
+      checkMesh(mesh);
+      const list = Array.isArray(fields) ? fields : [fields];
+      const expressions = list.every((f) => typeof f === 'string') ? list : [];
+      const values = expressions.length ? [] : checkFieldValues(list, mesh.vertices.length / mesh.dimension);
+      return unwrap(core.adapt(mesh, values, expressions, checkAdaptOptions(options)));
     },
     /** The mesh as text: 'mesh' (Medit), 'vtk', 'obj' or 'svg'. */
     writeMesh(mesh, format = 'mesh') {
@@ -249,11 +353,34 @@ export function wrapCore(core) {
       }
       return unwrap(core.checkExpression(text, u, v, variables[0], variables[1])).value;
     },
-    /** Builds the control space of a case (its controlSpace, sources and domain); call dispose() when done. */
-    createControlSpace(c) {
+    /**
+     * A planar case's "domain" ({ outer, holes }, examples/CASE_FORMAT.md) from an SVG
+     * drawing: its closed paths, polygons, rects, circles and ellipses (lines, arcs,
+     * quadratic and cubic Beziers), the one outermost shape the outer contour and the shapes
+     * inside it holes, scaled so the larger side is options.size (y flipped to stay upright
+     * unless options.flipY is false).
+     */
+    domainFromSvg(text, options = {}) {
+      if (typeof text !== 'string') throw argError('text: expected the SVG document as a string');
+      if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+      const { size = 1, flipY = true } = options;
+      if (typeof size !== 'number' || !(size > 0) || !Number.isFinite(size)) throw argError('options.size: expected a positive number');
+      if (typeof flipY !== 'boolean') throw argError('options.flipY: expected a boolean');
+      return JSON.parse(unwrap(core.domainFromSvg(text, size, flipY)).json);
+    },
+    /**
+     * Builds the control space of a case (its controlSpace, sources and domain); for a
+     * surface case (with "patches") the initial control space of one patch in its (u, v)
+     * plane (options.patch, default 0). Call dispose() when done.
+     */
+    createControlSpace(c, options = {}) {
+      if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+      const { patch = 0 } = options;
+      if (!Number.isInteger(patch) || patch < 0) throw argError('options.patch: expected a non-negative integer');
+      const text = caseText(c);
       const handle = new core.ControlSpaceHandle();
       try {
-        unwrap(handle.build(caseText(c)));
+        unwrap(isSurfaceCaseText(text) ? handle.buildPatch(text, patch) : handle.build(text));
       } catch (e) {
         handle.delete();
         throw e;

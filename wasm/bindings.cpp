@@ -18,17 +18,23 @@
 
 #include "anisomesh/anisomesh.h"
 #include "anisomesh/controlspace/adaptive_control_space.h"
+#include "anisomesh/core/version.h"
 #include "anisomesh/geometry/expression.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/control_space_export.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/io/mesh_formats.h"
 #include "anisomesh/io/svg.h"
+#include "anisomesh/io/svg_import.h"
 #include "anisomesh/mesh/quality.h"
 #include "anisomesh/pipeline/case_control_space.h"
+#include "anisomesh/pipeline/case_svg.h"
+#include "anisomesh/pipeline/case_vtu.h"
+#include "anisomesh/pipeline/input_size_metrics.h"
 #include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/surface/surface_case_json.h"
 
 using emscripten::val;
 using namespace anisomesh;
@@ -242,7 +248,9 @@ MeshFormat formatFromName(const std::string& name) {
   if (name == "mesh" || name == "medit") return MeshFormat::Medit;
   if (name == "vtk") return MeshFormat::Vtk;
   if (name == "obj") return MeshFormat::Obj;
-  throw Error(ErrorCode::InvalidArgument, "unknown mesh format '" + name + "' (expected mesh, vtk or obj)");
+  if (name == "msh") return MeshFormat::Gmsh;
+  if (name == "msh2") return MeshFormat::Gmsh22;
+  throw Error(ErrorCode::InvalidArgument, "unknown mesh format '" + name + "' (expected mesh, vtk, obj, msh or msh2)");
 }
 
 // Per-edge metric lengths, per-element metric qualities (triangles, then quads) and the
@@ -273,6 +281,30 @@ val meshMeasures(const Mesh& mesh, const ControlSpace* cs) {
   return out;
 }
 
+// Surface control-space glyphs (ellipses of the final per-patch control spaces) as flat
+// arrays: patch per glyph, offsets (glyph g has points offsets[g] .. offsets[g + 1]),
+// uv (2 per point) and xyz (3 per point, Float32 for WebGL).
+val glyphsToJs(const std::vector<ControlSpaceGlyph>& glyphs) {
+  std::vector<int> patch, offsets{0};
+  std::vector<double> uv;
+  std::vector<float> xyz;
+  for (const ControlSpaceGlyph& g : glyphs) {
+    patch.push_back(g.patch);
+    for (size_t k = 0; k < g.uv.size(); ++k) {
+      uv.insert(uv.end(), {g.uv[k].x(), g.uv[k].y()});
+      const Vec3 x = k < g.xyz.size() ? g.xyz[k] : Vec3::Zero();
+      xyz.insert(xyz.end(), {float(x.x()), float(x.y()), float(x.z())});
+    }
+    offsets.push_back(int(uv.size() / 2));
+  }
+  val out = val::object();
+  out.set("patch", typedCopy(patch.data(), patch.size()));
+  out.set("offsets", typedCopy(offsets.data(), offsets.size()));
+  out.set("uv", typedCopy(uv.data(), uv.size()));
+  out.set("xyz", typedCopy(xyz.data(), xyz.size()));
+  return out;
+}
+
 // The last planar run made with stats: false, kept for caseStats() (one at a time: the
 // web worker asks for the report right after it has sent the mesh on).
 CaseRun& lastRun() {
@@ -284,6 +316,21 @@ CaseRun& lastRun() {
 // false), controlSpace (JSON text or null), vertexMetrics, measures, timings }.
 // options: { inspectControlSpace, vertexMetrics, measures, stats, quads, allQuads,
 // maxElements, controlSpaceUpdates, onProgress(fraction) -> false to cancel }.
+// options.svg ({ uv, azimuth, elevation } in radians, or true): the run's .svg picture.
+bool wantsSvg(const val& options) {
+  return options["svg"].isTrue() || options["svg"].typeOf().as<std::string>() == "object";
+}
+
+CaseSvgOptions svgOptions(const val& options) {
+  CaseSvgOptions o;
+  const val svg = options["svg"];
+  if (svg.typeOf().as<std::string>() != "object") return o;
+  o.uv = svg["uv"].isTrue();
+  if (svg["azimuth"].isNumber()) o.azimuth = svg["azimuth"].as<double>();
+  if (svg["elevation"].isNumber()) o.elevation = svg["elevation"].as<double>();
+  return o;
+}
+
 val meshCaseJson(std::string jsonText, val options) {
   return guarded([&] {
     const double t0 = emscripten_get_now();
@@ -298,6 +345,9 @@ val meshCaseJson(std::string jsonText, val options) {
     if (options["maxElements"].isNumber())
       o.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
     if (options["controlSpaceUpdates"].isFalse()) o.controlSpaceUpdates = false;
+    o.controlSpaceGlyphs = options["controlSpaceGlyphs"].isTrue() ||
+                           (wantsSvg(options) && options["svg"]["controlSpace"].isTrue());
+    o.patchParams = options["patchParams"].isTrue();
     const val onProgress = options["onProgress"];
     if (onProgress.typeOf().as<std::string>() == "function")
       o.progress = [onProgress](double fraction) { return !onProgress(fraction).isFalse(); };
@@ -305,6 +355,8 @@ val meshCaseJson(std::string jsonText, val options) {
     const double t1 = emscripten_get_now();
     val out = val::object();
     out.set("mesh", meshToJs(run.mesh));
+    if (wantsSvg(options)) out.set("svg", caseRunSvg(run, svgOptions(options)));
+    if (options["vtu"].isTrue()) out.set("vtu", caseRunVtu(run));
     out.set("stats", run.stats.is_null() ? val::null() : val(run.stats.dump()));
     out.set("controlSpace",
             o.inspectControlSpace && !run.controlSpace.is_null() ? val(run.controlSpace.dump()) : val::null());
@@ -312,7 +364,22 @@ val meshCaseJson(std::string jsonText, val options) {
             run.vertexMetrics.empty() ? val::null() : typedCopy(run.vertexMetrics.data(), run.vertexMetrics.size()));
     const double t2 = emscripten_get_now();
     if (measures) {
-      out.set("measures", meshMeasures(run.mesh, run.finalSpace.get()));
+      val m = meshMeasures(run.mesh, run.finalSpace.get());
+      if (!run.elementQuality.empty()) {  // surface: the 3D quality of each element from the run
+        const std::vector<float> quality(run.elementQuality.begin(), run.elementQuality.end());
+        m.set("quality", typedCopy(quality.data(), quality.size()));
+      }
+      out.set("measures", m);
+    }
+    if (o.controlSpaceGlyphs) out.set("glyphs", glyphsToJs(run.glyphs));
+    if (o.patchParams) {
+      std::vector<double> corners(2 * run.cornerParams.size());
+      for (size_t i = 0; i < run.cornerParams.size(); ++i) {
+        corners[2 * i] = run.cornerParams[i].x();
+        corners[2 * i + 1] = run.cornerParams[i].y();
+      }
+      out.set("elementPatch", typedCopy(run.elementPatch.data(), run.elementPatch.size()));
+      out.set("cornerParams", typedCopy(corners.data(), corners.size()));
     }
     const double t3 = emscripten_get_now();
     // Milliseconds: the case run (parse, control space, section 3.2 rounds, meshing, and
@@ -401,7 +468,13 @@ val writeSolText(val metrics) {
 val remeshJs(val mesh, val metrics, val options) {
   return guarded([&] {
     const Mesh input = meshFromJs(mesh);
-    const std::vector<Metric> m = metricsFromFlat(emscripten::convertJSArrayToNumberVector<double>(metrics));
+    // metrics null: isotropic sizes from the mesh itself (options.hsiz everywhere, else
+    // each vertex's mean incident edge length), as the CLI does without -sol.
+    const double hsiz = options["hsiz"].isNumber() ? options["hsiz"].as<double>() : 0.0;
+    const std::vector<Metric> m = !metrics.isNull()
+                                      ? metricsFromFlat(emscripten::convertJSArrayToNumberVector<double>(metrics))
+                                  : hsiz > 0 ? uniformMetrics(input, hsiz)
+                                             : edgeLengthMetrics(input);
     require(
         m.size() == input.points.size(), ErrorCode::InvalidArgument,
         "metrics: " + std::to_string(m.size()) + " tensors for " + std::to_string(input.points.size()) + " vertices");
@@ -411,15 +484,131 @@ val remeshJs(val mesh, val metrics, val options) {
     if (options.hasOwnProperty("hgrad")) o.hgrad = options["hgrad"].as<double>();
     if (options.hasOwnProperty("maxElements"))
       o.mesher.maxElements = static_cast<std::int64_t>(options["maxElements"].as<double>());
+    const val onProgress = options["onProgress"];
+    if (onProgress.typeOf().as<std::string>() == "function")
+      o.mesher.progress = [onProgress](double fraction) { return !onProgress(fraction).isFalse(); };
     PipelineReport report;
     std::unique_ptr<AdaptiveControlSpace> cs;
-    const Mesh out = remesh(input, m, o, &report, &cs);
+    CaseRun run;
+    run.mesh = remesh(input, m, o, &report, &cs);
+    run.finalSpace = std::move(cs);
     val r = val::object();
-    r.set("mesh", meshToJs(out));
+    r.set("mesh", meshToJs(run.mesh));
+    if (wantsSvg(options)) r.set("svg", caseRunSvg(run, svgOptions(options)));
+    if (options["vtu"].isTrue()) r.set("vtu", caseRunVtu(run));
     // The same report as the native CLI's remesh --stats.
-    const nlohmann::json stats = pipelineStatsJson(out, *cs, report);
+    const nlohmann::json stats = pipelineStatsJson(run.mesh, *run.finalSpace, report);
     r.set("stats", stats.dump());
     return r;
+  });
+}
+
+// Field-metric and adaptation options from a plain object (api.js has checked the types):
+// { err, relative, nv, norm: 1 | 2 | 'inf', shape, hmin, hmax, anisomax, maxElements,
+//   iterations, hgrad }.
+AdaptOptions adaptOptionsFromJs(const val& js) {
+  AdaptOptions o;
+  FieldMetricOptions& m = o.metric;
+  auto num = [&js](const char* key, double* out) {
+    if (js.hasOwnProperty(key)) *out = js[key].as<double>();
+  };
+  num("err", &m.err);
+  num("nv", &m.targetVertices);
+  num("hmin", &m.hmin);
+  num("hmax", &m.hmax);
+  num("anisomax", &m.anisomax);
+  num("hgrad", &o.hgrad);
+  if (js.hasOwnProperty("relative")) m.relativeError = js["relative"].as<bool>();
+  if (js.hasOwnProperty("maxElements")) m.maxElements = static_cast<std::int64_t>(js["maxElements"].as<double>());
+  if (js.hasOwnProperty("iterations")) o.iterations = js["iterations"].as<int>();
+  if (js.hasOwnProperty("norm")) {
+    const std::string n = js["norm"].as<std::string>();
+    m.norm = n == "1" ? ErrorNorm::L1 : n == "2" ? ErrorNorm::L2 : ErrorNorm::Linf;
+  }
+  if (js.hasOwnProperty("shape")) {
+    const std::string sh = js["shape"].as<std::string>();
+    m.shape = sh == "isotropic" ? MetricShape::Isotropic
+              : sh == "uniform" ? MetricShape::Uniform
+                                : MetricShape::Anisotropic;
+  }
+  return o;
+}
+
+// Per-vertex values (Float64Array each) from a JS array.
+std::vector<std::vector<double>> fieldsFromJs(const val& fields) {
+  std::vector<std::vector<double>> out;
+  const int n = fields["length"].as<int>();
+  for (int i = 0; i < n; ++i) out.push_back(emscripten::convertJSArrayToNumberVector<double>(fields[i]));
+  return out;
+}
+
+// The metric of fields on mesh: { metrics (m11, m12, m22 per vertex), complexity, expectedVertices, hmin, hmax }.
+val metricFromFieldJs(val mesh, val fields, val options) {
+  return guarded([&] {
+    const Mesh input = meshFromJs(mesh);
+    const FieldMetric fm = metricFromFields(input, fieldsFromJs(fields), adaptOptionsFromJs(options).metric);
+    std::vector<double> flat;
+    flat.reserve(3 * fm.metrics.size());
+    for (const Metric& m : fm.metrics) {
+      const Mat2 t = m.tensor();
+      flat.push_back(t(0, 0));
+      flat.push_back(t(0, 1));
+      flat.push_back(t(1, 1));
+    }
+    val r = val::object();
+    r.set("metrics", typedCopy(flat.data(), flat.size()));
+    r.set("complexity", fm.complexity);
+    r.set("expectedVertices", fm.expectedVertices);
+    r.set("hmin", fm.hmin);
+    r.set("hmax", fm.hmax);
+    return r;
+  });
+}
+
+// The adaptation loop: fields are per-vertex values (transferred) or expressions in x, y
+// (re-sampled); { mesh, fields, iterations }.
+val adaptJs(val mesh, val fields, val expressions, val options) {
+  return guarded([&] {
+    const Mesh input = meshFromJs(mesh);
+    const AdaptOptions o = adaptOptionsFromJs(options);
+    AdaptResult r;
+    const int ne = expressions["length"].as<int>();
+    if (ne > 0) {
+      std::vector<FieldFunction> fns;
+      for (int i = 0; i < ne; ++i) {
+        ExpressionOptions eo;
+        eo.name = "field";
+        eo.uName = "x";
+        eo.vName = "y";
+        const Expression e = Expression::parse(expressions[i].as<std::string>(), eo);
+        fns.push_back([e](const Vec2& p) { return e.value(p.x(), p.y()); });
+      }
+      r = adaptToFunctions(input, fns, o);
+    } else {
+      r = adaptToFields(input, fieldsFromJs(fields), o);
+    }
+    val out = val::object();
+    out.set("mesh", meshToJs(r.mesh));
+    val fs = val::array();
+    for (const auto& f : r.fields) fs.call<void>("push", typedCopy(f.data(), f.size()));
+    out.set("fields", fs);
+    val its = val::array();
+    for (const AdaptIteration& it : r.iterations) {
+      val j = val::object();
+      j.set("vertices", it.vertices);
+      j.set("triangles", it.triangles);
+      j.set("complexity", it.complexity);
+      j.set("expectedVertices", it.expectedVertices);
+      j.set("estimatedError", it.estimatedError);
+      if (it.errorLinf >= 0) {
+        j.set("errorLinf", it.errorLinf);
+        j.set("errorL2", it.errorL2);
+      }
+      j.set("seconds", it.seconds);
+      its.call<void>("push", j);
+    }
+    out.set("iterations", its);
+    return out;
   });
 }
 
@@ -448,6 +637,22 @@ class ControlSpaceHandle {
       cs_ = buildCaseControlSpace(spec);
       val out = val::object();
       out.set("ok", true);
+      return out;
+    });
+  }
+  // The initial control space (section 3.1) of patch `patch` of a surface case
+  // (buildPatchControlSpace: curvature metric, its sources, contour curvature, 3D sources).
+  val buildPatch(std::string jsonText, int patch) {
+    return guarded([&] {
+      const SurfaceCaseSpec spec = parseSurfaceCaseJson(jsonText);
+      const int n = int(spec.model.patches.size());
+      require(patch >= 0 && patch < n, ErrorCode::InvalidArgument,
+              "patch " + std::to_string(patch) + " out of range (the case has " + std::to_string(n) + " patches)");
+      cs_ = std::shared_ptr<const ControlSpace>(
+          buildPatchControlSpace(spec.model.patches[size_t(patch)], spec.model.sources3d, spec.options));
+      val out = val::object();
+      out.set("ok", true);
+      out.set("patches", n);
       return out;
     });
   }
@@ -507,7 +712,19 @@ class ControlSpaceHandle {
   std::shared_ptr<const ControlSpace> cs_;
 };
 
-std::string version() { return "0.1.0"; }
+// A planar domain (JSON text of a case's "domain") from an SVG drawing (io/svg_import.h).
+val domainFromSvg(std::string svgText, double size, bool flipY) {
+  return guarded([&] {
+    SvgImportOptions o;
+    o.size = size;
+    o.flipY = flipY;
+    val out = val::object();
+    out.set("json", domainJsonFromSvg(svgText, o).dump());
+    return out;
+  });
+}
+
+std::string version() { return anisomesh::version(); }
 
 // Bytes of the wasm heap in use by malloc and the heap's total size: lets tests and
 // users check that repeated runs leak nothing.
@@ -533,15 +750,19 @@ EMSCRIPTEN_BINDINGS(anisomesh) {
   emscripten::function("meshCase", &meshCaseJson);
   emscripten::function("caseStats", &caseStats);
   emscripten::function("remesh", &remeshJs);
+  emscripten::function("metricFromField", &metricFromFieldJs);
+  emscripten::function("adapt", &adaptJs);
   emscripten::function("writeMesh", &writeMeshText);
   emscripten::function("readMesh", &readMeshText);
   emscripten::function("readSol", &readSolText);
   emscripten::function("writeSol", &writeSolText);
   emscripten::function("checkExpression", &checkExpression);
+  emscripten::function("domainFromSvg", &domainFromSvg);
   emscripten::class_<ControlSpaceHandle>("ControlSpaceHandle")
       .constructor<>()
       .function("build", &ControlSpaceHandle::build)
       .function("buildMinimum", &ControlSpaceHandle::buildMinimum)
+      .function("buildPatch", &ControlSpaceHandle::buildPatch)
       .function("metricsAt", &ControlSpaceHandle::metricsAt)
       .function("inspect", &ControlSpaceHandle::inspect)
       .function("toVtk", &ControlSpaceHandle::toVtk);

@@ -12,4 +12,5 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
     -DANISOMESH_BUILD_TESTS=OFF -DANISOMESH_BUILD_BENCHMARKS=OFF >/dev/null
 fi
 cmake --build "$build" -j"$(nproc)"
+node "$root/wasm/embed.mjs"   # the base64 copy the browser entry falls back to
 ls -l "$root/wasm/dist/"anisomesh-core.* | awk '{print "built " $9 " (" $5 " bytes)"}'

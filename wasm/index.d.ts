@@ -15,7 +15,9 @@ export type AnisomeshErrorCode =
   | 'IO_ERROR'
   | 'CANCELLED'
   | 'OUT_OF_MEMORY'
-  | 'INTERNAL';
+  | 'INTERNAL'
+  /** JS only: the .wasm could not be fetched or instantiated (loadAnisomesh; retrying is allowed). */
+  | 'WASM_LOAD_FAILED';
 
 /** Thrown by every call that fails. The module stays usable afterwards. */
 export class AnisomeshError extends Error {
@@ -69,24 +71,224 @@ export interface MeshArrays {
   edgeRefs?: Int32Array;
 }
 
-/** A JSON case (examples/CASE_FORMAT.md): domain, controlSpace, sources, options. */
-export type Case = Record<string, unknown>;
+export type Point2 = readonly [number, number];
+export type Point3 = readonly [number, number, number];
 
-/** The quality report of a mesh, measured in the metric it was asked to follow. */
-export interface MeshStats {
+/** A metric in a case: size h1 along the direction at angle alpha (radians, default 0), h2 across (default h1). */
+export interface CaseMetric {
+  alpha?: number;
+  h1: number;
+  h2?: number;
+}
+
+interface CurveCommon {
+  /** Medit reference of the boundary edges (default 1 outer, k + 2 for holes[k]). */
+  ref?: number;
+  reversed?: boolean;
+}
+/** A boundary curve (examples/CASE_FORMAT.md, "Curves"). */
+export type Curve =
+  | (CurveCommon & { type: 'line'; p1: Point2; p2: Point2 })
+  | (CurveCommon & { type: 'arc'; center: Point2; radius: number; start: number; end: number })
+  | (CurveCommon & { type: 'arc'; points: readonly [Point2, Point2, Point2] })
+  | (CurveCommon & { type: 'circle'; center: Point2; radius: number })
+  | (CurveCommon & { type: 'polyline'; points: readonly Point2[] })
+  | (CurveCommon & { type: 'bezier'; points: readonly [Point2, Point2, Point2, Point2] })
+  | (CurveCommon & { type: 'bspline'; points: readonly Point2[] });
+
+/** A metric source in the plane (planar cases) or in a patch's (u, v) plane (radial, segment, polyline). */
+export type Source =
+  | { type: 'radial'; center: Point2; metric: CaseMetric; radius: number }
+  | { type: 'segment'; p1: Point2; p2: Point2; metric: CaseMetric; radius: number }
+  | { type: 'polyline'; points: readonly Point2[]; metric: CaseMetric; radius: number }
+  | { type: 'nodes'; points: readonly Point2[]; metrics: readonly CaseMetric[] }
+  | { type: 'analytic'; field: 'boundary_layer'; p1: Point2; p2: Point2; h0: number; hTangent: number; thickness: number }
+  | { type: 'analytic'; field: 'shear_layer_circle'; center: Point2; radius: number; h0: number; hTangent: number; thickness: number }
+  | { type: 'analytic'; field: 'point'; center: Point2; h0: number; growth: number }
+  | { type: 'analytic'; field: 'expression'; h1: string | number; alpha?: string | number; h2?: string | number };
+
+/** A planar case (examples/CASE_FORMAT.md). */
+export interface PlanarCase {
+  name?: string;
+  description?: string;
+  domain: { outer: readonly Curve[]; holes?: readonly (readonly Curve[])[] };
+  controlSpace: {
+    kind?: 'quadtree' | 'background';
+    hmin?: number;
+    hmax: number;
+    /** dr >= 1; null or absent: no gradation smoothing. */
+    gradation?: number | null;
+    interpolation?: 'bilinear' | 'serendipity' | 'linear' | 'inverse_distance';
+    refineThreshold?: number;
+    maxLevel?: number;
+  };
+  sources?: readonly Source[];
+  options?: { quads?: boolean; allQuads?: boolean; maxElements?: number };
+  /** Planar cases have no patches: this is what tells the two kinds apart. */
+  patches?: never;
+}
+
+/** A parametric surface (examples/SURFACE_FORMAT.md, "Surfaces"); domain [[u0, u1], [v0, v1]] where given. */
+export type Surface =
+  | { type: 'expression'; x: string; y: string; z: string; domain: readonly [Point2, Point2] }
+  | { type: 'heightfield'; z: string; domain: readonly [Point2, Point2] }
+  | { type: 'p2'; domain?: readonly [Point2, Point2] }
+  | { type: 'plane'; origin?: Point3; a1?: Point3; a2?: Point3; domain?: readonly [Point2, Point2] }
+  | { type: 'sphere'; radius?: number; center?: Point3; domain?: readonly [Point2, Point2] }
+  | { type: 'cylinder'; radius?: number; center?: Point3; domain?: readonly [Point2, Point2] }
+  | { type: 'torus'; majorRadius?: number; minorRadius?: number; center?: Point3; domain?: readonly [Point2, Point2] }
+  | { type: 'bezier'; points: readonly (readonly Point3[])[]; domain?: readonly [Point2, Point2] };
+
+/** One patch of a surface case: a surface (or the name of one in surfaces) and its (u, v) domain. */
+export interface Patch {
+  name?: string;
+  id?: number;
+  surface: Surface | string;
+  outer?: readonly Curve[];
+  holes?: readonly (readonly Curve[])[];
+  sources?: readonly Extract<Source, { type: 'radial' | 'segment' | 'polyline' }>[];
+}
+
+/** A curve of a patch's contour: contour 0 is the outer one, k + 1 holes[k]. */
+export interface CurveRef {
+  patch: string | number;
+  contour?: number;
+  curve: number;
+}
+
+/** A surface case (examples/SURFACE_FORMAT.md). */
+export interface SurfaceCase {
+  name?: string;
+  description?: string;
+  metric?: {
+    chordTolerance?: number;
+    chordSafety?: number;
+    angleTolerance?: number;
+    hmin?: number;
+    hmax?: number;
+    maxAspectRatio?: number;
+    gradation?: number | null;
+    contourCurvature?: boolean;
+  };
+  adaptation?: boolean;
+  options?: { maxElements?: number; maxRounds?: number; improvementPasses?: number; quads?: boolean; allQuads?: boolean };
+  surfaces?: Record<string, Surface>;
+  patches: readonly Patch[];
+  shared?: readonly { a: CurveRef; b: CurveRef; reversed?: boolean }[];
+  sources3d?: readonly { type: 'radial'; center: Point3; h: number; radius: number }[];
+}
+
+/** A JSON case: planar (no "patches") or surface (with "patches"). */
+export type Case = PlanarCase | SurfaceCase;
+
+/** Edge metric lengths of a report (unit length: the requested size). */
+export interface EdgeLengthStats {
+  min: number;
+  max: number;
+  mean: number;
+  /** Fraction of edges of metric length in [1/sqrt2, sqrt2]. */
+  fractionWithinSqrt2: number;
+}
+
+/** The quality report of a planar case or a remesh run, measured in the final control space. */
+export interface PlanarMeshStats {
   vertices: number;
   triangles: number;
   quads: number;
+  /** Distinct element edges. */
   edges: number;
   inverted: number;
   degenerate: number;
-  [key: string]: unknown;
+  boundaryLoops: number;
+  boundaryPoints: number;
+  controlNodes: number;
+  controlElements: number;
+  largestNeighbourSizeRatio: number;
+  edgeLength: EdgeLengthStats & { 'fractionWithin0.6_1.3': number };
+  quality: {
+    min: number;
+    mean: number;
+    triangleMin: number;
+    triangleMean: number;
+    quadMin: number;
+    quadMean: number;
+    /** Ten bins of metric quality over [0, 1]. */
+    histogram: number[];
+  };
+  /** Section 3.2 control-space updates. */
+  boundaryUpdates: {
+    rounds: number;
+    converged: boolean;
+    invalidSegments: number;
+    shortSegments: number;
+    chordSources: number;
+    proximitySources: number;
+    refinedElements: number;
+    maxChordDeviation: number;
+  };
+  pipelineSeconds: Record<string, number>;
+  timings: Record<string, number>;
+  notes: string[];
 }
 
-export interface CaseResult {
+/** The quality report of a surface case, measured in 3D (patches, Algorithm 1's rounds). */
+export interface SurfaceMeshStats {
+  vertices: number;
+  triangles: number;
+  quads: number;
+  inverted: number;
+  patches: number;
+  patchTriangles: number[];
+  rounds: number;
+  sharedEdges: number;
+  invalidations: number;
+  crossSharedSizeRatioMax: number;
+  edgeLength: EdgeLengthStats;
+  quality: { min: number; mean: number };
+  quality3d: {
+    edges: number;
+    inverted: number;
+    qualityMin: number;
+    qualityMean: number;
+    edgeLengthMin: number;
+    edgeLengthMax: number;
+    edgeLengthMean: number;
+    edgesWithinSqrt2: number;
+    chordDeviationMax: number;
+    chordDeviationMaxRelative: number;
+    edgeChordDeviationMax: number;
+    isoChordDeviationMax: number;
+  };
+  controlSpaceQueries: number;
+  controlSpaceSeconds: number;
+  curvatureEvaluations: number;
+  curvatureSeconds: number;
+  secondsTotal: number;
+}
+
+/** The quality report of a mesh: planar or surface (tell them apart with 'patches' in stats). */
+export type MeshStats = PlanarMeshStats | SurfaceMeshStats;
+
+/**
+ * Ellipses of the final control spaces of a surface case, at control elements inside
+ * each patch (half the requested sizes along the axes): glyph g has the points
+ * offsets[g] .. offsets[g + 1] - 1, in its patch's (u, v) (uv) and mapped to 3D (xyz).
+ */
+export interface ControlSpaceGlyphs {
+  patch: Int32Array;
+  offsets: Int32Array;
+  uv: Float64Array;
+  xyz: Float32Array;
+}
+
+export interface CaseResult<S extends MeshStats = MeshStats> {
   mesh: MeshArrays;
   /** The quality report; null for a planar run with stats: false (see caseStats()). */
-  stats: MeshStats | null;
+  stats: S | null;
+  /** With options.svg: the .svg picture (as the CLI draws it). */
+  svg?: string;
+  /** With options.vtu: the .vtu text (VTK XML, as the CLI writes it). */
+  vtu?: string;
   /** The control space's nodes and cells (with inspectControlSpace), else null. */
   controlSpace: Record<string, unknown> | null;
   /** Planar cases with vertexMetrics: the final control space's m11, m12, m22 at every vertex, else null. */
@@ -94,9 +296,16 @@ export interface CaseResult {
   /**
    * With measures: the distinct element edges (a < b pairs), and for planar cases the metric
    * length of each edge, the metric quality of each element (triangles, then quads) and the
-   * smallest requested size at each vertex, measured as the quality report measures them.
+   * smallest requested size at each vertex, measured as the quality report measures them;
+   * for surface cases the 3D metric quality of each element (the report's quality3d).
    */
   measures?: { edges: Uint32Array; edgeLength?: Float32Array; quality?: Float32Array; vertexH?: Float32Array };
+  /** Surface cases with controlSpaceGlyphs: the final per-patch control spaces drawn as ellipses. */
+  glyphs?: ControlSpaceGlyphs;
+  /** Surface cases with patchParams: the patch index of each element (triangles, then quads). */
+  elementPatch?: Int32Array;
+  /** Surface cases with patchParams: (u, v) of each element corner in its own patch (3 per triangle, then 4 per quad). */
+  cornerParams?: Float64Array;
   /** Milliseconds spent in the core: the case run, copying the results out, the measures. */
   timings: { runMs: number; outputMs: number; measuresMs: number };
 }
@@ -113,7 +322,39 @@ export interface ControlSpace {
   dispose(): void;
 }
 
-export type MeshFormat = 'mesh' | 'vtk' | 'obj';
+/** Options of adapt() and metricFromField(): exactly one of err or nv. */
+export interface AdaptOptions {
+  /** Error level: M = 2 c |H| / err (c = 2/9). */
+  err?: number;
+  /** err relative to the field's range. */
+  relative?: boolean;
+  /** Target vertex count (L^p continuous-mesh metric). */
+  nv?: number;
+  norm?: 1 | 2 | 'inf';
+  shape?: 'anisotropic' | 'isotropic' | 'uniform';
+  hmin?: number;
+  hmax?: number;
+  anisomax?: number;
+  /** Gradation ratio dr of the control space (0: off). */
+  hgrad?: number;
+  iterations?: number;
+  maxElements?: number;
+}
+
+/** One adaptation iteration's figures (errorLinf/errorL2 for expression fields only). */
+export interface AdaptIteration {
+  vertices: number;
+  triangles: number;
+  complexity: number;
+  expectedVertices: number;
+  estimatedError: number;
+  errorLinf?: number;
+  errorL2?: number;
+  seconds: number;
+}
+
+/** 'msh': Gmsh 4.1 ASCII, 'msh2': Gmsh 2.2 ASCII (readMesh takes either as 'msh'). */
+export type MeshFormat = 'mesh' | 'vtk' | 'obj' | 'msh' | 'msh2';
 
 export interface MeshCaseOptions {
   /** Also return the final control space's nodes and cells (planar cases). */
@@ -131,8 +372,47 @@ export interface MeshCaseOptions {
   maxElements?: number;
   /** Planar cases: run the paper's section 3.2 control-space update loop (default true). */
   controlSpaceUpdates?: boolean;
+  /** Surface cases: also return CaseResult.glyphs (the final control spaces drawn). */
+  controlSpaceGlyphs?: boolean;
+  /** Surface cases: also return CaseResult.elementPatch and CaseResult.cornerParams. */
+  patchParams?: boolean;
   /** Progress in [0, 1]; return false to cancel. */
   onProgress?: (fraction: number) => boolean | void;
+  /** Also return the .svg picture (CaseResult.svg), drawn as the CLI draws it. */
+  svg?: boolean | SvgOptions;
+  /** Also return the .vtu text (CaseResult.vtu) with metric, size, quality and edge-length fields. */
+  vtu?: boolean;
+}
+
+/** How the .svg picture is drawn (the CLI's --svg-uv, --svg-view, --svg-control-space). */
+export interface SvgOptions {
+  /** Surfaces in the parameter plane instead of a 3D view. */
+  uv?: boolean;
+  /** 3D view [azimuth, elevation] in degrees (default [-63, 34]). */
+  view?: readonly [number, number];
+  /** Surfaces: the control spaces' metric ellipses over the mesh. */
+  controlSpace?: boolean;
+}
+
+export interface RemeshOptions {
+  hmin?: number;
+  hmax?: number;
+  /** Gradation ratio >= 1 (0: off). */
+  hgrad?: number;
+  /** With metrics null: isotropic size everywhere (MMG's -hsiz); without it, the input's edge lengths. */
+  hsiz?: number;
+  maxElements?: number;
+  onProgress?: (fraction: number) => boolean | void;
+  svg?: boolean;
+  vtu?: boolean;
+}
+
+/** Options of loadAnisomesh: where the .wasm comes from (default: the packaged file). */
+export interface LoadOptions {
+  /** URL of anisomesh-core.wasm (e.g. copied to a public folder). */
+  wasmUrl?: string | URL;
+  /** The bytes of anisomesh-core.wasm. */
+  wasmBinary?: ArrayBuffer | Uint8Array;
 }
 
 export interface Anisomesh {
@@ -157,15 +437,33 @@ export interface Anisomesh {
    * given as an object or JSON text. onProgress(fraction) is called while meshing; returning
    * false cancels the run with AnisomeshError CANCELLED.
    */
+  meshCase(c: PlanarCase, options?: MeshCaseOptions): CaseResult<PlanarMeshStats>;
+  meshCase(c: SurfaceCase, options?: MeshCaseOptions): CaseResult<SurfaceMeshStats>;
   meshCase(c: Case | string, options?: MeshCaseOptions): CaseResult;
   /** The quality report of the last planar meshCase run made with { stats: false }. */
-  caseStats(): MeshStats;
+  caseStats(): PlanarMeshStats;
   /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22 each). */
   remesh(
     mesh: MeshArrays,
-    metrics: Float64Array,
-    options?: { hmin?: number; hmax?: number; hgrad?: number; maxElements?: number },
-  ): { mesh: MeshArrays; stats: Record<string, unknown> };
+    /** m11, m12, m22 per vertex; null: isotropic sizes (options.hsiz, else the input's edge lengths). */
+    metrics: Float64Array | null,
+    options?: RemeshOptions,
+  ): { mesh: MeshArrays; stats: PlanarMeshStats; svg?: string; vtu?: string };
+  /** The metric of fields (one value per vertex each) on a planar mesh: m11, m12, m22 per vertex. */
+  metricFromField(
+    mesh: MeshArrays,
+    fields: Float64Array | Float64Array[],
+    options: AdaptOptions,
+  ): { metrics: Float64Array; complexity: number; expectedVertices: number; hmin: number; hmax: number };
+  /**
+   * Adapts a planar mesh to fields: values per vertex (transferred between iterations) or
+   * expressions in x, y (re-sampled on each mesh; the iterations then report the errors).
+   */
+  adapt(
+    mesh: MeshArrays,
+    fields: Float64Array | Float64Array[] | string | string[],
+    options: AdaptOptions,
+  ): { mesh: MeshArrays; fields: Float64Array[]; iterations: AdaptIteration[] };
   /** The mesh as text in a file format ('svg' for a picture of a planar mesh). */
   writeMesh(mesh: MeshArrays, format?: MeshFormat | 'svg'): string;
   /** Parses mesh text. */
@@ -176,8 +474,18 @@ export interface Anisomesh {
   writeSol(metrics: Float64Array): string;
   /** Evaluates an expression in u, v or in options.variables (throws PARSE_ERROR naming the column on bad input). */
   evaluateExpression(text: string, u?: number, v?: number, options?: { variables?: [string, string] }): number;
-  /** Builds a case's control space (its controlSpace, sources and domain). */
-  createControlSpace(c: Case | string): ControlSpace;
+  /**
+   * A planar case's domain from an SVG drawing: closed paths (lines, arcs, quadratic and cubic
+   * Beziers), polygons, rects, circles, ellipses; the outermost shape is the outer contour, the
+   * shapes inside it holes; scaled so the larger side is options.size (default 1), y flipped
+   * unless options.flipY is false. Throws PARSE_ERROR, OPEN_CONTOUR or INVALID_DOMAIN.
+   */
+  domainFromSvg(text: string, options?: { size?: number; flipY?: boolean }): { outer: unknown[]; holes: unknown[][] };
+  /**
+   * Builds a case's control space (its controlSpace, sources and domain); for a surface case
+   * the initial control space of patch options.patch (default 0) in its (u, v) plane.
+   */
+  createControlSpace(c: Case | string, options?: { patch?: number }): ControlSpace;
   /**
    * The exact minimum (metric intersection) of two or more control spaces, evaluated at each
    * query: its unit ellipse lies inside every input's. The inputs stay owned by the caller
@@ -187,5 +495,8 @@ export interface Anisomesh {
   minimumControlSpace(...spaces: ControlSpace[]): ControlSpace;
 }
 
-/** Loads the WebAssembly core (once; later calls return the same instance). */
-export function loadAnisomesh(): Promise<Anisomesh>;
+/**
+ * Loads the WebAssembly core (cached per source: later calls return the same instance). A
+ * failed load rejects with AnisomeshError 'WASM_LOAD_FAILED' and is not cached.
+ */
+export function loadAnisomesh(options?: LoadOptions): Promise<Anisomesh>;

@@ -1,19 +1,9 @@
-// Node entry point: reads the wasm binary from the package folder.
+// Node entry point: reads the wasm binary from the package folder (or options.wasmUrl /
+// options.wasmBinary, as in the browser).
 import { readFile } from 'node:fs/promises';
-import createAnisomeshCore from './dist/anisomesh-core.js';
-import { wrapCore } from './api.js';
+import { makeLoader } from './load.js';
 
 export { AnisomeshError } from './api.js';
 
-let instance = null;
-
-/** Loads the WebAssembly core once and returns the API object (cached). */
-export function loadAnisomesh() {
-  if (!instance) {
-    instance = (async () => {
-      const wasmBinary = await readFile(new URL('./dist/anisomesh-core.wasm', import.meta.url));
-      return wrapCore(await createAnisomeshCore({ wasmBinary }));
-    })();
-  }
-  return instance;
-}
+/** Loads the WebAssembly core and returns the API object (cached; a failed load is retried). */
+export const loadAnisomesh = makeLoader(() => readFile(new URL('./dist/anisomesh-core.wasm', import.meta.url)));

@@ -10,6 +10,7 @@ import { moveHandle } from './overlays.js';
 import { drawHistogram } from './histogram.js';
 import { qualityColor, lengthColor, sizeColor, css } from './colors.js';
 import { uniqueEdges } from './measure.js';
+import { createSurfaceEditor } from './surface_editor.js';
 
 const $ = (id) => document.getElementById(id);
 const EDIT_DEBOUNCE_MS = 120;
@@ -92,21 +93,33 @@ const utilRunner = new JobRunner();  // exports and checks: never cancelled by m
 
 // --- views ------------------------------------------------------------------------------
 
+// The metric sources being edited: the planar case's, or those of the surface patch shown
+// in the "Surface" folder (in its (u, v) plane). create: make the array when missing.
+function sourceList({ create = false } = {}) {
+  const c = state.case;
+  if (!c) return [];
+  const owner = state.surface ? c.patches?.[surfaceEditor.patch] : c;
+  if (!owner) return [];
+  if (create) owner.sources ??= [];
+  return owner.sources ?? [];
+}
+
 let dragFrom = null;
 const query = new URLSearchParams(location.search);
 const views = new Views($('view'), {
   onSelect(i) { selectSource(i); },
   onDrag(i, key, p, phase) {
-    const s = state.case.sources[i];
+    const s = sourceList()[i];
+    if (!s) return;
     if (phase === 'start') {
       dragFrom = { p, p1: s.p1 && [...s.p1], p2: s.p2 && [...s.p2] };
-      views.dragging = true;  // the 3D view waits for the release (see draw())
+      views.dragging = true;  // the other view waits for the release (see draw())
       return;
     }
     const before = JSON.stringify(s);
     moveHandle(s, key, p, dragFrom);
     const changed = JSON.stringify(s) !== before;
-    views.setSources(state.case.sources, state.selected, state.view.sources);
+    views.setSources(sourceList(), state.selected, state.view.sources);
     sourceGui.controllersRecursive().forEach((c) => c.updateDisplay());
     if (phase === 'move') {
       if (changed) editedByDrag();
@@ -114,6 +127,7 @@ const views = new Views($('view'), {
     }
     state.dragEndAt = wallNow();
     if (changed) bumpVersion();
+    recordHistory();
     state.dragEndVersion = state.caseVersion;
     state.dragLastEditAt = state.editAt;
     // Released: the latest input must not wait behind a stale job. A job already running
@@ -128,13 +142,15 @@ const views = new Views($('view'), {
       state.dragInputToMeshMs = b ? Math.round(b.inputToDrawnMs) : 0;
       if (b) b.drag = true;
       state.dragEndAt = null;
-      views.requestRender('3d');
+      views.requestRender('all');
     } else if (state.runningVersion !== state.caseVersion) {
       clearTimeout(editTimer);
       editTimer = null;
       remesh();
     }
   },
+  // A click on the surface (3D) or in (u, v) with a source armed by "+ radial / segment source".
+  onPlace(hit) { placeSource(hit); },
 }, {
   // ?aa=1 / ?aa=0 forces antialiasing; by default it is off on software WebGL (4x slower there).
   antialias: query.has('aa') ? query.get('aa') !== '0' : !softwareWebGL(),
@@ -164,6 +180,43 @@ defineProxy(csProxy, 'dr', () => cs().gradation ?? state.lastDr ?? 2, (v) => { s
 defineProxy(csProxy, 'quads', () => Boolean(opts().quads), (v) => { opts().quads = v; });
 defineProxy(csProxy, 'allQuads', () => Boolean(opts().allQuads), (v) => { opts().allQuads = v; });
 defineProxy(csProxy, 'maxElements', () => opts().maxElements ?? 2000000, (v) => { opts().maxElements = Math.round(v); });
+
+// Surface cases: the "metric" options (examples/SURFACE_FORMAT.md), all in 3D units.
+// Read without creating the section (the getters run for planar cases too); set creates it.
+const sm = () => state.case?.metric ?? {};
+const smSet = (key, v) => { (state.case.metric ??= {})[key] = v; };
+const smProxy = {};
+defineProxy(smProxy, 'chordTolerance', () => sm().chordTolerance ?? 0.01, (v) => smSet('chordTolerance', v));
+defineProxy(smProxy, 'hmin', () => sm().hmin ?? 0.001, (v) => smSet('hmin', v));
+defineProxy(smProxy, 'hmax', () => sm().hmax ?? 1, (v) => smSet('hmax', v));
+defineProxy(smProxy, 'maxAspectRatio', () => sm().maxAspectRatio ?? 10, (v) => smSet('maxAspectRatio', v));
+defineProxy(smProxy, 'smoothing', () => sm().gradation !== null, (v) => {
+  smSet('gradation', v ? (state.lastSurfaceDr ?? 2) : null);
+  controllers.get('metric.gradation').disable(!v);
+});
+defineProxy(smProxy, 'dr', () => sm().gradation ?? state.lastSurfaceDr ?? 2, (v) => { state.lastSurfaceDr = v; if (sm().gradation !== null) smSet('gradation', v); });
+defineProxy(smProxy, 'adaptation', () => state.case?.adaptation ?? true, (v) => { state.case.adaptation = v; });
+const fSm = gui.addFolder('Surface metric');
+controllers.set('metric.chordTolerance', fSm.add(smProxy, 'chordTolerance').min(0).name('chord tolerance').onFinishChange(() => edited()));
+controllers.set('metric.hmin', fSm.add(smProxy, 'hmin').min(0).name('hmin (3D)').onFinishChange(() => edited()));
+controllers.set('metric.hmax', fSm.add(smProxy, 'hmax').min(0).name('hmax (3D)').onFinishChange(() => edited()));
+controllers.set('metric.maxAspectRatio', fSm.add(smProxy, 'maxAspectRatio').min(1).name('d_max (aspect)').onFinishChange(() => edited()));
+controllers.set('metric.smoothing', fSm.add(smProxy, 'smoothing').name('gradation on').onChange(() => edited()));
+controllers.set('metric.gradation', fSm.add(smProxy, 'dr', 1, 16, 0.5).name('gradation dr').onFinishChange(() => edited()));
+controllers.set('adaptation', fSm.add(smProxy, 'adaptation').name('adapt across shared').onChange(() => edited()));
+fSm.hide();
+const surfaceEditor = createSurfaceEditor({
+  gui, controllers, getCase: () => state.case, edited: (d) => edited(d),
+  onReplace: () => { needsFit = true; showEditable(); },
+  // Another patch shown: its sources are the ones edited.
+  onPatch: () => {
+    state.selected = sourceList().length ? 0 : -1;
+    rebuildSourceGui();
+    views.sourcePatch = surfaceEditor.patch;
+    views.setSources(sourceList(), state.selected, state.view.sources);
+  },
+});
+surfaceEditor.folder.hide();
 
 const fCs = gui.addFolder('Control space');
 controllers.set('kind', fCs.add(csProxy, 'kind', ['quadtree', 'background']).name('structure').onChange(() => edited()));
@@ -205,7 +258,7 @@ function rebuildSourceGui() {
   sourceGui.destroy();
   srcSelector?.destroy();
   for (const k of [...controllers.keys()]) if (k.startsWith('src:')) controllers.delete(k);
-  const sources = state.case.sources ?? [];
+  const sources = sourceList();
   const labels = {};
   sources.forEach((s, i) => { labels[`${i + 1}: ${s.type === 'analytic' ? s.field : s.type}`] = i; });
   if (!sources.length) labels['(none)'] = -1;
@@ -260,7 +313,7 @@ function selectSource(i) {
   if (i === state.selected) return;
   state.selected = i;
   rebuildSourceGui();
-  views.setSources(state.case.sources, state.selected, state.view.sources);
+  views.setSources(sourceList(), state.selected, state.view.sources);
   saveUrlSoon();
 }
 
@@ -269,6 +322,12 @@ function domainBounds() {
 }
 
 function addSource(type) {
+  if (state.surface) {
+    // On a surface the next click on it (3D view) or in (u, v) places the source.
+    views.placing = type;
+    statusText.textContent = `click on the surface (3D) or in (u, v) to place the ${type} source`;
+    return;
+  }
   const [x0, y0, x1, y1] = domainBounds();
   const size = Math.max(x1 - x0, y1 - y0);
   const cx = Math.min(Math.max(views.view2.cx, x0), x1), cy = Math.min(Math.max(views.view2.cy, y0), y1);
@@ -284,10 +343,33 @@ function addSource(type) {
   edited(0);
 }
 
+// A source placed on a surface patch at (u, v) (a click in either view): sizes in the
+// patch's parameter units, from its extent in the 2D layout.
+function placeSource(hit) {
+  const type = views.placing;
+  views.placing = null;
+  if (!type || !state.surface) return;
+  if (hit.patch !== surfaceEditor.patch) surfaceEditor.select(hit.patch);
+  const L = views.layout;
+  const [x0, y0, x1, y1] = L ? [L.ranges[hit.patch][0], L.bounds[1], L.ranges[hit.patch][1], L.bounds[3]] : domainBounds();
+  const size = Math.max(x1 - x0, y1 - y0);
+  const r = (x) => Number(x.toPrecision(3));
+  const [u, v] = hit.uv.map(r);
+  const s = type === 'radial'
+    ? { type, center: [u, v], metric: { alpha: 0, h1: r(size / 80), h2: r(size / 80) }, radius: r(size / 10) }
+    : { type, p1: [r(u - size / 8), v], p2: [r(u + size / 8), v], metric: { alpha: 0, h1: r(size / 40), h2: r(size / 150) }, radius: r(size / 30) };
+  sourceList({ create: true }).push(s);
+  state.selected = sourceList().length - 1;
+  state.lastPlaced = { ...hit, source: state.selected };
+  rebuildSourceGui();
+  edited(0);
+}
+
 function removeSource(i) {
   if (i < 0) return;
-  state.case.sources.splice(i, 1);
-  state.selected = Math.min(i, state.case.sources.length - 1);
+  const sources = sourceList();
+  sources.splice(i, 1);
+  state.selected = Math.min(i, sources.length - 1);
   rebuildSourceGui();
   edited(0);
 }
@@ -319,10 +401,10 @@ function showError(target, message) {
   if (src) {
     const i = Number(src[1]);
     fSrc.open();
-    if (i !== state.selected && i < (state.case.sources?.length ?? 0)) {
+    if (i !== state.selected && i < sourceList().length) {
       state.selected = i;
       rebuildSourceGui();
-      views.setSources(state.case.sources, state.selected, state.view.sources);
+      views.setSources(sourceList(), state.selected, state.view.sources);
     }
     const field = src[2] ?? '';
     ctrl = controllers.get(`src:${field}`) ?? controllers.get(`src:${field.split('.')[0]}`) ?? controllers.get('src:');
@@ -349,13 +431,14 @@ let needsFit = true;
 function bumpVersion() {
   state.caseVersion++;
   state.editAt = wallNow();
-  views.setSources(state.case.sources, state.selected, state.view.sources);
+  views.setSources(sourceList(), state.selected, state.view.sources);
   saveUrlSoon();
 }
 
 /** The case changed: remesh after delay ms (a newer edit restarts the wait; a running job is superseded). */
 function edited(delay = EDIT_DEBOUNCE_MS) {
   bumpVersion();
+  recordHistory();
   clearTimeout(editTimer);
   editTimer = setTimeout(() => { editTimer = null; remesh(); }, delay);
 }
@@ -397,7 +480,7 @@ function startWaitingDrag() {
 }
 
 /** Wants the control-space overlay from the worker (it costs an inspection of the structure). */
-const wantOverlay = () => Boolean(state.view.controlSpace) && !state.surface;
+const wantOverlay = () => Boolean(state.view.controlSpace);
 
 let completionWaiters = [];
 async function remesh() {
@@ -456,7 +539,8 @@ async function remesh() {
   } catch (e) {
     if (state.runningVersion === version) state.runningVersion = null;
     if (e instanceof CancelledError) return;
-    fail({ code: e.code ?? 'INTERNAL', message: e.message, target: errorTarget(e.code, e.message) }, version);
+    const target = (state.surface && surfaceEditor.targetOf(e.message)) || errorTarget(e.code, e.message);
+    fail({ code: e.code ?? 'INTERNAL', message: e.message, target }, version);
     startWaitingDrag();  // a drag goes on past an input the core rejects
   }
 }
@@ -485,7 +569,7 @@ function draw(result, version, editAt, marks, receivedAt, overlay) {
   // rasterizer the two cost about the same, and the 2D view is where the handle moves.
   // While a handle is held the 3D view is not redrawn at all (it would only queue work
   // for the rasterizer that the next mesh makes stale); it catches up on release.
-  views.renderNow(views.dragging ? ['2d'] : ['2d', '3d'], { sync: state.syncDraw });
+  views.renderNow(views.dragging ? [views.dragView ?? '2d'] : ['2d', '3d'], { sync: state.syncDraw });
   const t2 = wallNow();
   state.meshedVersion = version;
   const core = result.core ?? {};
@@ -551,7 +635,8 @@ function showResult(result) {
     views.fit2D(views.meshBounds2());
     views.fit3D();
   }
-  views.setSources(state.case.sources, state.selected, state.view.sources);
+  views.sourcePatch = state.surface ? surfaceEditor.patch : 0;
+  views.setSources(sourceList(), state.selected, state.view.sources);
 }
 
 function styleOf() {
@@ -563,7 +648,7 @@ function restyle() {
   if (wantOverlay() && !state.overlayShown && state.case && views.mesh) edited(0);
   views.setStyle(styleOf());
   views.setControlSpace(state.overlay, state.view.controlSpace);
-  views.setSources(state.case?.sources, state.selected, state.view.sources);
+  views.setSources(sourceList(), state.selected, state.view.sources);
   renderLegend();
   saveUrlSoon();
 }
@@ -601,6 +686,11 @@ function renderStats(s) {
       : [['core total', ms(s.secondsTotal)], ['patches, rounds', `${s.patches ?? '–'}, ${s.rounds ?? '–'}`]]),
     ['job round trip', state.lastJob ? `${state.lastJob.totalMs} ms` : '…'], ['cancelled jobs', state.cancelled],
   ];
+  const q3 = s.quality3d;
+  if (q3) {
+    rows.push(['chord dev. max', `${Number(q3.chordDeviationMax).toPrecision(3)} (${f3(q3.chordDeviationMaxRelative)} tol.)`]);
+    if (s.sharedEdges) rows.push(['shared edges, size ratio', `${s.sharedEdges}, ${f3(s.crossSharedSizeRatioMax)}`]);
+  }
   if (s.notes?.length) rows.push(['core notes', s.notes.join('; ')]);
   const dl = $('stats');
   dl.replaceChildren();
@@ -617,11 +707,11 @@ function renderStats(s) {
 
 function renderHistograms(m, stats) {
   drawHistogram($('hist-length'), m?.edgeLength, {
-    lo: 0, hi: 2, bins: 48, title: 'metric edge length',
+    lo: 0, hi: 2, bins: 48, title: state.surface ? '3D metric edge length (not measured per edge for surfaces)' : 'metric edge length',
     color: (x) => css(lengthColor(x)), band: [Math.SQRT1_2, Math.SQRT2], ticks: [0, 0.5, 1, 1.5, 2], marker: stats.edgeLength?.mean,
   });
   drawHistogram($('hist-quality'), m?.quality, {
-    lo: 0, hi: 1, bins: 40, title: 'element quality Q (metric)',
+    lo: 0, hi: 1, bins: 40, title: state.surface ? 'element quality Q (3D metric)' : 'element quality Q (metric)',
     color: (x) => css(qualityColor(x)), ticks: [0, 0.25, 0.5, 0.75, 1], marker: stats.quality?.mean,
   });
 }
@@ -636,7 +726,7 @@ function renderLegend() {
   if (state.view.colorBy === 'quality') parts.push(`quality 0${ramp(qualityColor, 0, 1)}1`);
   if (state.view.edges === 'length') parts.push(`edge length ½${ramp(lengthColor, 0.5, 2)}2`);
   const cl = views.controlLegend;
-  if (state.view.controlSpace && cl) parts.push(`control space h ${cl.hmin.toPrecision(2)}${ramp(sizeColor, 0, 1)}${cl.hmax.toPrecision(2)} (${cl.count} ${state.overlay?.sampled ? 'samples' : 'nodes'})`);
+  if (state.view.controlSpace && cl) parts.push(`control space h ${cl.hmin.toPrecision(2)}${ramp(sizeColor, 0, 1)}${cl.hmax.toPrecision(2)} (${cl.count} ${state.overlay?.glyphs ? 'ellipses' : state.overlay?.sampled ? 'samples' : 'nodes'})`);
   $('legend').innerHTML = parts.join(' &nbsp; ');
 }
 
@@ -662,26 +752,76 @@ function firstEditableSource(c) {
 }
 
 /** Replaces the case (preset, file or URL) and remeshes. */
-function setCase(c, { presetId = 'custom', selected = null, surface = null } = {}) {
+function setCase(c, { presetId = 'custom', selected = null, surface = null, fit = true, patch = 0 } = {}) {
   state.case = structuredClone(c);
   state.presetId = presetId;
   state.surface = surface ?? (Boolean(presetById(presetId)?.surface) || Array.isArray(c.patches));
   // Planar cases carry a control space section; surface cases have their own "metric" options.
   if (!state.surface) state.case.controlSpace ??= { hmax: 0.1 };
-  const first = firstEditableSource(state.case);
-  state.selected = selected ?? (first >= 0 ? first : (state.case.sources?.length ? 0 : -1));
+  if (state.surface) surfaceEditor.reset(Math.min(patch, (state.case.patches?.length ?? 1) - 1));
+  const first = firstEditableSource(state.surface ? state.case.patches?.[0] ?? {} : state.case);
+  state.selected = selected ?? (first >= 0 ? first : (sourceList().length ? 0 : -1));
   if (!state.surface && state.case.controlSpace.gradation != null) state.lastDr = state.case.controlSpace.gradation;
   $('preset').value = presetId;
   showEditable();
-  // The planar controls edit fields that surface cases do not have.
-  for (const folder of [fCs, fOpt, fSrc]) folder.show(!state.surface);
+  // The planar controls edit fields that surface cases do not have (and the other way round).
+  fCs.show(!state.surface);
+  fSm.show(state.surface);
+  surfaceEditor.folder.show(state.surface);
+  if (state.surface) surfaceEditor.rebuild();
   rebuildSourceGui();
   gui.controllersRecursive().forEach((ctrl) => ctrl.updateDisplay());
   controllers.get('gradation').disable(state.surface || state.case.controlSpace.gradation == null);
-  needsFit = true;
+  controllers.get('metric.gradation').disable(!state.surface || state.case.metric?.gradation === null);
+  if (fit) needsFit = true;
   clearErrors();
   edited(0);
 }
+
+// --- undo / redo ------------------------------------------------------------------------
+// Every edit that remeshes (panel, drag release, new case) is a step; a drag is one step.
+const edits = { past: [], future: [], current: null, applying: false };
+const HISTORY_STEPS = 200;
+function recordHistory() {
+  if (edits.applying || !state.case) return;
+  const snapshot = JSON.stringify({ c: state.case, p: state.presetId, surface: state.surface, patch: surfaceEditor.patch });
+  if (snapshot === edits.current) return;
+  if (edits.current !== null) edits.past.push(edits.current);
+  if (edits.past.length > HISTORY_STEPS) edits.past.shift();
+  edits.current = snapshot;
+  edits.future = [];
+}
+function applyHistory(snapshot) {
+  const { c, p, surface, patch } = JSON.parse(snapshot);
+  edits.applying = true;
+  try {
+    setCase(c, { presetId: p, surface, selected: state.selected, fit: false, patch });
+  } finally {
+    edits.applying = false;
+  }
+  edits.current = snapshot;
+}
+function undo() {
+  if (!edits.past.length) return false;
+  edits.future.push(edits.current);
+  applyHistory(edits.past.pop());
+  return true;
+}
+function redo() {
+  if (!edits.future.length) return false;
+  edits.past.push(edits.current);
+  applyHistory(edits.future.pop());
+  return true;
+}
+$('undo').addEventListener('click', () => undo());
+$('redo').addEventListener('click', () => redo());
+document.addEventListener('keydown', (e) => {
+  if (!(e.ctrlKey || e.metaKey)) return;
+  const t = e.target;
+  if (t && (t.tagName === 'INPUT' || t.tagName === 'TEXTAREA' || t.isContentEditable)) return;  // the field's own undo
+  const k = e.key.toLowerCase();
+  if (k === 'z' && !e.shiftKey) { if (undo()) e.preventDefault(); } else if ((k === 'z' && e.shiftKey) || k === 'y') { if (redo()) e.preventDefault(); }
+});
 
 async function loadPreset(id) {
   const p = presetById(id) ?? presetById(defaultPresetId);
@@ -736,6 +876,8 @@ async function onDownload(kind) {
     if (kind === 'cs-vtk' || kind === 'cs-json') {
       const format = kind === 'cs-vtk' ? 'vtk' : 'json';
       const { result } = await utilRunner.run('exportControlSpace', { case: state.case, format });
+      // A surface case's VTK: one file per patch (each in its own (u, v) plane).
+      if (Array.isArray(result)) return result.forEach((text, p) => download(text, `${baseName()}_control_space_patch${p}.${format}`));
       return download(result, `${baseName()}_control_space.${format}`);
     }
     if (!views.mesh) throw new Error('no mesh yet');
@@ -749,20 +891,77 @@ async function onDownload(kind) {
 
 for (const b of document.querySelectorAll('#downloads button')) b.addEventListener('click', () => onDownload(b.dataset.dl));
 
-$('case-file').addEventListener('change', async (ev) => {
-  const file = ev.target.files[0];
-  ev.target.value = '';
-  if (!file) return;
+/** Opens a case file's text: a planar case ("domain") or a surface case ("patches"). */
+function loadCaseText(text, name = 'case') {
   const box = $('error-io');
   box.hidden = true;
   try {
-    const c = JSON.parse(await file.text());
-    if (!c || typeof c !== 'object' || !c.domain) throw new Error('not a case: no "domain" (see examples/CASE_FORMAT.md)');
-    setCase(c, { presetId: 'custom' });
+    const c = JSON.parse(text);
+    if (!c || typeof c !== 'object' || Array.isArray(c) || !(c.domain || Array.isArray(c.patches))) {
+      throw new Error('not a case: no "domain" (planar, examples/CASE_FORMAT.md) and no "patches" (surface, examples/SURFACE_FORMAT.md)');
+    }
+    setCase(c, { presetId: 'custom', surface: Array.isArray(c.patches) });
+    return true;
   } catch (e) {
-    box.textContent = `${file.name}: ${e.message}`;
+    box.textContent = `${name}: ${e.message}`;
     box.hidden = false;
+    return false;
   }
+}
+
+/**
+ * An SVG drawing as the domain of a new planar case (outer contour and holes, scaled so
+ * the larger side is the size box's value; sizes hmax = size / 25, hmin = size / 500).
+ */
+async function loadSvgText(text, name = 'drawing.svg') {
+  const box = $('error-io');
+  box.hidden = true;
+  const size = Number($('svg-size').value) || 1;
+  try {
+    const { result: domain } = await utilRunner.run('domainFromSvg', { text, size });
+    const kind = !state.surface ? state.case?.controlSpace?.kind : undefined;
+    const c = {
+      name: name.replace(/\.svg$/i, ''),
+      domain,
+      controlSpace: { ...(kind ? { kind } : {}), hmin: size / 500, hmax: size / 25, gradation: 2 },
+    };
+    setCase(c, { presetId: 'custom', surface: false });
+    return true;
+  } catch (e) {
+    box.textContent = `${name}: ${e.code ?? 'ERROR'}: ${e.message}`;
+    box.hidden = false;
+    return false;
+  }
+}
+const isSvgFile = (file) => /\.svg$/i.test(file.name) || file.type === 'image/svg+xml';
+
+$('svg-file').addEventListener('change', async (ev) => {
+  const file = ev.target.files[0];
+  ev.target.value = '';
+  if (file) loadSvgText(await file.text(), file.name);
+});
+
+$('case-file').addEventListener('change', async (ev) => {
+  const file = ev.target.files[0];
+  ev.target.value = '';
+  if (file) loadCaseText(await file.text(), file.name);
+});
+
+// A case file dropped anywhere on the page opens like "Load case .json".
+document.addEventListener('dragover', (ev) => {
+  if (![...(ev.dataTransfer?.types ?? [])].includes('Files')) return;
+  ev.preventDefault();
+  ev.dataTransfer.dropEffect = 'copy';
+  document.body.classList.add('dropping');
+});
+document.addEventListener('dragleave', (ev) => { if (!ev.relatedTarget) document.body.classList.remove('dropping'); });
+document.addEventListener('drop', async (ev) => {
+  const file = ev.dataTransfer?.files?.[0];
+  document.body.classList.remove('dropping');
+  if (!file) return;
+  ev.preventDefault();
+  if (isSvgFile(file)) loadSvgText(await file.text(), file.name);
+  else loadCaseText(await file.text(), file.name);
 });
 
 $('copy-link').addEventListener('click', async () => {
@@ -907,6 +1106,11 @@ const app = {
     renderLegend();
   },
   checkExpression,
+  loadCaseText,
+  loadSvgText,
+  undo,
+  redo,
+  edits,
 };
 window.anisomeshApp = app;
 window.anisomeshDemo = app;  // the old name, for existing scripts

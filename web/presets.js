@@ -6,6 +6,8 @@
 //                     meshCase; the mesh has dimension 3 and is shown in the 3D view and
 //                     in the parameter (u, v) plane of the 2D view.
 
+import { newSurfaceCase } from './surface_editor.js';
+
 const example = (file) => async () => {
   const r = await fetch(new URL(`../examples/${file}`, import.meta.url));
   if (!r.ok) throw new Error(`cannot load examples/${file}: HTTP ${r.status}`);
@@ -45,6 +47,13 @@ export const presets = [
   { id: 'sphere', label: 'Sphere band', group: 'surface', surface: true, load: example('surface/surface_sphere.json') },
   { id: 'torus', label: 'Torus', group: 'surface', surface: true, load: example('surface/surface_torus.json') },
 ];
+
+// New surfaces to edit in the panel's "Surface" folder.
+presets.push(
+  { id: 'new-heightfield', label: 'New surface: height field z = f(u, v)', group: 'surface', surface: true, load: async () => newSurfaceCase('heightfield') },
+  { id: 'new-expression', label: 'New surface: x, y, z (u, v) expressions', group: 'surface', surface: true, load: async () => newSurfaceCase('expression') },
+  { id: 'new-bezier', label: 'New surface: bicubic Bezier patch', group: 'surface', surface: true, load: async () => newSurfaceCase('bezier') },
+);
 
 export const defaultPresetId = 'holes-dr2';
 

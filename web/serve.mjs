@@ -63,6 +63,19 @@ export function startServer({ port = 8080, host = '127.0.0.1' } = {}) {
 
 if (process.argv[1] && resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
   const port = Number(process.env.PORT ?? 8080);
-  const { url } = await startServer({ port });
-  console.log(`anisomesh demo: ${url}`);
+  if (!Number.isInteger(port) || port < 0 || port > 65535) {
+    console.error(`anisomesh demo: PORT must be an integer in [0, 65535], got '${process.env.PORT}'`);
+    process.exit(2);
+  }
+  try {
+    const { url } = await startServer({ port });
+    console.log(`anisomesh demo: ${url}`);
+  } catch (e) {
+    // One readable line instead of a stack trace.
+    const why = e.code === 'EADDRINUSE' ? `port ${port} is already in use (another server running?); try PORT=${port + 1} npm run serve`
+      : e.code === 'EACCES' ? `no permission to listen on port ${port}; try a port above 1023 (PORT=8080)`
+      : e.message;
+    console.error(`anisomesh demo: cannot start: ${why}`);
+    process.exit(1);
+  }
 }

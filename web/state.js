@@ -71,6 +71,10 @@ export function errorTarget(code, message) {
   const src = /sources\[(\d+)\](?:\.([A-Za-z0-9_.]+))?/.exec(message);
   if (src) return `sources[${src[1]}]${src[2] ? `.${src[2]}` : ''}`;
   if (code === 'ELEMENT_BUDGET_EXCEEDED' || /maxElements/.test(message)) return 'maxElements';
+  const sm = /(?:^|[^.\w])metric\.(\w+)/.exec(message);
+  if (sm) return `metric.${sm[1]}`;  // surface cases: chordTolerance, hmin, hmax, maxAspectRatio, gradation
+  const smText = /^metric: .*?\b(chordTolerance|hmin|hmax|maxAspectRatio|gradation)\b/.exec(message);
+  if (smText) return `metric.${smText[1]}`;
   const cs = /controlSpace\.(\w+)/.exec(message);
   if (cs) return cs[1];  // hmin, hmax, gradation, kind, interpolation
   if (/^(OPEN_CONTOUR|SELF_INTERSECTING_CONTOUR|HOLE_OUTSIDE_DOMAIN|ZERO_LENGTH_CURVE|INVALID_DOMAIN)$/.test(code) || /domain/.test(message)) return 'domain';

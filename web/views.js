@@ -62,6 +62,15 @@ export class Views {
     this.scene3.add(this.cam3);
     this.group3 = new THREE.Group();
     this.scene3.add(this.group3);
+    this.control3 = new THREE.Group();  // control-space ellipses drawn on a surface
+    this.scene3.add(this.control3);
+    this.sources3 = new THREE.Group();  // source handles on a surface
+    this.scene3.add(this.sources3);
+    // Surface sources live in one patch's (u, v): sourcePatch, drawn shifted as the patch
+    // is in the 2D layout. placing: 'radial' | 'segment' while a click is to place a source.
+    this.sourcePatch = 0;
+    this.placing = null;
+    this.handles3 = [];  // { source, key, xyz }
 
     // Materials are created once and shared: disposing the last user of a shader program
     // makes three.js delete it, and recompiling costs ~100 ms per program on software WebGL.
@@ -192,7 +201,7 @@ export class Views {
   /** Schedules a draw of one viewport ('2d', '3d') or of all (default) on the next frame. */
   requestRender(which = 'all') {
     // While a source handle is dragged only the 2D view is redrawn (see app.js draw()).
-    if (this.dragging && which === 'all' && this.viewports()['2d']) which = '2d';
+    if (this.dragging && which === 'all' && this.viewports()[this.dragView ?? '2d']) which = this.dragView ?? '2d';
     (this.dirty ??= new Set()).add(which);
     if (this.renderPending) return;
     this.renderPending = true;
@@ -327,6 +336,8 @@ export class Views {
     const flat = mesh.dimension === 2 && !(style.lift > 0 && measures.vertexH);
     const uvPos = this.#scratch('uv', 3 * nv);
     for (let i = 0; i < nv; i++) { uvPos[3 * i] = mesh.params[2 * i]; uvPos[3 * i + 1] = mesh.params[2 * i + 1]; uvPos[3 * i + 2] = 0; }
+    // Several surface patches: each drawn in its own (u, v) plane, side by side (see patchLayout).
+    const layout = this.layout = patchLayout(mesh, this.result.patches);
     let pos3 = mesh.positions;
     if (mesh.dimension === 2 && !flat) {
       // Lift the plane by the log of the requested size: refinement shows as valleys/peaks.
@@ -345,7 +356,8 @@ export class Views {
     const quality = style.colorBy === 'quality' ? measures.quality : null;
     const faceCol = this.#attribute(g.faces2, 'color', faceVerts);
     fillFaceColors(faceCol.array, mesh, quality);
-    fillFaces(this.#attribute(g.faces2, 'position', faceVerts).array, mesh, uvPos);
+    if (layout) fillFacesLaidOut(this.#attribute(g.faces2, 'position', faceVerts).array, mesh, layout);
+    else fillFaces(this.#attribute(g.faces2, 'position', faceVerts).array, mesh, uvPos);
     this.#share(g.faces3, g.faces2, flat, faceVerts);
     if (!flat) fillFaces(this.#attribute(g.faces3, 'position', faceVerts).array, mesh, pos3);
 
@@ -353,17 +365,30 @@ export class Views {
     this.edgeCount = edges ? edges.length / 2 : 0;
     const edgeVerts = edges ? edges.length : 0;
     const lengths = style.edges === 'length' ? measures.edgeLength : null;
-    fillEdgeColors(this.#attribute(g.edges2, 'color', edgeVerts).array, edges, lengths);
-    fillSegments(this.#attribute(g.edges2, 'position', edgeVerts).array, edges, uvPos);
-    this.#share(g.edges3, g.edges2, flat, edgeVerts);
-    if (!flat) fillSegments(this.#attribute(g.edges3, 'position', edgeVerts).array, edges, pos3);
+    if (layout) {
+      // The 2D view draws each patch's own edges (a shared curve once per patch); the 3D
+      // view the merged mesh's. Lengths per edge are not measured for surfaces: plain colours.
+      const e2 = edges ? layout.edges : null, n2 = e2 ? e2.length / 2 : 0;
+      const nColor = Math.max(n2, edges ? edges.length / 2 : 0);
+      fillEdgeColors(this.#attribute(g.edges2, 'color', 2 * nColor).array, { length: 2 * nColor }, null);
+      fillSegments(this.#attribute(g.edges2, 'position', 2 * n2).array, e2, layout.uv);
+      this.#share(g.edges3, g.edges2, false, edgeVerts);
+      fillSegments(this.#attribute(g.edges3, 'position', edgeVerts).array, edges, pos3);
+    } else {
+      fillEdgeColors(this.#attribute(g.edges2, 'color', edgeVerts).array, edges, lengths);
+      fillSegments(this.#attribute(g.edges2, 'position', edgeVerts).array, edges, uvPos);
+      this.#share(g.edges3, g.edges2, flat, edgeVerts);
+      if (!flat) fillSegments(this.#attribute(g.edges3, 'position', edgeVerts).array, edges, pos3);
+    }
     g.lines2.material = lengths ? this.mats.edgeLength2 : this.mats.edgePlain2;
     g.lines3.material = lengths ? this.mats.edgeLength3 : this.mats.edgePlain3;
     g.lines2.visible = g.lines3.visible = Boolean(edges);
 
     const bVerts = mesh.edges?.length ?? 0;
-    this.#attribute(g.boundary2, 'color', bVerts).array.fill(0.1, 0, 3 * bVerts);
-    fillSegments(this.#attribute(g.boundary2, 'position', bVerts).array, mesh.edges, uvPos);
+    const b2Verts = layout ? layout.boundary.length : bVerts;
+    this.#attribute(g.boundary2, 'color', Math.max(bVerts, b2Verts)).array.fill(0.1, 0, 3 * Math.max(bVerts, b2Verts));
+    if (layout) fillSegments(this.#attribute(g.boundary2, 'position', b2Verts).array, layout.boundary, layout.uv);
+    else fillSegments(this.#attribute(g.boundary2, 'position', bVerts).array, mesh.edges, uvPos);
     this.#share(g.boundary3, g.boundary2, flat, bVerts);
     if (!flat) fillSegments(this.#attribute(g.boundary3, 'position', bVerts).array, mesh.edges, pos3);
 
@@ -371,6 +396,7 @@ export class Views {
     // Bounds of the used range (the arrays' slack holds stale values): fit3D reads them.
     const box = boundsOf(flat ? uvPos : pos3, nv);
     for (const geom of [g.faces2, g.faces3, g.edges2, g.edges3, g.boundary2, g.boundary3]) {
+      if (layout && (geom === g.edges2 || geom === g.boundary2)) geom.setDrawRange(0, geom === g.edges2 ? layout.edges.length : layout.boundary.length);
       geom.boundingBox = box.clone();
       geom.boundingSphere = box.getBoundingSphere(new THREE.Sphere());
     }
@@ -447,6 +473,7 @@ export class Views {
   /** Bounds [x0, y0, x1, y1] of the current mesh in the parameter plane. */
   meshBounds2() {
     if (!this.mesh) return null;
+    if (this.layout) return this.layout.bounds;
     const p = this.mesh.params;
     let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
     for (let i = 0; i < p.length; i += 2) {
@@ -461,7 +488,7 @@ export class Views {
   setControlSpace(overlay, visible) {
     this.cache2Valid = false;
     const g = this.layers2.control;
-    for (const o of [...g.children]) { g.remove(o); o.geometry.dispose(); }
+    for (const grp of [g, this.control3]) for (const o of [...grp.children]) { grp.remove(o); o.geometry.dispose(); }
     this.controlLegend = null;
     // Fade the mesh under the overlay so the ellipses read.
     const dim = Boolean(overlay && visible);
@@ -473,7 +500,8 @@ export class Views {
     }
     m.edgeLength2.opacity = dim ? 0.3 : 0.95;
     m.edgePlain2.opacity = dim ? 0.2 : 0.55;
-    if (!dim) { this.requestRender('2d'); return; }
+    if (!dim) { this.requestRender(); return; }
+    if (overlay.glyphs) { this.#glyphOverlay(overlay.glyphs); return; }
     if (overlay.lines.length) {
       const n = overlay.lines.length / 2;
       const pos = new Float32Array(3 * n);
@@ -517,6 +545,57 @@ export class Views {
     this.requestRender('2d');
   }
 
+  // A surface's control spaces: the core's ellipses (half the requested sizes) in each
+  // patch's (u, v), shifted as the patch is in the 2D view, and the same on the surface
+  // in 3D; coloured by the ellipse's size in 3D (log scale).
+  #glyphOverlay({ patch, offsets, uv, xyz }) {
+    const count = patch.length;
+    let nseg = 0;
+    for (let i = 0; i < count; i++) nseg += offsets[i + 1] - offsets[i];
+    const pos2 = new Float32Array(6 * nseg), pos3 = new Float32Array(6 * nseg), col = new Float32Array(6 * nseg);
+    const sizes = new Float64Array(count);
+    for (let i = 0; i < count; i++) {
+      let r = 0;
+      for (let k = offsets[i]; k < offsets[i + 1]; k++) {
+        for (let j = k + 1; j < offsets[i + 1]; j++) {
+          r = Math.max(r, Math.hypot(xyz[3 * k] - xyz[3 * j], xyz[3 * k + 1] - xyz[3 * j + 1], xyz[3 * k + 2] - xyz[3 * j + 2]));
+        }
+      }
+      sizes[i] = r || 1e-12;
+    }
+    let hmin = Infinity, hmax = 0;
+    for (const h of sizes) { hmin = Math.min(hmin, h); hmax = Math.max(hmax, h); }
+    const span = Math.log(hmax / hmin) || 1;
+    const shift = this.layout?.shift ?? null;
+    let o = 0;
+    for (let i = 0; i < count; i++) {
+      const c = sizeColor(Math.log(sizes[i] / hmin) / span);
+      const du = shift ? shift[patch[i]] ?? 0 : 0;
+      const a = offsets[i], n = offsets[i + 1] - a;
+      for (let k = 0; k < n; k++) {
+        for (const j of [a + k, a + ((k + 1) % n)]) {
+          pos2[o] = uv[2 * j] + du; pos2[o + 1] = uv[2 * j + 1]; pos2[o + 2] = 0;
+          pos3[o] = xyz[3 * j]; pos3[o + 1] = xyz[3 * j + 1]; pos3[o + 2] = xyz[3 * j + 2];
+          col.set(c, o);
+          o += 3;
+        }
+      }
+    }
+    const add = (group, pos, mat) => {
+      const geom = new THREE.BufferGeometry();
+      geom.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+      geom.setAttribute('color', new THREE.BufferAttribute(col, 3));
+      const obj = new THREE.LineSegments(geom, mat);
+      obj.frustumCulled = false;
+      group.add(obj);
+    };
+    add(this.layers2.control, pos2, this.mats.csEllipses);
+    add(this.control3, pos3, this.mats.csEllipses3 ??= new THREE.LineBasicMaterial({ vertexColors: true }));
+    // 3D sizes of the ellipses (their longest diameter: the requested size along the larger axis).
+    this.controlLegend = { hmin, hmax, count };
+    this.requestRender();
+  }
+
   // --- sources and handles --------------------------------------------------------------
 
   /** sources: the case's sources array (read only here); selected: index or -1. */
@@ -527,11 +606,18 @@ export class Views {
     this.#refreshSources();
   }
 
+  /** The u shift of the source patch in the 2D layout (0 without one). */
+  sourceShift() {
+    return this.layout?.shift[this.sourcePatch] ?? 0;
+  }
+
   #refreshSources() {
     const g = this.layers2.sources;
-    for (const o of [...g.children]) { g.remove(o); o.geometry.dispose(); }
+    for (const grp of [g, this.sources3]) for (const o of [...grp.children]) { grp.remove(o); o.geometry.dispose(); }
     this.handles = [];
-    if (!this.showSources) { this.requestRender('2d'); return; }
+    this.handles3 = [];
+    if (!this.showSources) { this.requestRender(); return; }
+    const du = this.sourceShift();
     const px = this.pixelSize2();
     for (const m of [this.mats.srcGuide, this.mats.srcGuideSel]) { m.dashSize = 6 * px; m.gapSize = 4 * px; }
     const handlePos = [], handleCol = [];
@@ -540,7 +626,7 @@ export class Views {
       const { lines, handles } = sourceOverlay(s);
       for (const { points, kind } of lines) {
         const geom = new THREE.BufferGeometry();
-        geom.setAttribute('position', new THREE.BufferAttribute(Float32Array.from(points.flatMap(([x, y]) => [x, y, 0])), 3));
+        geom.setAttribute('position', new THREE.BufferAttribute(Float32Array.from(points.flatMap(([x, y]) => [x + du, y, 0])), 3));
         const name = { ellipse: 'srcEllipse', guide: 'srcGuide', shape: 'srcShape' }[kind] + (sel ? 'Sel' : '');
         const mat = this.mats[name];
         const line = new THREE.Line(geom, mat);
@@ -548,8 +634,8 @@ export class Views {
         g.add(line);
       }
       for (const h of handles) {
-        this.handles.push({ source: i, key: h.key, x: h.p[0], y: h.p[1] });
-        handlePos.push(h.p[0], h.p[1], 0);
+        this.handles.push({ source: i, key: h.key, x: h.p[0] + du, y: h.p[1] });
+        handlePos.push(h.p[0] + du, h.p[1], 0);
         handleCol.push(...(sel ? [0.83, 0.33, 0.0] : [0.17, 0.24, 0.31]));
       }
     });
@@ -559,7 +645,101 @@ export class Views {
       geom.setAttribute('color', new THREE.Float32BufferAttribute(handleCol, 3));
       g.add(new THREE.Points(geom, this.mats.handles));
     }
-    this.requestRender('2d');
+    // On a surface: the same handles at their points of the surface in the 3D view.
+    if (this.mesh?.dimension === 3 && this.handles.length) {
+      const pos = [], col = [];
+      this.handles.forEach((h, k) => {
+        const xyz = this.surfacePoint(this.sourcePatch, h.x - du, h.y);
+        if (!xyz) return;
+        this.handles3.push({ source: h.source, key: h.key, xyz });
+        pos.push(...xyz);
+        col.push(handleCol[3 * k], handleCol[3 * k + 1], handleCol[3 * k + 2]);
+      });
+      if (pos.length) {
+        const geom = new THREE.BufferGeometry();
+        geom.setAttribute('position', new THREE.Float32BufferAttribute(pos, 3));
+        geom.setAttribute('color', new THREE.Float32BufferAttribute(col, 3));
+        const pts = new THREE.Points(geom, this.mats.handles);
+        pts.renderOrder = 10;
+        this.sources3.add(pts);
+      }
+    }
+    this.requestRender(this.handles3.length ? 'all' : '2d');
+  }
+
+  // (u, v) of each corner of element e of a surface mesh, and its vertex ids.
+  #corners(e) {
+    const m = this.mesh, nt = m.triangles.length / 3, c = this.result.patches?.corners;
+    const ids = e < nt ? [m.triangles[3 * e], m.triangles[3 * e + 1], m.triangles[3 * e + 2]]
+      : [0, 1, 2, 3].map((k) => m.quads[4 * (e - nt) + k]);
+    const base = e < nt ? 3 * e : 3 * nt + 4 * (e - nt);
+    const uv = ids.map((v, k) => (c ? [c[2 * (base + k)], c[2 * (base + k) + 1]] : [m.params[2 * v], m.params[2 * v + 1]]));
+    return { ids, uv };
+  }
+
+  /** The 3D point of a surface mesh at (u, v) of a patch (linear in its element), or null outside the mesh. */
+  surfacePoint(patch, u, v) {
+    const m = this.mesh;
+    if (!m || m.dimension !== 3) return null;
+    const elem = this.result.patches?.element, pos = m.positions;
+    const ne = m.triangles.length / 3 + m.quads.length / 4;
+    for (let e = 0; e < ne; e++) {
+      if (elem && elem[e] !== patch) continue;
+      const { ids, uv } = this.#corners(e);
+      for (const tri of ids.length === 3 ? [[0, 1, 2]] : [[0, 1, 2], [0, 2, 3]]) {
+        const [a, b, c] = tri.map((k) => uv[k]);
+        const det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        if (!det) continue;
+        const l1 = ((u - a[0]) * (c[1] - a[1]) - (v - a[1]) * (c[0] - a[0])) / det;
+        const l2 = ((b[0] - a[0]) * (v - a[1]) - (b[1] - a[1]) * (u - a[0])) / det;
+        const l0 = 1 - l1 - l2;
+        if (l0 < -1e-9 || l1 < -1e-9 || l2 < -1e-9) continue;
+        const w = [l0, l1, l2];
+        return [0, 1, 2].map((k) => tri.reduce((sum, t, j) => sum + w[j] * pos[3 * ids[t] + k], 0));
+      }
+    }
+    return null;
+  }
+
+  /**
+   * The point of the surface mesh under a client position in the 3D view: { patch, uv, xyz,
+   * element }, with (u, v) interpolated in the element's own patch; null when it misses.
+   */
+  pick3D(clientX, clientY) {
+    const v = this.viewports()['3d'];
+    if (!v || !this.meshObjects || this.mesh?.dimension !== 3) return null;
+    const r = this.canvas.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((clientX - r.left - v.x) / v.w) * 2 - 1, -((clientY - r.top - v.y) / v.h) * 2 + 1);
+    const ray = new THREE.Raycaster();
+    ray.setFromCamera(ndc, this.cam3);
+    const hit = ray.intersectObject(this.meshObjects.mesh3, false)[0];
+    if (!hit) return null;
+    const nt = this.mesh.triangles.length / 3, f = hit.faceIndex;
+    const e = f < nt ? f : nt + Math.floor((f - nt) / 2);
+    const tri = f < nt ? [0, 1, 2] : (f - nt) % 2 === 0 ? [0, 1, 2] : [0, 2, 3];
+    const { ids, uv } = this.#corners(e);
+    const P = (k) => new THREE.Vector3(...this.mesh.positions.subarray(3 * ids[k], 3 * ids[k] + 3));
+    const w = new THREE.Triangle(P(tri[0]), P(tri[1]), P(tri[2])).getBarycoord(hit.point, new THREE.Vector3());
+    const bary = [w.x, w.y, w.z];
+    const at = (j) => tri.reduce((sum, t, i) => sum + bary[i] * uv[t][j], 0);
+    return { patch: this.result.patches?.element[e] ?? 0, uv: [at(0), at(1)], xyz: hit.point.toArray(), element: e };
+  }
+
+  /** The patch whose strip of the 2D layout holds x (the source patch without a layout). */
+  patchAt2(x) {
+    const L = this.layout;
+    if (!L) return this.sourcePatch;
+    for (let p = 0; p < L.ranges.length; p++) if (x >= L.ranges[p][0] && x <= L.ranges[p][1]) return p;
+    return null;
+  }
+
+  /** Client position of a 3D point in the 3D view, or null when hidden. */
+  worldToClient3(xyz) {
+    const v = this.viewports()['3d'];
+    if (!v) return null;
+    const r = this.canvas.getBoundingClientRect();
+    const p = new THREE.Vector3(...xyz).project(this.cam3);
+    return { x: r.left + v.x + ((p.x + 1) / 2) * v.w, y: r.top + v.y + ((1 - p.y) / 2) * v.h };
   }
 
   /** Page (client) coordinates of a world point of the 2D view, or null if the 2D view is hidden. */
@@ -592,6 +772,16 @@ export class Views {
     return null;
   }
 
+  #pickHandle3(clientX, clientY) {
+    let best = null, bestD = HANDLE_PICK_PX;
+    for (const h of this.handles3) {
+      const c = this.worldToClient3(h.xyz);
+      const d = c ? Math.hypot(c.x - clientX, c.y - clientY) : Infinity;
+      if (d <= bestD) { bestD = d; best = h; }
+    }
+    return best;
+  }
+
   #pickHandle(clientX, clientY) {
     let best = null, bestD = HANDLE_PICK_PX;
     for (const h of this.handles) {
@@ -610,13 +800,32 @@ export class Views {
     el.addEventListener('pointerdown', (e) => {
       route(e);
       el.focus({ preventScroll: true });  // for the Delete key
-      if (this.#viewportAt(e.clientX, e.clientY) !== '2d' || e.button !== 0) return;
+      if (e.button !== 0) return;
+      const where = this.#viewportAt(e.clientX, e.clientY);
+      if (where === '3d') {
+        // On a surface: place an armed source, or drag a source handle over the surface.
+        const h3 = this.showSources ? this.#pickHandle3(e.clientX, e.clientY) : null;
+        if (this.placing) drag = { kind: 'place', x: e.clientX, y: e.clientY, view: '3d' };
+        else if (h3) {
+          drag = { kind: 'handle3', h: h3 };
+          this.dragView = '3d';
+          this.hooks.onSelect?.(h3.source);
+          const hp = this.handles.find((x) => x.source === h3.source && x.key === h3.key);
+          this.hooks.onDrag?.(h3.source, h3.key, hp ? [hp.x - this.sourceShift(), hp.y] : [0, 0], 'start');
+        } else return;
+        el.setPointerCapture(e.pointerId);
+        if (this.controls) this.controls.enabled = false;
+        return;
+      }
+      if (where !== '2d') return;
       const h = this.showSources ? this.#pickHandle(e.clientX, e.clientY) : null;
       el.setPointerCapture(e.pointerId);
-      if (h) {
+      if (this.placing) {
+        drag = { kind: 'place', x: e.clientX, y: e.clientY, view: '2d' };
+      } else if (h) {
         drag = { kind: 'handle', h };
         this.hooks.onSelect?.(h.source);
-        this.hooks.onDrag?.(h.source, h.key, [h.x, h.y], 'start');
+        this.hooks.onDrag?.(h.source, h.key, [h.x - this.sourceShift(), h.y], 'start');
       } else {
         drag = { kind: 'pan', x: e.clientX, y: e.clientY, cx: this.view2.cx, cy: this.view2.cy };
       }
@@ -628,9 +837,17 @@ export class Views {
         el.style.cursor = over ? 'grab' : '';
         return;
       }
+      if (drag.kind === 'place') return;
+      if (drag.kind === 'handle3') {
+        el.style.cursor = 'grabbing';
+        const hit = this.pick3D(e.clientX, e.clientY);
+        if (hit && hit.patch === this.sourcePatch) this.hooks.onDrag?.(drag.h.source, drag.h.key, hit.uv, 'move');
+        return;
+      }
       if (drag.kind === 'handle') {
         el.style.cursor = 'grabbing';
-        this.hooks.onDrag?.(drag.h.source, drag.h.key, this.clientToWorld2(e.clientX, e.clientY), 'move');
+        const [x, y] = this.clientToWorld2(e.clientX, e.clientY);
+        this.hooks.onDrag?.(drag.h.source, drag.h.key, [x - this.sourceShift(), y], 'move');
       } else {
         const px = this.pixelSize2();
         this.view2.cx = drag.cx - (e.clientX - drag.x) * px;
@@ -641,8 +858,28 @@ export class Views {
     });
     const end = (e) => {
       if (!drag) return;
-      if (drag.kind === 'handle') this.hooks.onDrag?.(drag.h.source, drag.h.key, this.clientToWorld2(e.clientX, e.clientY), 'end');
-      else this.#refreshSources();  // dashed guides depend on the zoom
+      if (drag.kind === 'place') {
+        // A click (not a drag) places the armed source where it hit.
+        if (Math.hypot(e.clientX - drag.x, e.clientY - drag.y) < 6) {
+          let hit = null;
+          if (drag.view === '3d') hit = this.pick3D(e.clientX, e.clientY);
+          else {
+            const [x, y] = this.clientToWorld2(e.clientX, e.clientY);
+            const patch = this.patchAt2(x);
+            if (patch !== null) hit = { patch, uv: [x - (this.layout?.shift[patch] ?? 0), y] };
+          }
+          if (hit) this.hooks.onPlace?.(hit);
+        }
+      } else if (drag.kind === 'handle3') {
+        this.dragView = null;
+        const hit = this.pick3D(e.clientX, e.clientY);
+        const hp = this.handles.find((x) => x.source === drag.h.source && x.key === drag.h.key);
+        const uv = hit && hit.patch === this.sourcePatch ? hit.uv : hp ? [hp.x - this.sourceShift(), hp.y] : [0, 0];
+        this.hooks.onDrag?.(drag.h.source, drag.h.key, uv, 'end');
+      } else if (drag.kind === 'handle') {
+        const [x, y] = this.clientToWorld2(e.clientX, e.clientY);
+        this.hooks.onDrag?.(drag.h.source, drag.h.key, [x - this.sourceShift(), y], 'end');
+      } else this.#refreshSources();  // dashed guides depend on the zoom
       drag = null;
       el.style.cursor = '';
     };
@@ -765,6 +1002,89 @@ function fillEdgeColors(out, edges, lengths) {
     }
     const o = 6 * e;
     out[o] = out[o + 3] = r; out[o + 1] = out[o + 4] = g; out[o + 2] = out[o + 5] = b;
+  }
+}
+
+// The 2D layout of a mesh of several surface patches: every element corner at its (u, v)
+// in its own patch (the core's cornerParams), patch p shifted along u by shift[p] so the
+// patches sit side by side, never overlapping. edges / boundary: corner indices in pairs
+// (each patch's distinct edges, and those used by one element of the patch: its contour).
+// Null for planar meshes and single patches (drawn from the vertex parameters).
+function patchLayout(mesh, patches) {
+  if (!patches?.element || !patches.corners) return null;
+  const elem = patches.element, corners = patches.corners;
+  let np = 0;
+  for (const p of elem) np = Math.max(np, p + 1);
+  if (np < 2) return null;
+  const nt = mesh.triangles.length / 3, nq = mesh.quads.length / 4;
+  const lo = new Float64Array(np).fill(Infinity), hi = new Float64Array(np).fill(-Infinity);
+  let vlo = Infinity, vhi = -Infinity;
+  const start = (e) => (e < nt ? 3 * e : 3 * nt + 4 * (e - nt));
+  const arity = (e) => (e < nt ? 3 : 4);
+  for (let e = 0; e < nt + nq; e++) {
+    const p = elem[e];
+    for (let k = 0; k < arity(e); k++) {
+      const c = start(e) + k, u = corners[2 * c], v = corners[2 * c + 1];
+      if (u < lo[p]) lo[p] = u;
+      if (u > hi[p]) hi[p] = u;
+      if (v < vlo) vlo = v;
+      if (v > vhi) vhi = v;
+    }
+  }
+  let width = 0;
+  for (let p = 0; p < np; p++) if (hi[p] > lo[p]) width = Math.max(width, hi[p] - lo[p]);
+  const gap = 0.12 * Math.max(width, vhi - vlo);
+  const shift = new Float64Array(np);
+  const ranges = [];
+  let x = 0;
+  for (let p = 0; p < np; p++) {
+    ranges.push([x, x + Math.max(0, hi[p] - lo[p])]);
+    if (!(hi[p] >= lo[p])) continue;
+    shift[p] = x - lo[p];
+    x += hi[p] - lo[p] + gap;
+  }
+  const ncorner = 3 * nt + 4 * nq;
+  const uv = new Float32Array(3 * ncorner);
+  for (let e = 0; e < nt + nq; e++) {
+    for (let k = 0; k < arity(e); k++) {
+      const c = start(e) + k;
+      uv[3 * c] = corners[2 * c] + shift[elem[e]]; uv[3 * c + 1] = corners[2 * c + 1];
+    }
+  }
+  // Edges per patch, keyed by (patch, vertex pair); the count tells the contour edges.
+  const verts = mesh.triangles, quads = mesh.quads, nv = mesh.params.length / 2;
+  const seen = new Map();
+  const edges = [], boundary = [];
+  for (let e = 0; e < nt + nq; e++) {
+    const n = arity(e), s0 = start(e);
+    for (let k = 0; k < n; k++) {
+      const a = e < nt ? verts[3 * e + k] : quads[4 * (e - nt) + k];
+      const b = e < nt ? verts[3 * e + ((k + 1) % 3)] : quads[4 * (e - nt) + ((k + 1) % 4)];
+      const key = (elem[e] * nv + Math.min(a, b)) * nv + Math.max(a, b);
+      const hit = seen.get(key);
+      if (hit === undefined) {
+        seen.set(key, edges.length);
+        edges.push(s0 + k, s0 + ((k + 1) % n));
+      } else seen.set(key, -1);
+    }
+  }
+  for (const i of seen.values()) if (i >= 0) boundary.push(edges[i], edges[i + 1]);
+  return {
+    uv, shift, ranges, edges: Uint32Array.from(edges), boundary: Uint32Array.from(boundary),
+    bounds: [0, vlo, Math.max(x - gap, 1e-9), vhi],
+  };
+}
+
+// Non-indexed faces of a laid-out surface mesh: corner c of the elements at xyz[3 c].
+function fillFacesLaidOut(pos, mesh, layout) {
+  const nt = mesh.triangles.length / 3, nq = mesh.quads.length / 4, uv = layout.uv;
+  let o = 0;
+  const put = (c) => { pos[o++] = uv[3 * c]; pos[o++] = uv[3 * c + 1]; pos[o++] = 0; };
+  for (let c = 0; c < 3 * nt; c++) put(c);
+  for (let q = 0; q < nq; q++) {
+    const c = 3 * nt + 4 * q;
+    put(c); put(c + 1); put(c + 2);
+    put(c); put(c + 2); put(c + 3);
   }
 }
 

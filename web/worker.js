@@ -59,6 +59,13 @@ function overlayFromInspect(cs) {
   return { kind, sampled: Boolean(cs.samples), nodes, lines: Float32Array.from(lines), bounds: cs.bounds ?? null };
 }
 
+// A surface run's final control spaces for the overlay: the core's ellipses per patch,
+// in (u, v) for the 2D view and mapped onto the surface for the 3D view.
+function overlayFromGlyphs(g) {
+  if (!g) return null;
+  return { kind: 'glyphs', sampled: false, glyphs: { patch: g.patch, offsets: g.offsets, uv: Float32Array.from(g.uv), xyz: g.xyz } };
+}
+
 // Legacy VTK of a sampled control space (analytic fields have no structure of their own
 // to export with toVtk): the sample points as a structured grid with the metric tensors.
 function sampledVtk(cs) {
@@ -108,13 +115,18 @@ const ops = {
       return true;
     };
     marks.coreStart = wallNow();
-    const run = am.meshCase(c, { inspectControlSpace: overlay && !surface, measures: true, stats: surface, onProgress });
+    const run = am.meshCase(c, {
+      inspectControlSpace: overlay && !surface, controlSpaceGlyphs: overlay && surface, patchParams: surface,
+      measures: true, stats: surface, onProgress,
+    });
     marks.coreEnd = wallNow();
     const { mesh, measures, timings } = run;
     lastMeshJob = surface ? null : id;
     return {
       mesh,
-      overlay: overlay ? overlayFromInspect(run.controlSpace) : null,
+      // Surfaces: each element's patch and its corners' (u, v) in it (the 2D view lays the patches side by side).
+      patches: surface ? { element: run.elementPatch, corners: run.cornerParams } : null,
+      overlay: overlay ? (surface ? overlayFromGlyphs(run.glyphs) : overlayFromInspect(run.controlSpace)) : null,
       measures: { edges: measures.edges, edgeLength: measures.edgeLength ?? null, quality: measures.quality ?? null, vertexH: measures.vertexH ?? null },
       stats: run.stats,  // null for a planar run: see 'report'
       core: timings,
@@ -134,19 +146,33 @@ const ops = {
     return am.writeMesh(mesh, format);
   },
   // The control space as VTK (toVtk for adaptive structures, a sampled grid otherwise) or JSON.
+  // A surface case: one control space per patch (the initial one of section 3.1, in its
+  // (u, v) plane): JSON { patches: [...] }, VTK a list of texts (one file per patch).
   exportControlSpace({ case: c, format }) {
-    const cs = am.createControlSpace(c);
-    try {
-      const json = cs.inspect({ sampleGrid: 64 });
-      if (format === 'json') return JSON.stringify(json, null, 1);
-      return json.samples ? sampledVtk(json) : cs.toVtk();
-    } finally {
-      cs.dispose();
+    const one = (patch) => {
+      const cs = am.createControlSpace(c, { patch });
+      try {
+        const json = cs.inspect({ sampleGrid: 64 });
+        if (format === 'json') return json;
+        return json.samples ? sampledVtk(json) : cs.toVtk();
+      } finally {
+        cs.dispose();
+      }
+    };
+    if (Array.isArray(c?.patches)) {
+      const all = c.patches.map((_, p) => one(p));
+      return format === 'json' ? JSON.stringify({ patches: all }, null, 1) : all;
     }
+    const r = one(0);
+    return format === 'json' ? JSON.stringify(r, null, 1) : r;
   },
   // Value of an expression at (u, v) or a PARSE_ERROR naming the column.
   checkExpression({ text, u = 0, v = 0 }) {
     return am.evaluateExpression(text, u, v, { variables: ['x', 'y'] });
+  },
+  // A planar domain from an SVG drawing (the core's parser), scaled to size.
+  domainFromSvg({ text, size }) {
+    return am.domainFromSvg(text, { size });
   },
   readMesh({ text, format }) {
     return am.readMesh(text, format);

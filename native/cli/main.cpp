@@ -1,28 +1,34 @@
+<<<<<<< HEAD
 // anisomesh command-line interface (native).
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+=======
+// anisomesh command-line interface (native). Each command lives in its own file and is
+// listed in commands() below; this file dispatches and reports errors.
+>>>>>>> main
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "anisomesh/anisomesh.h"
-#include "anisomesh/io/case_json.h"
-#include "anisomesh/io/file_io.h"
-#include "anisomesh/io/medit.h"
-#include "anisomesh/io/mesh_formats.h"
-#include "anisomesh/io/svg.h"
-#include "anisomesh/pipeline/mesh_statistics.h"
-#include "anisomesh/pipeline/pipeline.h"
-#include "anisomesh/pipeline/run_case.h"
+#include "adapt_command.h"
+#include "anisomesh/core/error.h"
+#include "anisomesh/core/version.h"
+#include "cli.h"
 
 namespace {
 
-using namespace anisomesh;
+using namespace anisomesh::cli;
+
+// The command table: add a command by adding its file and one line here.
+const std::vector<Command>& commands() {
+  static const std::vector<Command> table = {meshCommand(), remeshCommand(), metricCommand()};
+  return table;
+}
 
 int usage(std::ostream& os, int code) {
+<<<<<<< HEAD
   os << "usage: anisomesh <command> [options]\n"
         "commands:\n"
         "  mesh CASE.json -o OUT [--quads] [--all-quads] [--stats] [--max-elements N] [--no-updates]\n"
@@ -36,6 +42,12 @@ int usage(std::ostream& os, int code) {
         "                            remesh the domain of IN.mesh under the metric IN.sol, used as\n"
         "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1)\n"
         "  metric ALPHA H1 H2        print the metric tensor for sizes (h1, h2) at angle ALPHA (radians)\n"
+=======
+  os << "usage: anisomesh <command> [options]\ncommands:\n";
+  for (const Command& c : commands()) os << c.usage;
+  os << "  adapt IN.mesh -sol F.sol|-field EXPR -o OUT (-err E|-nv N) ...\n"
+        "                            adapt IN.mesh to a solution (anisomesh adapt --help for the options)\n"
+>>>>>>> main
         "  --version                 print the version\n"
         "--max-control-nodes: control-space node budget (default: max-elements / 64 + 262144);\n"
         "--max-input-bytes: larger input files are refused (default 536870912).\n"
@@ -43,6 +55,7 @@ int usage(std::ostream& os, int code) {
   return code;
 }
 
+<<<<<<< HEAD
 // A command-line mistake: reported with the usage text, exit code 2.
 struct UsageError {
   std::string message;
@@ -251,6 +264,8 @@ int runRemesh(int argc, char** argv) {
   return 0;
 }
 
+=======
+>>>>>>> main
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -258,10 +273,11 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   try {
     if (cmd == "--version") {
-      std::cout << "anisomesh 0.1.0\n";
+      std::cout << "anisomesh " << anisomesh::version() << "\n";
       return 0;
     }
     if (cmd == "--help" || cmd == "-h") return usage(std::cout, 0);
+<<<<<<< HEAD
     if (cmd == "metric") {
       if (argc != 5) return usage(std::cerr, 2);
       const auto m = anisomesh::Metric::fromSizes(parseReal("metric ALPHA", argv[2]), parseReal("metric H1", argv[3]),
@@ -269,9 +285,14 @@ int main(int argc, char** argv) {
       const auto t = m.tensor();
       std::cout << "{\"m11\":" << t(0, 0) << ",\"m12\":" << t(0, 1) << ",\"m22\":" << t(1, 1) << "}\n";
       return 0;
+=======
+    for (const Command& c : commands()) {
+      if (c.name != cmd) continue;
+      Args args(argc, argv);
+      return c.run(args);
+>>>>>>> main
     }
-    if (cmd == "mesh") return runMesh(argc, argv);
-    if (cmd == "remesh") return runRemesh(argc, argv);
+    if (cmd == "adapt") return anisomesh::runAdaptCommand(argc, argv);
     std::cerr << "anisomesh: unknown command '" << cmd << "'\n";
     return usage(std::cerr, 2);
   } catch (const UsageError& e) {

@@ -3,7 +3,9 @@
 // Prints: pointer-up -> new mesh drawn for a ~50k-triangle case (DRAGS drags, default 12)
 // with where the time went (the app's breakdown: see draw() in web/app.js), and the frame
 // rate while orbiting a ~200k-triangle mesh in the 3D view (headless Chromium, software WebGL).
-// ONLY=drag, ONLY=orbit or ONLY=shots runs one part; SYNC=1 makes "drawn" wait for the GPU.
+// ONLY=drag, ONLY=orbit, ONLY=surface or ONLY=shots runs one part; SYNC=1 makes "drawn" wait for the GPU.
+// ONLY=surface: drags of a radial source on "Surface p2 with holes", as is (about 2,845
+// triangles + the source's refinement) and refined to about 50k triangles.
 import { launch, openPage, settle } from './launch.mjs';
 import { sphereMesh } from './fixtures.mjs';
 import { fileURLToPath } from 'node:url';
@@ -103,6 +105,50 @@ try {
   }
 
   }
+  if (!only || only === 'surface') {
+  // --- 1c. drag a source on a surface (p2 with holes) -----------------------------------
+  for (const [label, edit] of [
+    ['p2 with holes, a radial source', null],
+    ['p2 with holes refined (chord tolerance 0.0025, hmax 0.3), a radial source', { chordTolerance: 0.0025, hmax: 0.3 }],
+  ]) {
+    const { page, errors } = await openPage(env.browser, env.url);
+    await settle(page, () => window.anisomeshApp.loadPreset('p2-holes'));
+    await settle(page, (e) => {
+      const a = window.anisomeshApp;
+      if (e) Object.assign(a.state.case.metric, e);
+      a.state.case.patches[0].sources = [{ type: 'radial', center: [0, 0], metric: { alpha: 0, h1: 0.15, h2: 0.15 }, radius: 1.5 }];
+      a.state.selected = 0;
+      a.edited(0);
+    }, edit);
+    const base = await page.evaluate(() => ({ tris: window.anisomeshApp.views.mesh.triangles.length / 3, job: window.anisomeshApp.state.lastJob }));
+    const drags = Number(process.env.DRAGS ?? 12);
+    const samples = [], breakdowns = [];
+    for (let rep = 0; rep < drags; rep++) {
+      const h = await page.evaluate(() => window.anisomeshApp.handleClientPosition(0, 'center'));
+      await page.mouse.move(h.x, h.y);
+      await page.mouse.down();
+      const dir = rep % 2 ? 1 : -1;
+      for (let k = 1; k <= 6; k++) await page.mouse.move(h.x + dir * 6 * k, h.y + 2 * k);
+      await page.evaluate(() => { window.anisomeshApp.state.dragToMeshMs = null; });
+      await page.mouse.up();
+      await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
+      const r = await page.evaluate(() => {
+        const s = window.anisomeshApp.state;
+        return { ms: s.dragInputToMeshMs, tris: window.anisomeshApp.views.mesh.triangles.length / 3, b: (s.breakdowns ?? []).filter((x) => x.drag).at(-1) ?? null };
+      });
+      samples.push(r.ms);
+      if (r.b) breakdowns.push(r.b);
+      await page.evaluate(() => new Promise((res) => setTimeout(res, 150)));
+    }
+    console.log(`RESULT surface drag, ${label} (~${base.tris} triangles): last edit -> mesh drawn median ${median(samples)} ms of ${samples.length}: ${samples.join(', ')}`);
+    if (breakdowns.length) {
+      const keys = Object.keys(breakdowns[0]).filter((k) => typeof breakdowns[0][k] === 'number');
+      console.log(`  breakdown, median of ${breakdowns.length} drags (ms): ` + keys.map((k) => `${k} ${median(breakdowns.map((b) => b[k] ?? 0))}`).join(', '));
+    }
+    if (errors.length) console.log('page errors:', errors);
+    await page.close();
+  }
+  }
   if (!only || only === 'orbit') {
   // --- 2. orbit a ~200k-triangle mesh -------------------------------------------------
   const { page: p2, errors: e2 } = await openPage(env.browser, env.url);
@@ -196,6 +242,41 @@ try {
       console.log(`screenshot web/screenshots/${f}: ${((await stat(out + f)).size / 1024).toFixed(0)} KB`);
     }
     await p3.close();
+  }
+  // --- 4. surface screenshots (ONLY=surfshots, or with the others) -----------------------
+  if (shots || only === 'surfshots') {
+    const { page: p4 } = await openPage(env.browser, env.url);
+    const frame = () => p4.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    // The surface editor: a height field typed as an expression.
+    await settle(p4, () => window.anisomeshApp.loadPreset('new-heightfield'));
+    await settle(p4, () => {
+      const a = window.anisomeshApp;
+      a.state.case.patches[0].surface.z = '0.35*exp(-3*((u-1.3)^2+(v-0.8)^2)) - 0.2*sin(2*u)*cos(3*v)';
+      a.state.case.patches[0].holes = [[{ type: 'circle', center: [0.6, 1.4], radius: 0.25 }]];
+      a.setView({ colorBy: 'quality', edges: 'plain' });
+      a.edited(0);
+    });
+    await frame();
+    await p4.screenshot({ path: `${out}app-surface-editor.png` });
+    // A source on a surface: p2 with a radial source (its handles in both views).
+    await settle(p4, () => window.anisomeshApp.loadPreset('p2-holes'));
+    await settle(p4, () => {
+      const a = window.anisomeshApp;
+      a.state.case.patches[0].sources = [{ type: 'radial', center: [0.5, -1], metric: { alpha: 0, h1: 0.08, h2: 0.08 }, radius: 1.8 }];
+      a.selectSource(0);
+      a.edited(0);
+    });
+    await frame();
+    await p4.screenshot({ path: `${out}app-surface-source.png` });
+    // The per-patch control spaces of figs. 11-13, side by side in (u, v) and on the surface.
+    await settle(p4, () => window.anisomeshApp.loadPreset('two-patch-c'));
+    await settle(p4, () => window.anisomeshApp.setView({ controlSpace: true, edges: 'plain' }));
+    await frame();
+    await p4.screenshot({ path: `${out}app-surface-control-space.png` });
+    for (const f of ['app-surface-editor.png', 'app-surface-source.png', 'app-surface-control-space.png']) {
+      console.log(`screenshot web/screenshots/${f}: ${((await stat(out + f)).size / 1024).toFixed(0)} KB`);
+    }
+    await p4.close();
   }
 } finally {
   await env.close();

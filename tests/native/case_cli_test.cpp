@@ -16,6 +16,12 @@ TEST(CaseCli, VersionAndHelp) {
   const CliRun r = run("--version");
   EXPECT_EQ(r.code, 0);
   EXPECT_NE(r.out.find("anisomesh"), std::string::npos);
+  // The version is written once, in package.json.
+  const std::string package = slurp(std::string(ANISOMESH_SOURCE_DIR) + "/package.json");
+  const std::size_t at = package.find("\"version\": \"");
+  ASSERT_NE(at, std::string::npos);
+  const std::string version = package.substr(at + 12, package.find('"', at + 12) - at - 12);
+  EXPECT_EQ(r.out, "anisomesh " + version + "\n");
   EXPECT_EQ(run("--help").code, 0);
 }
 

@@ -45,7 +45,7 @@ test('errors: message on stderr, exit 1 for bad input, 2 for bad usage, no parti
   const out = join(dir, 'never.mesh');
   const missing = runNode('mesh', join(dir, 'nope.json'), '-o', out);
   assert.equal(missing.status, 1);
-  assert.match(missing.stderr, /error IO_ERROR: cannot read/);
+  assert.match(missing.stderr, /error IO_ERROR: cannot open .* for reading/);
   writeFileSync(join(dir, 'bad.json'), '{"domain": {"outer": [{"type": "line", "p1": [0, 0], "p2": [1, 0]}]}}');
   const open = runNode('mesh', join(dir, 'bad.json'), '-o', out);
   assert.equal(open.status, 1);

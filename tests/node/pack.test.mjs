@@ -17,6 +17,17 @@ test('npm pack tarball installs into an empty folder and imports', { timeout: 12
     const files = info.files.map((f) => f.path);
     assert.ok(files.includes('wasm/dist/anisomesh-core.wasm'), `tarball lacks the wasm: ${files}`);
     assert.ok(files.includes('wasm/index.d.ts'));
+    for (const f of ['LICENSE', 'README.md', 'wasm/index.cjs', 'wasm/load.js', 'wasm/dist/anisomesh-core.wasm.b64.js', 'wasm/three.d.ts']) {
+      assert.ok(files.includes(f), `tarball lacks ${f}`);
+    }
+    // The README's links to documents (not pictures) resolve inside the package.
+    const readme = readFileSync(join(root, 'README.md'), 'utf8');
+    for (const [, target] of readme.matchAll(/\]\(([^)#\s]+\.(?:md|d\.ts))\)/g)) {
+      assert.ok(files.includes(target), `README links ${target}, which the package does not ship`);
+    }
+    const pkg = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8'));
+    assert.ok(pkg.keywords.length > 3 && pkg.license === 'MIT');
+    assert.match(readFileSync(join(root, 'LICENSE'), 'utf8'), /^MIT License/);
     assert.ok(!files.some((f) => f.startsWith('native/') || f.startsWith('tests/')), 'tarball ships sources or tests');
     const app = join(dir, 'app');
     execFileSync('mkdir', ['-p', app]);

@@ -1,4 +1,5 @@
 #include "anisomesh/controlspace/metric_sources.h"
+#include "anisomesh/core/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +19,7 @@ void checkPoint(const Vec2& p, const char* what) {
 void checkRadius(double r, const char* what) {
   if (!(std::isfinite(r) && r >= 0.0))
     throw Error(ErrorCode::InvalidArgument,
-                std::string(what) + " radius must be finite and >= 0, got " + std::to_string(r));
+                std::string(what) + " radius must be finite and >= 0, got " + numberText(r));
 }
 
 bool isZeroLength(const Vec2& a, const Vec2& b) {
@@ -110,7 +111,7 @@ std::vector<SourcePiece> sourcePieces(const std::vector<MetricSource>& sources, 
       const double tol = 0.25 * std::max(s->radius, s->metric.sizes().h1);
       std::vector<Vec2> pts;
       auto eval = [&](double t) {
-        const Vec2 p = s->curve(t);
+        Vec2 p = s->curve(t);
         checkPoint(p, "curve source point");
         return p;
       };

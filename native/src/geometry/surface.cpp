@@ -91,7 +91,7 @@ HeightFieldSurface::HeightFieldSurface(const std::string& f, const Box2& domain,
     : HeightFieldSurface(Expression::parse(f, ExpressionOptions{"z(u,v)", {}}), domain, std::move(name)) {}
 
 Vec3 HeightFieldSurface::point(const Vec2& uv) const {
-  const Vec3 p(uv.x(), uv.y(), f_.value(uv.x(), uv.y()));
+  Vec3 p(uv.x(), uv.y(), f_.value(uv.x(), uv.y()));
   if (!(p.allFinite())) throw Error(ErrorCode::InvalidSurface, "z(u,v) is NaN or infinite on " + where(uv));
   return p;
 }

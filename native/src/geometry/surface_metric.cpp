@@ -111,7 +111,7 @@ Metric parameterMetric(const Surface& s, const Vec2& uv, const SurfaceMetricOpti
 }
 
 Mat2 parameterizationMatrix(const Surface& s, const Vec2& uv) {
-  const Mat2 mp = sqrtSpd(s.derivatives(uv).firstFundamentalForm());
+  Mat2 mp = sqrtSpd(s.derivatives(uv).firstFundamentalForm());
   if (!(mp.allFinite())) throw Error(ErrorCode::InvalidSurface, "parameterization matrix not finite on " + s.where(uv));
   return mp;
 }

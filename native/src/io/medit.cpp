@@ -4,6 +4,7 @@
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/io/file_io.h"
+#include "bamg_sections.h"
 #include "tokens.h"
 
 namespace anisomesh {
@@ -147,6 +148,8 @@ Mesh parseMedit(const std::string& text) {
       if (per < 0) per = dimension > 0 ? dimension : 3;
       const long long n = ts.count("the number of " + key, per);
       for (long long i = 0; i < n * per; ++i) ts.number("a value of " + key);
+    } else if (io_detail::skipBamgSection(ts, key)) {
+      // BAMG's own sections (bamg_sections.h).
     } else {
       ts.failAt(line,
                 "expected a Medit keyword (Vertices, Edges, Triangles, Quadrilaterals, End, ...), got '" + key + "'");

@@ -5,6 +5,7 @@
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/io/file_io.h"
+#include "anisomesh/io/gmsh.h"
 #include "anisomesh/io/medit.h"
 #include "tokens.h"
 
@@ -37,8 +38,9 @@ MeshFormat meshFormatFromPath(const std::string& path) {
   if (ext == "mesh") return MeshFormat::Medit;
   if (ext == "vtk") return MeshFormat::Vtk;
   if (ext == "obj") return MeshFormat::Obj;
+  if (ext == "msh") return MeshFormat::Gmsh;
   throw Error(ErrorCode::InvalidArgument,
-              "unknown mesh format of '" + path + "': expected the extension .mesh, .vtk or .obj");
+              "unknown mesh format of '" + path + "': expected the extension .mesh, .vtk, .obj or .msh");
 }
 
 std::string writeVtk(const Mesh& mesh) {
@@ -283,6 +285,10 @@ std::string writeMeshString(const Mesh& mesh, MeshFormat format) {
       return writeVtk(mesh);
     case MeshFormat::Obj:
       return writeObj(mesh);
+    case MeshFormat::Gmsh:
+      return writeGmsh(mesh, GmshVersion::V41);
+    case MeshFormat::Gmsh22:
+      return writeGmsh(mesh, GmshVersion::V22);
   }
   return writeMedit(mesh);
 }
@@ -295,6 +301,9 @@ Mesh parseMeshString(const std::string& text, MeshFormat format) {
       return parseVtk(text);
     case MeshFormat::Obj:
       return parseObj(text);
+    case MeshFormat::Gmsh:
+    case MeshFormat::Gmsh22:
+      return parseGmsh(text);
   }
   return parseMedit(text);
 }

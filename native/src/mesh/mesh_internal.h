@@ -1,35 +1,15 @@
 #pragma once
 // Internal helpers of the mesh area shared by the mesher, the quad conversion and the
-// quality report: a compact symmetric Mt and the metric element qualities.
+// quality report: the metric element qualities and the quad conversion.
 #include <cmath>
 #include <vector>
 
 #include "anisomesh/controlspace/control_space.h"
 #include "anisomesh/core/types.h"
 #include "anisomesh/mesh/mesh.h"
+#include "anisomesh/metric/sym_mt.h"
 
 namespace anisomesh {
-
-// Symmetric transformation matrix Mt = [a b; b c], three doubles (cache friendly).
-struct SymMt {
-  double a = 1.0, b = 0.0, c = 1.0;
-  static SymMt from(const Mat2& m) { return {m(0, 0), 0.5 * (m(0, 1) + m(1, 0)), m(1, 1)}; }
-  static SymMt average3(const SymMt& x, const SymMt& y, const SymMt& z) {
-    constexpr double k = 1.0 / 3.0;
-    return {(x.a + y.a + z.a) * k, (x.b + y.b + z.b) * k, (x.c + y.c + z.c) * k};
-  }
-  static SymMt average2(const SymMt& x, const SymMt& y) {
-    return {0.5 * (x.a + y.a), 0.5 * (x.b + y.b), 0.5 * (x.c + y.c)};
-  }
-  double det() const { return a * c - b * b; }
-  Vec2 apply(const Vec2& v) const { return {a * v.x() + b * v.y(), b * v.x() + c * v.y()}; }
-  // Mt^-1 v.
-  Vec2 solve(const Vec2& v) const {
-    const double d = det();
-    return {(c * v.x() - b * v.y()) / d, (a * v.y() - b * v.x()) / d};
-  }
-  double length(const Vec2& v) const { return apply(v).norm(); }
-};
 
 // Q = 4 sqrt(3) A_M / sum l_M^2 under the constant metric m: 1 for the equilateral
 // triangle in metric space, 0 when flat, negative when clockwise.

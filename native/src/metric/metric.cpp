@@ -1,4 +1,5 @@
 #include "anisomesh/metric/metric.h"
+#include "anisomesh/core/number_text.h"
 
 #include <cmath>
 #include <sstream>
@@ -53,7 +54,7 @@ void checkSpd(const Mat2& m, const char* what) {
 void checkSize(double h, const char* name) {
   if (!(std::isfinite(h) && h > 0.0))
     throw Error(ErrorCode::InvalidMetric,
-                std::string("metric size ") + name + " must be finite and positive, got " + std::to_string(h));
+                std::string("metric size ") + name + " must be finite and positive, got " + numberText(h));
 }
 
 }  // namespace

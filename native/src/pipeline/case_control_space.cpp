@@ -1,4 +1,5 @@
 #include "anisomesh/pipeline/case_control_space.h"
+#include "anisomesh/core/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -63,9 +64,9 @@ FieldFunction fieldFunction(const AnalyticFieldSpec& f) {
     return [alpha, h1, h2, path](const Vec2& p, Metric* out) {
       const double a = alpha.value(p.x(), p.y()), s1 = h1.value(p.x(), p.y()), s2 = h2.value(p.x(), p.y());
       if (!(std::isfinite(a) && std::isfinite(s1) && std::isfinite(s2) && s1 > 0 && s2 > 0))
-        throw Error(ErrorCode::InvalidMetric, path + ": at " + formatPoint(p) + " the formulas give alpha = " +
-                                                  std::to_string(a) + ", h1 = " + std::to_string(s1) +
-                                                  ", h2 = " + std::to_string(s2) + " (sizes must be finite and > 0)");
+        throw Error(ErrorCode::InvalidMetric,
+                    path + ": at " + formatPoint(p) + " the formulas give alpha = " + numberText(a) +
+                        ", h1 = " + numberText(s1) + ", h2 = " + numberText(s2) + " (sizes must be finite and > 0)");
       *out = Metric::fromSizes(a, s1, s2);
       return true;
     };

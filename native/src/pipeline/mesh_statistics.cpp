@@ -101,11 +101,14 @@ nlohmann::json pipelineStatsJson(const Mesh& mesh, const ControlSpace& cs, const
   j["boundaryUpdates"] = {{"rounds", r.updateRounds},
                           {"converged", r.updatesConverged},
                           {"shortSegments", r.shortSegments},
+                          {"shortSegmentSources", r.shortSegmentSources},
                           {"invalidSegments", r.invalidSegments},
+                          {"rediscretizedContours", r.rediscretizedContours},
                           {"chordSources", r.chordSources},
                           {"proximitySources", r.proximitySources},
                           {"refinedElements", r.refinedElements},
                           {"maxChordDeviation", r.maxChordDeviation}};
+  if (r.cacheHits + r.cacheMisses > 0) j["queryCache"] = {{"hits", r.cacheHits}, {"misses", r.cacheMisses}};
   j["notes"] = r.notes;
   return j;
 }

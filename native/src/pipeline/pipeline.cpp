@@ -11,9 +11,11 @@
 
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/controlspace/control_space_spec.h"
+#include "anisomesh/controlspace/query_cache.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/portable_math.h"
 #include "anisomesh/geometry/discretize.h"
+#include "anisomesh/pipeline/boundary_updates.h"
 #include "anisomesh/pipeline/case_control_space.h"
 #include "anisomesh/pipeline/element_estimate.h"
 #include "anisomesh/pipeline/mesh_metric_field.h"
@@ -26,186 +28,18 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-double pointSegmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double l2 = d.squaredNorm();
-  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
-}
-
-// Metric length of the straight segment pq (Simpson's rule on |Mt(x) (q - p)|).
-double segmentMetricLength(const ControlSpace& cs, const Vec2& p, const Vec2& q) {
-  const Vec2 d = q - p;
-  return (cs.metricAt(p).length(d) + 4.0 * cs.metricAt(0.5 * (p + q)).length(d) + cs.metricAt(q).length(d)) / 6.0;
-}
-
-bool isCurved(const Curve& c) {
-  const std::string t = c.typeName();
-  return t != "line" && t != "polyline";
-}
-
-// Largest distance of c([a, b]) from its chord, by sampling.
-double chordDeviation(const Curve& c, double a, double b) {
-  const Vec2 p = c.point(a), q = c.point(b);
-  double dev = 0.0;
-  constexpr int kSamples = 8;
-  for (int k = 1; k < kSamples; ++k)
-    dev = std::max(dev, pointSegmentDistance(c.point(a + (b - a) * k / kSamples), p, q));
-  return dev;
-}
-
-double curvatureRadius(const Curve& c, double t) {
-  const Vec2 d1 = c.derivative(t), d2 = c.secondDerivative(t);
-  const double cross = std::abs(d1.x() * d2.y() - d1.y() * d2.x());
-  const double n = d1.norm();
-  return cross > 0 ? n * n * n / cross : std::numeric_limits<double>::infinity();
-}
-
-// Section 3.2 (b): curvature sources along the chords of curved contours deviating
-// from the curve by more than tolerance * chord. Returns the largest relative deviation.
-double chordSources(const Domain& domain, const ControlSpace& cs, const BoundaryUpdateOptions& o,
-                    std::vector<MetricSource>* out) {
-  double worst = 0.0;
-  std::vector<const Contour*> contours{&domain.outer};
-  for (const Contour& h : domain.holes) contours.push_back(&h);
-  for (const Contour* contour : contours)
-    for (const CurveUse& use : contour->curves) {
-      const Curve& c = *use.curve;
-      if (!isCurved(c)) continue;
-      const std::vector<double> ts = discretizeCurve(c, cs, contour->curves.size() == 1 ? 3 : 1);
-      for (size_t i = 0; i + 1 < ts.size(); ++i) {
-        const double chord = (c.point(ts[i + 1]) - c.point(ts[i])).norm();
-        if (chord <= 0) continue;
-        const double rel = chordDeviation(c, ts[i], ts[i + 1]) / chord;
-        worst = std::max(worst, rel);
-        if (rel <= o.chordTolerance) continue;
-        // Tangent size from the sagitta s = h^2 / (8 R): s / h <= tol for h <= 8 R tol;
-        // 0.75 leaves room for the rounding of the discretization.
-        const int pieces = 8;
-        for (int k = 0; k < pieces; ++k) {
-          const double a = ts[i] + (ts[i + 1] - ts[i]) * k / pieces, b = ts[i] + (ts[i + 1] - ts[i]) * (k + 1) / pieces;
-          const double r = std::min({curvatureRadius(c, a), curvatureRadius(c, 0.5 * (a + b)), curvatureRadius(c, b)});
-          if (!std::isfinite(r)) continue;
-          const double h1 = 0.75 * 8.0 * r * o.chordTolerance;
-          const Vec2 t = c.derivative(0.5 * (a + b));
-          const Vec2 pa = c.point(a), pb = c.point(b);
-          if ((pb - pa).norm() <= 1e-12 * std::max(1.0, pa.norm())) continue;
-          out->emplace_back(std::in_place_type<SegmentSource>,
-                            SegmentSource{pa, pb, Metric::fromSizes(pm::atan2(t.y(), t.x()), h1, o.dMax * h1),
-                                          chordDeviation(c, a, b)});  // emplace: see case_control_space.cpp
-        }
-      }
-    }
-  return worst;
-}
-
-// Where each boundary point sits: loop, index in the loop, arc length along the loop.
-struct BoundaryIndex {
-  std::vector<int> loop, index;
-  std::vector<double> arc;
-  std::vector<double> loopLength;
-  std::vector<int> loopSize;
-};
-
-BoundaryIndex indexBoundary(const std::vector<BoundaryLoop>& loops) {
-  BoundaryIndex b;
-  for (size_t l = 0; l < loops.size(); ++l) {
-    const auto& pts = loops[l].points;
-    double s = 0.0;
-    for (size_t i = 0; i < pts.size(); ++i) {
-      b.loop.push_back(int(l));
-      b.index.push_back(int(i));
-      b.arc.push_back(s);
-      s += (pts[(i + 1) % pts.size()] - pts[i]).norm();
-    }
-    b.loopLength.push_back(s);
-    b.loopSize.push_back(int(pts.size()));
-  }
-  return b;
-}
-
-// Two boundary points belong to non-adjacent boundary segments when they are on different
-// loops, or farther apart along the loop than twice their distance (a gap or a narrow
-// part, not a gently curved contour) and not neighbours.
-bool nonAdjacent(const BoundaryIndex& b, const std::vector<Vec2>& pts, int i, int j) {
-  if (b.loop[i] != b.loop[j]) return true;
-  const int n = b.loopSize[b.loop[i]];
-  const int di = std::abs(b.index[i] - b.index[j]);
-  if (std::min(di, n - di) < 2) return false;
-  const double da = std::abs(b.arc[i] - b.arc[j]);
-  const double along = std::min(da, b.loopLength[b.loop[i]] - da);
-  return along > 2.0 * (pts[i] - pts[j]).norm();
-}
-
-// Section 3.2 (c): sources across thin boundary triangles.
-int proximitySources(const std::vector<BoundaryLoop>& loops, const Mesh& boundaryMesh, const ControlSpace& cs,
-                     const BoundaryUpdateOptions& o, std::vector<MetricSource>* out) {
-  const BoundaryIndex b = indexBoundary(loops);
-  std::vector<Vec2> pts;
-  for (const Vec3& p : boundaryMesh.points) pts.push_back(p.head<2>());
-  const int nb = int(b.loop.size());
-  std::vector<Mat2> mt(pts.size());
-  for (size_t i = 0; i < pts.size(); ++i) mt[i] = cs.metricAt(pts[i]).transform();
-  const double unitArea = std::sqrt(3.0) / 4.0;
-  int added = 0;
-  for (const auto& t : boundaryMesh.triangles) {
-    if (t[0] >= nb || t[1] >= nb || t[2] >= nb) continue;
-    if (!nonAdjacent(b, pts, t[0], t[1]) && !nonAdjacent(b, pts, t[1], t[2]) && !nonAdjacent(b, pts, t[2], t[0]))
-      continue;
-    const Vec2 &p0 = pts[t[0]], &p1 = pts[t[1]], &p2 = pts[t[2]];
-    const Vec2 e1 = p1 - p0, e2 = p2 - p0;
-    const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
-    const Mat2 m = (mt[t[0]] + mt[t[1]] + mt[t[2]]) / 3.0;
-    if (area * std::abs(m.determinant()) >= o.eps2 * unitArea) continue;
-    const double longest = std::max({e1.norm(), e2.norm(), (p2 - p1).norm()});
-    const double width = 2.0 * area / longest;  // the triangle's height across its longest edge
-    if (!(width > 0)) continue;
-    const Vec2 centroid = (p0 + p1 + p2) / 3.0;
-    const double radius = std::max({(p0 - centroid).norm(), (p1 - centroid).norm(), (p2 - centroid).norm()});
-    out->emplace_back(std::in_place_type<RadialSource>,
-                      RadialSource{centroid, Metric::isotropic(width / o.gapElements), radius});
-    ++added;
-  }
-  return added;
-}
-
-// Section 3.2 (a): refines the structure near short boundary segments so it resolves
-// the metric there; new nodes take the analytic metric (when any) intersected with the
-// interpolated one. Returns the number of elements added.
-int refineNearSegments(AdaptiveControlSpace& cs, const std::vector<std::array<Vec2, 2>>& segments,
-                       const MetricFunction& analytic) {
-  if (segments.empty()) return 0;
-  // A uniform grid of segment boxes keeps the predicate cheap.
-  const Box2 box = cs.bounds();
-  const int side = std::clamp(int(std::sqrt(double(segments.size()))) + 1, 1, 256);
-  const Vec2 cell = box.size() / double(side);
-  std::vector<std::vector<int>> grid(size_t(side) * side);
-  auto cellOf = [&](double v, double lo, double h) { return std::clamp(int(std::floor((v - lo) / h)), 0, side - 1); };
-  for (size_t k = 0; k < segments.size(); ++k) {
-    const Vec2 lo = segments[k][0].cwiseMin(segments[k][1]), hi = segments[k][0].cwiseMax(segments[k][1]);
-    for (int y = cellOf(lo.y(), box.lo.y(), cell.y()); y <= cellOf(hi.y(), box.lo.y(), cell.y()); ++y)
-      for (int x = cellOf(lo.x(), box.lo.x(), cell.x()); x <= cellOf(hi.x(), box.lo.x(), cell.x()); ++x)
-        grid[size_t(y) * side + x].push_back(int(k));
-  }
-  const int before = cs.elementCount();
-  cs.refine(
-      [&](const ControlElement& e) {
-        for (int y = cellOf(e.box.lo.y(), box.lo.y(), cell.y()); y <= cellOf(e.box.hi.y(), box.lo.y(), cell.y()); ++y)
-          for (int x = cellOf(e.box.lo.x(), box.lo.x(), cell.x()); x <= cellOf(e.box.hi.x(), box.lo.x(), cell.x()); ++x)
-            for (int k : grid[size_t(y) * side + x]) {
-              const Vec2 &a = segments[k][0], &b = segments[k][1];
-              if (e.size <= (b - a).norm()) continue;
-              if (segmentBoxDistance(a, b, e.box) <= 0.0) return true;
-            }
-        return false;
-      },
-      [&](int first, int last) {
-        if (!analytic) return;
-        for (int i = first; i < last; ++i)
-          if (cs.nodeIsFree(i)) cs.setNodeMetric(i, intersect(cs.nodeMetric(i), analytic(cs.nodePosition(i))));
-      });
-  cs.applyConstraints();
-  return cs.elementCount() - before;
+// Runs f on cs, through a section 4 query cache when tolerance > 0 (a fresh one per call:
+// cs may have changed since), adding the cache's counts to the report.
+template <class F>
+auto throughCache(const ControlSpace& cs, double tolerance, PipelineReport& r, F&& f) {
+  if (!(tolerance > 0.0)) return f(cs);
+  QueryCacheOptions o;
+  o.tolerance = tolerance;
+  const CachedControlSpace cache(cs, o);
+  auto result = f(static_cast<const ControlSpace&>(cache));
+  r.cacheHits += cache.hits();
+  r.cacheMisses += cache.misses();
+  return result;
 }
 
 void countBoundary(const std::vector<BoundaryLoop>& loops, PipelineReport* report) {
@@ -245,13 +79,35 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   });
   DiscretizeOptions d;
   d.maxSegments = std::max<std::int64_t>(1, mesher.maxElements);
+  const double cacheTolerance = spec.controlSpace.queryCache;
 
+  // Section 3.2 loop: the first round discretizes every contour; later rounds only the
+  // contours marked invalid (a segment outside [lengthMin, lengthMax] or a chord too far
+  // from the curve, measured in the control space of that round), the others keep their
+  // points. It ends when no contour is invalid and the control space did not change.
   std::vector<BoundaryLoop> loops;
+  std::vector<char> invalid, fresh;
   r.updateRounds = 0;
   r.updatesConverged = true;
   for (int round = 0;; ++round) {
     t = Clock::now();
+<<<<<<< HEAD
     loops = withStage("contour discretization", [&] { return discretizeDomain(spec.domain, *cs, d); });
+=======
+    if (round == 0 || std::find(invalid.begin(), invalid.end(), 1) != invalid.end()) {
+      const std::vector<BoundaryLoop> next = throughCache(
+          *cs, cacheTolerance, r, [&](const ControlSpace& q) { return discretizeDomain(spec.domain, q, d); });
+      if (round == 0) {
+        loops = next;
+        fresh.assign(loops.size(), 1);
+      } else {
+        fresh = keepValidContours(loops, next, invalid);
+        for (char f : fresh) r.rediscretizedContours += f;
+      }
+    } else {
+      fresh.assign(loops.size(), 0);
+    }
+>>>>>>> main
     r.secondsDiscretization += secondsSince(t);
     r.updateRounds = round + 1;
     if (!updates.enabled) break;
@@ -261,19 +117,15 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
       break;
     }
     t = Clock::now();
-    // (a) segment lengths.
-    std::vector<std::array<Vec2, 2>> shortOnes;
-    for (const BoundaryLoop& l : loops)
-      for (size_t i = 0; i < l.points.size(); ++i) {
-        const Vec2 &p = l.points[i], &q = l.points[(i + 1) % l.points.size()];
-        const double len = segmentMetricLength(*cs, p, q);
-        if (len < updates.eps1) shortOnes.push_back({p, q});
-        if (len < updates.lengthMin || len > updates.lengthMax) ++r.invalidSegments;
-      }
-    r.shortSegments += int(shortOnes.size());
+    // (a) segment lengths: short ones update the control space, those outside
+    // [lengthMin, lengthMax] make their contour invalid.
+    SegmentLengthCheck lengths = checkSegmentLengths(loops, *cs, updates);
+    invalid = lengths.invalidContours;
+    r.shortSegments += int(lengths.shortSegments.size());
+    r.invalidSegments += lengths.invalidSegments;
     // (b) chord deviation, (c) proximity in the boundary triangulation.
     std::vector<MetricSource> sources;
-    r.maxChordDeviation = chordSources(spec.domain, *cs, updates, &sources);
+    r.maxChordDeviation = chordSources(spec.domain, *cs, updates, &sources, &invalid);
     const int chords = int(sources.size());
     PlanarMesherOptions b = mesher;
     b.boundaryOnly = true;
@@ -281,6 +133,7 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
     b.timings = nullptr;
     // The update rounds report no progress of their own but can still be cancelled.
     if (progress) b.progress = [&progress](double) { return progress(0.0); };
+<<<<<<< HEAD
     int gaps = 0, refined = 0;
     withStage("section 3.2 control-space updates", [&] {
       const Mesh boundaryMesh = meshPlanarBoundary(loops, *cs, b);
@@ -291,10 +144,25 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
     r.chordSources += chords;
     r.proximitySources += gaps;
     r.refinedElements += refined;
+=======
+    const Mesh boundaryMesh =
+        throughCache(*cs, cacheTolerance, r, [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, b); });
+    const int gaps = proximitySources(loops, boundaryMesh, *cs, updates, &sources);
+    const int shortSources = shortSegmentSources(lengths.shortSegments, *cs, spec.controlSpace.hmin, &sources);
+    r.chordSources += chords;
+    r.proximitySources += gaps;
+    r.shortSegmentSources += shortSources;
+    const int refined = refineNearSegments(*cs, lengths.shortSegments, analytic);
+    r.refinedElements += refined;
+    const bool changed = !sources.empty() || refined > 0;
+    if (changed) addCaseSources(*cs, spec, sources);
+>>>>>>> main
     r.secondsUpdates += secondsSince(t);
-    // Nothing changed: the discretization is final (contours whose lengths stay outside
-    // [1/2, 2], e.g. curves shorter than half a size, cannot improve by re-discretizing).
-    if (sources.empty() && refined == 0) break;
+    // An invalid contour discretized in this very control space would come out the same
+    // (e.g. curves shorter than half a size): only a change makes another round useful.
+    bool redo = changed;
+    for (size_t k = 0; k < invalid.size() && !redo; ++k) redo = invalid[k] && !fresh[k];
+    if (!redo) break;
   }
   countBoundary(loops, report);
   r.controlElements = cs->elementCount();
@@ -303,7 +171,12 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   t = Clock::now();
   PlanarMesherOptions finalOptions = mesher;
   finalOptions.timings = &r.mesherTimings;
+<<<<<<< HEAD
   Mesh mesh = withStage("meshing", [&] { return meshPlanarBoundary(loops, *cs, finalOptions); });
+=======
+  Mesh mesh = throughCache(*cs, cacheTolerance, r,
+                           [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, finalOptions); });
+>>>>>>> main
   r.secondsMeshing = secondsSince(t);
   if (controlSpace) *controlSpace = std::move(cs);
   return mesh;
@@ -370,13 +243,22 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
   DiscretizeOptions d;
   d.maxSegments = std::max<std::int64_t>(1, options.mesher.maxElements);
   const std::vector<BoundaryLoop> loops =
+<<<<<<< HEAD
       withStage("contour discretization", [&] { return discretizeDomain(domain, *cs, d); });
+=======
+      throughCache(*cs, options.queryCache, r, [&](const ControlSpace& q) { return discretizeDomain(domain, q, d); });
+>>>>>>> main
   r.secondsDiscretization = secondsSince(t);
   countBoundary(loops, report);
   t = Clock::now();
   PlanarMesherOptions finalOptions = options.mesher;
   finalOptions.timings = &r.mesherTimings;
+<<<<<<< HEAD
   Mesh mesh = withStage("meshing", [&] { return meshPlanarBoundary(loops, *cs, finalOptions); });
+=======
+  Mesh mesh = throughCache(*cs, options.queryCache, r,
+                           [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, finalOptions); });
+>>>>>>> main
   r.secondsMeshing = secondsSince(t);
   if (controlSpace) *controlSpace = std::move(cs);
   return mesh;

@@ -1,4 +1,5 @@
 #include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/json_syntax.h"
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/io/case_json.h"
@@ -6,12 +7,14 @@
 #include "anisomesh/io/json_text.h"
 #include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
+#include "anisomesh/surface/patch_params.h"
 #include "anisomesh/surface/surface_case_json.h"
 
 namespace anisomesh {
 
 bool isSurfaceCase(const std::string& jsonText) { return isSurfaceCaseJson(jsonText); }
 
+<<<<<<< HEAD
 namespace {
 
 // Reads a case with a reader that may let nlohmann's own exceptions escape (a number
@@ -27,6 +30,10 @@ auto readCase(const std::string& jsonText, F&& read) -> decltype(read()) {
 }
 
 CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& options) {
+=======
+CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
+  checkJsonSyntax(jsonText);  // one clean message for planar and surface cases
+>>>>>>> main
   CaseRun run;
   if (readCase(jsonText, [&] { return isSurfaceCaseJson(jsonText); })) {
     SurfaceCaseSpec spec = readCase(jsonText, [&] { return parseSurfaceCaseJson(jsonText); });
@@ -40,6 +47,10 @@ CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& opti
     run.stats = surfaceMeshReportToJson(report);
     run.elementQuality = std::move(report.elementQuality);
     run.glyphs = std::move(report.controlSpaceGlyphs);
+    if (options.patchParams) {
+      run.elementPatch = elementPatches(spec.model, run.mesh);
+      run.cornerParams = patchCornerParams(spec.model, run.mesh);
+    }
     // The keys every report has (planar reports carry the same), measured in 3D here.
     const nlohmann::json& q = run.stats["quality3d"];
     run.stats["quads"] = run.mesh.quads.size();

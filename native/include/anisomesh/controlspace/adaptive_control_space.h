@@ -12,27 +12,9 @@
 #include <vector>
 
 #include "anisomesh/controlspace/control_space.h"
+#include "anisomesh/metric/sym_mt.h"
 
 namespace anisomesh {
-
-// Mt of a control node as its three distinct entries [a b; b c]: the compact layout that
-// keeps the query path on flat arrays.
-struct SymMt {
-  double a = 1.0, b = 0.0, c = 1.0;
-};
-
-// Mt entries of a metric.
-inline SymMt toSymMt(const Metric& m) {
-  const Mat2& t = m.transform();
-  return {t(0, 0), 0.5 * (t(0, 1) + t(1, 0)), t(1, 1)};
-}
-
-// The metric whose Mt has these entries (no validation: values come from SPD metrics).
-inline Metric toMetric(const SymMt& s) {
-  Mat2 t;
-  t << s.a, s.b, s.b, s.c;
-  return Metric::fromTransformUnchecked(t);
-}
 
 // A control node seen from outside: position, metric and the size of the smallest
 // element touching it (the resolution of the structure there).

@@ -71,6 +71,9 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   // Cells (internal and leaves) and their properties.
   int cellCount() const { return static_cast<int>(child_.size()); }
   bool isLeaf(int cell) const { return child_[cell] < 0; }
+  // First of the four children of an internal cell (lo-left, lo-right, hi-left, hi-right,
+  // consecutive), -1 for a leaf.
+  int firstChild(int cell) const { return child_[cell]; }
   int cellLevel(int cell) const { return level_[cell]; }
   Box2 cellBox(int cell) const;
   // Node indices of a leaf: 4 corners P0..P3 (counter-clockwise from lo), then for

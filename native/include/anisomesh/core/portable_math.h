@@ -298,7 +298,8 @@ inline DD atanSmall(double u, double ul) {
       -0x1.bf76229d3b917p-56,
       0x1.1a62633145c07p-55,
   };
-  const int j = static_cast<int>(u * 16.0 + 0.5);
+  // u is in [0, 1], so truncating u * 16 + 0.5 rounds to nearest (no libm call).
+  const int j = static_cast<int>(u * 16.0 + 0.5);  // NOLINT(bugprone-incorrect-roundings)
   double t, tl;
   if (j == 0) {
     t = u;

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "anisomesh/controlspace/control_space.h"
+#include "anisomesh/geometry/boundary_loop.h"
 #include "anisomesh/geometry/domain.h"
-#include "anisomesh/mesh/planar_mesher.h"
 
 namespace anisomesh {
 

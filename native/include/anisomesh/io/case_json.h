@@ -22,6 +22,9 @@ struct CaseControlSpaceSpec {
   std::string interpolation = "bilinear";
   double refineThreshold = 0.1;  // difference() that splits a control element (analytic fields)
   int maxLevel = 0;              // deepest refinement; 0 = from hmin (box side / 2^L <= hmin), at most 14
+  // Section 4 query cache: > 0 reuses the last metric for a query point within this
+  // metric-space distance of the last query point (discretization and meshing); 0: off.
+  double queryCache = 0.0;
 };
 
 enum class SourceType { Radial, Segment, Polyline, Nodes, Analytic };

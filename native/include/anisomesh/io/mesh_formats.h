@@ -7,9 +7,10 @@
 
 namespace anisomesh {
 
-enum class MeshFormat { Medit, Vtk, Obj };
+// Gmsh: .msh 4.1 (written for the .msh extension); Gmsh22: .msh 2.2 (read: either).
+enum class MeshFormat { Medit, Vtk, Obj, Gmsh, Gmsh22 };
 
-// The format of a path by its extension (.mesh, .vtk, .obj); InvalidArgument otherwise.
+// The format of a path by its extension (.mesh, .vtk, .obj, .msh); InvalidArgument otherwise.
 MeshFormat meshFormatFromPath(const std::string& path);
 
 // VTK legacy ASCII UNSTRUCTURED_GRID: lines (edges), triangles and quads, with the

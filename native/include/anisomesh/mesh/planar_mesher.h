@@ -27,16 +27,10 @@
 #include <vector>
 
 #include "anisomesh/controlspace/control_space.h"
+#include "anisomesh/geometry/boundary_loop.h"
 #include "anisomesh/mesh/mesh.h"
 
 namespace anisomesh {
-
-// One closed polygonal contour: edge i joins points[i] and points[(i + 1) % n] and
-// carries edgeRefs[i] (the Medit reference of the curve it discretizes).
-struct BoundaryLoop {
-  std::vector<Vec2> points;
-  std::vector<int> edgeRefs;
-};
 
 // Wall-clock seconds spent in each stage of one meshPlanarBoundary run, and the element
 // estimate used for the budget check (copied into QualityReport by the caller).

@@ -11,6 +11,7 @@
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/mesh/mesh.h"
 #include "anisomesh/mesh/planar_mesher.h"
+#include "anisomesh/pipeline/boundary_updates.h"
 
 namespace anisomesh {
 
@@ -29,28 +30,17 @@ struct PipelineReport {
   int updateRounds = 0;            // rounds run (1 = the first discretization was valid)
   bool updatesConverged = true;    // false when the round limit stopped the loop
   int shortSegments = 0;           // boundary segments with metric length < eps1 (all rounds)
-  int invalidSegments = 0;         // ... with length < 1/2 or > 2
+  int shortSegmentSources = 0;     // sources added along them (the segment's length as reference)
+  int invalidSegments = 0;         // ... with length < 1/2 or > 2 (their contour is invalid)
+  int rediscretizedContours = 0;   // contours discretized again after the first round
   int chordSources = 0;            // curvature sources added for chord deviation
   int proximitySources = 0;        // sources added for thin boundary triangles
   int refinedElements = 0;         // control elements added near short segments
   double maxChordDeviation = 0.0;  // largest deviation / chord length over curved contours, last round
+  long long cacheHits = 0;         // section 4 query cache (when on): queries answered by it
+  long long cacheMisses = 0;       // ... and passed to the control space
   MesherTimings mesherTimings;     // stages of the final meshPlanarBoundary
   std::vector<std::string> notes;
-};
-
-// Section 3.2 checks after contour discretization and the boundary-only triangulation.
-struct BoundaryUpdateOptions {
-  double eps1 = 0.8;       // segments shorter (metric) refine the structure near them
-  double lengthMin = 0.5;  // segments outside [lengthMin, lengthMax] make the contour invalid
-  double lengthMax = 2.0;
-  double chordTolerance = 0.05;  // largest chord deviation from a curved contour / chord length
-  double dMax = 4.0;             // curvature sources: size across the contour = dMax * size along
-  // Boundary triangles with metric area below eps2 times the unit equilateral triangle's
-  // (sqrt3/4) joining non-adjacent boundary points refine the structure across the gap.
-  double eps2 = 0.2;
-  double gapElements = 2.0;  // elements wanted across a gap
-  int maxRounds = 8;         // bound on the loop (the report says whether it converged)
-  bool enabled = true;
 };
 
 // The mesher options of a case (quads, allQuads, maxElements).
@@ -82,8 +72,13 @@ struct RemeshOptions {
   double hmax = 0.0;   // clamp every requested size to <= hmax (0: off)
   double hgrad = 0.0;  // gradation ratio dr of the control space smoothing (0: off, else >= 1)
   RemeshMetricInsertion insertion = RemeshMetricInsertion::PiecewiseLinear;
+<<<<<<< HEAD
   double refineThreshold = 0.2;      // PiecewiseLinear: metric difference that splits a control element
   std::int64_t maxControlNodes = 0;  // control-space node budget; 0: controlSpaceNodeBudget(mesher.maxElements)
+=======
+  double refineThreshold = 0.2;  // PiecewiseLinear: metric difference that splits a control element
+  double queryCache = 0.0;       // section 4 query cache tolerance (metric distance); 0: off
+>>>>>>> main
   PlanarMesherOptions mesher;
 };
 

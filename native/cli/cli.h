@@ -1,0 +1,64 @@
+#pragma once
+// Shared pieces of the anisomesh command line: the command table entry, argument walking,
+// number parsing and output writing. One command per file (mesh_command.cpp, ...); main.cpp
+// lists them in its table.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "anisomesh/pipeline/case_svg.h"
+#include "anisomesh/pipeline/run_case.h"
+
+namespace anisomesh::cli {
+
+// A command-line mistake: reported with the usage text, exit code 2.
+struct UsageError {
+  std::string message;
+};
+
+// Walks argv after the command: positionals, flags and options with a value.
+class Args {
+ public:
+  Args(int argc, char** argv) : argc_(argc), argv_(argv) {}
+  bool done() const { return i_ >= argc_; }
+  std::string next() { return argv_[i_++]; }
+  // The value after option (UsageError when there is none).
+  const char* value(const std::string& option);
+
+ private:
+  int argc_;
+  char** argv_;
+  int i_ = 2;
+};
+
+// One command of the table: its name, its usage lines and what runs it (exit code).
+struct Command {
+  std::string name;
+  std::string usage;
+  std::function<int(Args&)> run;
+};
+
+// The commands, each defined in its own file.
+Command meshCommand();
+Command remeshCommand();
+Command metricCommand();
+
+// A nonnegative finite number (UsageError naming option otherwise).
+double parseNumber(const std::string& option, const char* text);
+// Any finite number.
+double parseSignedNumber(const std::string& option, const char* text);
+// A positive integer.
+long long parseCount(const std::string& option, const char* text);
+// "AZ,EL" in degrees, returned in radians.
+void parseView(const std::string& option, const std::string& text, CaseSvgOptions& svg);
+
+// UsageError unless out names a writable format (.mesh, .vtk, .obj, .msh, .vtu, .svg).
+void requireOutput(const std::string& out);
+// True for a .svg path.
+bool isSvg(const std::string& path);
+// Writes run.mesh to path by extension (.vtu: caseRunVtu, .svg: caseRunSvg with svg).
+void writeOutput(const std::string& path, const CaseRun& run, const CaseSvgOptions& svg);
+// -v N: a progress callback printing "anisomesh: NN%" lines to stderr when verbosity >= 1.
+std::function<bool(double)> progressPrinter(int verbosity);
+
+}  // namespace anisomesh::cli

@@ -1,0 +1,80 @@
+// anisomesh mesh CASE.json -o OUT ...: meshes a JSON case, planar or surface.
+#include <iostream>
+
+#include "anisomesh/io/file_io.h"
+#include "anisomesh/pipeline/run_case.h"
+#include "cli.h"
+
+namespace anisomesh::cli {
+
+namespace {
+
+int runMesh(Args& args) {
+  std::string input, output;
+  bool stats = false, quads = false, allQuads = false, updates = true, glyphs = false;
+  long long maxElements = -1;
+  int verbosity = 0;
+  CaseSvgOptions svg;
+  while (!args.done()) {
+    const std::string a = args.next();
+    if (a == "-o" || a == "--output" || a == "-out")
+      output = args.value(a);
+    else if (a == "-in")
+      input = args.value(a);
+    else if (a == "-v")
+      verbosity = static_cast<int>(parseSignedNumber(a, args.value(a)));
+    else if (a == "--svg-uv")
+      svg.uv = true;
+    else if (a == "--svg-control-space")
+      glyphs = true;
+    else if (a == "--svg-view")
+      parseView(a, args.value(a), svg);
+    else if (a == "--quads")
+      quads = true;
+    else if (a == "--all-quads")
+      allQuads = true;
+    else if (a == "--stats")
+      stats = true;
+    else if (a == "--no-updates")
+      updates = false;
+    else if (a == "--max-elements")
+      maxElements = parseCount(a, args.value(a));
+    else if (!a.empty() && a[0] == '-')
+      throw UsageError{"unknown option '" + a + "' for mesh"};
+    else if (input.empty())
+      input = a;
+    else
+      throw UsageError{"unexpected argument '" + a + "'"};
+  }
+  if (input.empty()) throw UsageError{"missing CASE.json"};
+  requireOutput(output);
+
+  // The same entry point as the wasm package: planar and surface cases, same report.
+  RunCaseOptions o;
+  if (quads) o.quads = true;
+  if (allQuads) o.allQuads = true;
+  o.maxElements = maxElements;
+  o.controlSpaceUpdates = updates;
+  o.controlSpaceGlyphs = glyphs && isSvg(output);
+  o.progress = progressPrinter(verbosity);
+  const CaseRun run = runCase(readTextFile(input), o);
+  writeOutput(output, run, svg);
+  if (stats) std::cout << run.stats.dump() << "\n";
+  return 0;
+}
+
+}  // namespace
+
+Command meshCommand() {
+  return {
+      "mesh",
+      "  mesh CASE.json -o OUT [--quads] [--all-quads] [--stats] [--max-elements N] [--no-updates] [-v N]\n"
+      "                            mesh a JSON case, planar or surface (OUT: .mesh, .vtk, .obj, .msh, .vtu or .svg;\n"
+      "                            -in CASE.json / -out OUT as in MMG; -v 1: progress on stderr)\n"
+      "      [--svg-uv] [--svg-view AZ,EL] [--svg-control-space]\n"
+      "                            .svg of a surface: 3D view from azimuth AZ, elevation EL (degrees;\n"
+      "                            default -63,34), or the parameter plane; control-space ellipses over it\n",
+      runMesh};
+}
+
+}  // namespace anisomesh::cli

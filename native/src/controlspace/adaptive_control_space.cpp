@@ -1,0 +1,64 @@
+// The graph of an adaptive control space (structure edges and neighbours of its nodes) and
+// its nodes seen from outside.
+#include "anisomesh/controlspace/control_space_algorithms.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "anisomesh/core/error.h"
+
+namespace anisomesh {
+
+std::vector<std::array<int, 2>> AdaptiveControlSpace::sortedEdges(bool structure) const {
+  std::vector<std::array<int, 2>> edges = rawEdges(structure);
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+void AdaptiveControlSpace::edgeGraph(bool structure, std::vector<int>& start, std::vector<int>& nbr) const {
+  const std::vector<std::array<int, 2>> edges = rawEdges(structure);
+  const int n = nodeCount();
+  start.assign(n + 1, 0);
+  for (const auto& e : edges) {
+    ++start[e[0] + 1];
+    ++start[e[1] + 1];
+  }
+  for (int i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<int> all(start.back());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const auto& e : edges) {
+    all[fill[e[0]]++] = e[1];
+    all[fill[e[1]]++] = e[0];
+  }
+  // Per node: sort the few neighbours (insertion sort) and drop repeats, compacting.
+  nbr.resize(all.size());
+  int out = 0;
+  for (int i = 0; i < n; ++i) {
+    const int b = start[i], e = start[i + 1];
+    for (int k = b + 1; k < e; ++k) {
+      const int v = all[k];
+      int m = k;
+      for (; m > b && all[m - 1] > v; --m) all[m] = all[m - 1];
+      all[m] = v;
+    }
+    start[i] = out;
+    for (int k = b; k < e; ++k)
+      if (k == b || all[k] != all[k - 1]) nbr[out++] = all[k];
+  }
+  start[n] = out;
+  nbr.resize(out);
+}
+
+std::vector<ControlNode> AdaptiveControlSpace::controlNodes() const {
+  const std::vector<double> sizes = nodeElementSizes();
+  std::vector<ControlNode> out;
+  out.reserve(nodeCount());
+  for (int i = 0; i < nodeCount(); ++i)
+    if (nodeIsFree(i)) out.push_back({pos_[i], nodeMetric(i), sizes[i]});
+  return out;
+}
+
+}  // namespace anisomesh

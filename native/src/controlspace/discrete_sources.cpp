@@ -1,0 +1,117 @@
+// Discrete metric sources inserted into a control space (section 2.2: points, segments,
+// curves with a radius of influence and distance weights).
+#include "anisomesh/controlspace/control_space_algorithms.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "anisomesh/core/error.h"
+#include "bucket_grid.h"
+
+namespace anisomesh {
+
+using controlspace_internal::BucketGrid;
+using controlspace_internal::pieceBox;
+using controlspace_internal::pointBox;
+
+void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& sources,
+                   const DiscreteInsertionOptions& options) {
+  const Box2 box = cs.bounds();
+  const std::vector<SourcePiece> pieces = sourcePieces(sources, box, options.source);
+  if (pieces.empty()) return;  // nothing inside the domain: no-op
+
+  // (a) Structure adaptation near the sources.
+  {
+    std::vector<Box2> boxes;
+    boxes.reserve(pieces.size());
+    for (const auto& p : pieces) boxes.push_back(pieceBox(p, p.radius));
+    const BucketGrid grid(box, boxes);
+    // The pieces' boxes and target sizes in slot order: the scans read contiguous memory.
+    struct Slot {
+      Box2 box;
+      double targetSize;
+      int piece;
+    };
+    std::vector<Slot> slots;
+    slots.reserve(grid.items().size());
+    for (int k : grid.items()) slots.push_back({boxes[k], pieces[k].targetSize, k});
+    cs.refine(
+        [&](const ControlElement& e) {
+          return grid.anySlot(e.box, [&](int k) {
+            const Slot& sl = slots[k];
+            if (!(e.size > sl.targetSize)) return false;
+            // Boxes apart: the piece is farther than its radius (cheap exact rejection).
+            if (sl.box.hi.x() < e.box.lo.x() || sl.box.lo.x() > e.box.hi.x() || sl.box.hi.y() < e.box.lo.y() ||
+                sl.box.lo.y() > e.box.hi.y())
+              return false;
+            const SourcePiece& p = pieces[sl.piece];
+            return segmentBoxDistance(p.a, p.b, e.box) <= p.radius;
+          });
+        },
+        nullptr);
+  }
+
+  // (b) Weighted average of the sources reaching each free node. Free nodes are binned,
+  // and their positions and sums kept in bin order (contiguous scans); every node still
+  // accumulates its sources in their order.
+  const int n = cs.nodeCount();
+  const double minSize = cs.minElementSize();
+  std::vector<Box2> nodeBoxes;
+  std::vector<int> freeNodes;
+  nodeBoxes.reserve(n);
+  freeNodes.reserve(n);
+  for (int i = 0; i < n; ++i)
+    if (cs.nodeIsFree(i)) {
+      freeNodes.push_back(i);
+      nodeBoxes.push_back(pointBox(cs.nodePosition(i), 0.0));
+    }
+  const BucketGrid nodeGrid(box, nodeBoxes);
+  const std::vector<int>& slotItem = nodeGrid.items();
+  const size_t slots = slotItem.size();
+  std::vector<Vec2> slotPos(slots);
+  for (size_t k = 0; k < slots; ++k) slotPos[k] = cs.nodePosition(freeNodes[slotItem[k]]);
+  std::vector<SymMt> sum(slots, SymMt{0.0, 0.0, 0.0});
+  std::vector<double> wsum(slots, 0.0);
+  for (const SourcePiece& p : pieces) {
+    const double reach = std::max(p.targetSize, minSize);
+    const double soft = 0.25 * reach;
+    const double limit = p.radius + reach;
+    const SymMt m = toSymMt(p.metric);
+    auto add = [&](size_t k, double d) {
+      const double t = std::max(d - p.radius, 0.0) + soft;
+      const double w = 1.0 / (t * t);
+      sum[k].a += w * m.a;
+      sum[k].b += w * m.b;
+      sum[k].c += w * m.c;
+      wsum[k] += w;
+    };
+    if (p.a == p.b) {  // a point: the distance as distanceToPiece() computes it
+      nodeGrid.forSlots(pieceBox(p, limit), [&](int k) {
+        const double dx = p.a.x() - slotPos[k].x(), dy = p.a.y() - slotPos[k].y();
+        const double d = std::sqrt(dx * dx + dy * dy);
+        if (!(d > limit)) add(k, d);
+      });
+    } else {
+      nodeGrid.forSlots(pieceBox(p, limit), [&](int k) {
+        const double d = distanceToPiece(p, slotPos[k]);
+        if (!(d > limit)) add(k, d);
+      });
+    }
+  }
+  for (size_t k = 0; k < slots; ++k) {
+    if (wsum[k] <= 0.0) continue;
+    const int i = freeNodes[slotItem[k]];
+    const SymMt avg{sum[k].a / wsum[k], sum[k].b / wsum[k], sum[k].c / wsum[k]};
+    const Metric m = toMetric(avg);
+    cs.setNodeMetric(i, cs.nodeIsInitialized(i) ? intersect(cs.nodeMetric(i), m) : m);
+  }
+
+  // (c) Extrapolation into the nodes no source reached.
+  const Metric fallback =
+      options.fallbackMetric ? *options.fallbackMetric : Metric::isotropic(0.25 * box.size().norm());
+  extrapolateMetric(cs, fallback);
+}
+
+}  // namespace anisomesh

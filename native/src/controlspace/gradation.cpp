@@ -1,0 +1,336 @@
+// Gradation smoothing of a control space (section 2.5): the slope a_max, the pairwise rule
+// limiting a neighbour's metric, the work-set propagation over the structure.
+#include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/core/number_text.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "anisomesh/core/error.h"
+
+namespace anisomesh {
+
+double gradationSlope(double ratio) {
+  require(std::isfinite(ratio) && ratio >= 1.0, ErrorCode::InvalidArgument,
+          "gradation ratio dr must be finite and >= 1, got " + numberText(ratio));
+  return 2.0 * (ratio - 1.0) / (ratio + 1.0);
+}
+
+namespace {
+
+// Entries of the tensor M = Mt Mt of Mt entries m.
+inline SymMt tensorOf(const SymMt& m) { return {m.a * m.a + m.b * m.b, m.b * (m.a + m.c), m.b * m.b + m.c * m.c}; }
+
+// The shrink limitGradation() asks of a (sqrt(l1) - 1 for the largest eigenvalue l1 of
+// Mt_a^-1 (M_i / s^2) Mt_a^-1, s = 1 + a_max |Mt_i u| = 1 + a_max d / h_i), on Mt entries
+// (mi2 = tensorOf(mi)), or -1 for a zero-length edge: the cheap test in front of it.
+inline double limitShrink(const SymMt& mi, const SymMt& mi2, const Vec2& u, const SymMt& a, double slope) {
+  const double wx = mi.a * u.x() + mi.b * u.y(), wy = mi.b * u.x() + mi.c * u.y();
+  const double len = std::sqrt(wx * wx + wy * wy);
+  if (!(len > 0.0)) return -1.0;
+  const double inv = 1.0 / ((a.a * a.c - a.b * a.b) * (1.0 + slope * len));
+  const double ia = a.c * inv, ib = -a.b * inv, ic = a.a * inv;
+  const double x00 = ia * mi2.a + ib * mi2.b, x01 = ia * mi2.b + ib * mi2.c;
+  const double x10 = ib * mi2.a + ic * mi2.b, x11 = ib * mi2.b + ic * mi2.c;
+  const double n00 = x00 * ia + x01 * ib, n01 = x00 * ib + x01 * ic, n11 = x10 * ib + x11 * ic;
+  const double mean = 0.5 * (n00 + n11), half = 0.5 * (n00 - n11);
+  return std::sqrt(std::max(mean + std::sqrt(half * half + n01 * n01), 0.0)) - 1.0;
+}
+
+}  // namespace
+
+bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj, double slope, double tolerance) {
+  const Vec2 u = pj - pi;
+  const double d = u.norm();
+  if (d <= 0.0) return false;
+  const double hi = mi.sizeAlong(u);
+  const double s = 1.0 + slope * d / hi;  // eq. 7 at a = a_max
+  // Cheap test first: mj already inside s mi when the largest eigenvalue of
+  // Mt_j^-1 (M_i / s^2) Mt_j^-1 is <= 1 (no trigonometry, unlike intersect()).
+  const Mat2 ij = mj.transform().inverse();
+  const Mat2 q = ij * mi.tensor() * ij / (s * s);
+  const double half = 0.5 * (q(0, 0) - q(1, 1)), off = 0.5 * (q(0, 1) + q(1, 0));
+  const double lmax = 0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off);
+  // sqrt(lmax) - 1: the largest relative shrink of mj's sizes the limit asks for.
+  if (std::sqrt(std::max(lmax, 0.0)) - 1.0 <= tolerance) return false;
+  const Metric cand = intersect(mj, mi.scaled(s));
+  if (cand.transform() == mj.transform()) return false;
+  mj = cand;
+  return true;
+}
+
+namespace {
+
+// Max-heap of node indices by key (ties: smaller index first) with the position of each
+// node, so a node whose key changes moves in place instead of leaving a stale entry.
+class NodeHeap {
+ public:
+  explicit NodeHeap(int n) : key_(n, 0.0), pos_(n, -1) {}
+  bool empty() const { return heap_.empty(); }
+  // The node pop() would return now (the heap must not be empty).
+  int top() const { return heap_.front(); }
+  // Inserts node i with key k, or moves it to key k when present.
+  void set(int i, double k) {
+    key_[i] = k;
+    if (pos_[i] < 0) {
+      pos_[i] = static_cast<int>(heap_.size());
+      heap_.push_back(i);
+    }
+    down(up(pos_[i]));
+  }
+  // Removes and returns the top node.
+  int pop() {
+    const int top = heap_.front();
+    pos_[top] = -1;
+    const int last = heap_.back();
+    heap_.pop_back();
+    if (!heap_.empty()) {
+      heap_[0] = last;
+      pos_[last] = 0;
+      down(0);
+    }
+    return top;
+  }
+
+ private:
+  bool before(int a, int b) const { return key_[a] > key_[b] || (key_[a] == key_[b] && a < b); }
+  void place(int at, int i) {
+    heap_[at] = i;
+    pos_[i] = at;
+  }
+  int up(int at) {
+    const int i = heap_[at];
+    while (at > 0) {
+      const int parent = (at - 1) / 2;
+      if (!before(i, heap_[parent])) break;
+      place(at, heap_[parent]);
+      at = parent;
+    }
+    place(at, i);
+    return at;
+  }
+  void down(int at) {
+    const int i = heap_[at];
+    const int size = static_cast<int>(heap_.size());
+    for (;;) {
+      int child = 2 * at + 1;
+      if (child >= size) break;
+      if (child + 1 < size && before(heap_[child + 1], heap_[child])) ++child;
+      if (!before(heap_[child], i)) break;
+      place(at, heap_[child]);
+      at = child;
+    }
+    place(at, i);
+  }
+
+  std::vector<double> key_;
+  std::vector<int> pos_;
+  std::vector<int> heap_;
+};
+
+// Largest eigenvalue of Mt: the inverse of the smallest requested size.
+inline double sizeKey(const SymMt& m) {
+  const double half = 0.5 * (m.a - m.c);
+  return 0.5 * (m.a + m.c) + std::sqrt(half * half + m.b * m.b);
+}
+
+// One work-set pass over the graph (start, nbr) from `seeds` (see smoothGradation);
+// nodes it changes get changed[i] = 1.
+int gradationWorkSet(AdaptiveControlSpace& cs, const std::vector<int>& start, const std::vector<int>& nbr,
+                     const std::vector<int>& seeds, double slope, double tolerance, std::vector<char>& changed) {
+  const int n = cs.nodeCount();
+  // Ordered by the node's smallest requested size (smallest first, as in Dijkstra): a
+  // node is mostly final when it is taken, so few nodes are re-queued.
+  NodeHeap heap(n);
+  for (int i : seeds) heap.set(i, sizeKey(cs.nodeMt(i)));
+  int updates = 0;
+  auto enqueue = [&](int j, const SymMt& mj) {
+    changed[j] = 1;
+    heap.set(j, sizeKey(mj));
+  };
+  while (!heap.empty()) {
+    const int i = heap.pop();
+    // The walk goes in size order, so node i and its neighbours lie anywhere in memory:
+    // request their data (and the next candidate's adjacency) together instead of
+    // waiting on one cache miss after another. Timing only; results are unchanged.
+    for (int k = start[i]; k < start[i + 1]; ++k) {
+      __builtin_prefetch(&cs.nodePosition(nbr[k]));
+      __builtin_prefetch(&cs.nodeMt(nbr[k]));
+    }
+    if (!heap.empty()) {
+      const int next = heap.top();
+      __builtin_prefetch(&start[next]);
+      __builtin_prefetch(&nbr[start[next]]);
+      __builtin_prefetch(&cs.nodeMt(next));
+      __builtin_prefetch(&cs.nodePosition(next));
+    }
+    const SymMt mi = cs.nodeMt(i);
+    const SymMt mi2 = tensorOf(mi);
+    const Metric mim = cs.nodeMetric(i);
+    const Vec2 pi = cs.nodePosition(i);
+    for (int k = start[i]; k < start[i + 1]; ++k) {
+      const int j = nbr[k];
+      const Vec2& pj = cs.nodePosition(j);
+      // Clearly within the limit (margin far above the rounding between the two
+      // computations): skip; otherwise limitGradation() decides and computes, so the
+      // result is the same as with limitGradation() alone.
+      if (limitShrink(mi, mi2, pj - pi, cs.nodeMt(j), slope) < tolerance - 1e-12) continue;
+      Metric mj = cs.nodeMetric(j);
+      if (limitGradation(mim, pi, mj, pj, slope, tolerance)) {
+        cs.setNodeMetric(j, mj);
+        ++updates;
+        enqueue(j, cs.nodeMt(j));
+      }
+    }
+  }
+  return updates;
+}
+
+// Mt of hanging node h from its masters' current values.
+SymMt interpolateHanging(const AdaptiveControlSpace& cs, const AdaptiveControlSpace::HangingNode& h) {
+  SymMt r{0.0, 0.0, 0.0};
+  for (int j = 0; j < 3; ++j) {
+    const SymMt& m = cs.nodeMt(h.masters[j]);
+    r.a += h.weights[j] * m.a;
+    r.b += h.weights[j] * m.b;
+    r.c += h.weights[j] * m.c;
+  }
+  return r;
+}
+
+}  // namespace
+
+int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
+  const double slope = gradationSlope(options.ratio);
+  require(options.tolerance >= 0.0, ErrorCode::InvalidArgument, "gradation tolerance must be >= 0");
+  const int n = cs.nodeCount();
+  const double tol = options.tolerance;
+  const auto hanging =
+      options.throughHangingNodes ? cs.hangingNodes() : std::vector<AdaptiveControlSpace::HangingNode>{};
+  std::vector<int> start, nbr;
+  cs.edgeGraph(!hanging.empty(), start, nbr);
+  std::vector<int> seeds;
+  for (int i = 0; i < n; ++i)
+    if (!hanging.empty() || cs.nodeIsFree(i)) seeds.push_back(i);
+  std::vector<char> changed(n, 0);
+  int updates = gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed);
+  if (hanging.empty()) {
+    cs.applyConstraints();
+    return updates;
+  }
+  // Hanging nodes were smoothed like free nodes. Where smoothing moved one, its
+  // positive-weight masters shrink to the smoothed value (then the interpolation is at
+  // least as fine, in Mt), finest hanging nodes first so that a hanging master passes the
+  // shrink on to its own masters; constraints are re-applied and the work-set restarts
+  // from the hanging nodes whose value moved, the changed masters and their neighbours.
+  // A round in which no hanging node moves ends with the bound holding on every side
+  // edge; bilinear trees get there in a few rounds. Serendipity
+  // constraints have a negative weight (and Mt interpolation is not monotone in every
+  // direction), so a round cap bounds the work; at the cap, free nodes are settled on
+  // their own graph (edges between free nodes then satisfy the bound; small excesses may
+  // remain on a few edges at hanging nodes).
+  std::vector<int> hangingOf(n, -1);
+  for (size_t k = 0; k < hanging.size(); ++k) hangingOf[hanging[k].node] = static_cast<int>(k);
+  std::vector<char> seeded(n, 0);
+  auto seedWithNeighbours = [&](int i) {
+    if (!seeded[i]) {
+      seeded[i] = 1;
+      seeds.push_back(i);
+    }
+    for (int k = start[i]; k < start[i + 1]; ++k)
+      if (!seeded[nbr[k]]) {
+        seeded[nbr[k]] = 1;
+        seeds.push_back(nbr[k]);
+      }
+  };
+  bool settled = false;
+  std::vector<SymMt> before(hanging.size());
+  for (int round = 0; round < 48; ++round) {
+    // Hanging nodes moved by the work-set, finest first (max-heap on the index, which
+    // follows the level); a hanging master that shrinks joins the heap, so the shrink
+    // reaches free masters within the round.
+    std::vector<int> dirty;
+    std::vector<char> inDirty(hanging.size(), 0);
+    for (int i = 0; i < n; ++i)
+      if (changed[i] && hangingOf[i] >= 0) {
+        dirty.push_back(hangingOf[i]);
+        inDirty[hangingOf[i]] = 1;
+      }
+    std::fill(changed.begin(), changed.end(), 0);
+    std::make_heap(dirty.begin(), dirty.end());
+    std::vector<int> movedMasters;
+    while (!dirty.empty()) {
+      std::pop_heap(dirty.begin(), dirty.end());
+      const int k = dirty.back();
+      dirty.pop_back();
+      const auto& h = hanging[k];
+      const Metric smoothed = cs.nodeMetric(h.node);
+      if (difference(toMetric(interpolateHanging(cs, h)), smoothed) <= tol) continue;
+      for (int j = 0; j < 3; ++j) {
+        if (h.weights[j] <= 0.0) continue;
+        const int mk = h.masters[j];
+        const Metric m = cs.nodeMetric(mk);
+        const Metric cand = intersect(m, smoothed);
+        if (difference(m, cand) <= tol) continue;
+        cs.setNodeMetric(mk, cand);
+        ++updates;
+        movedMasters.push_back(mk);
+        const int km = hangingOf[mk];
+        if (km >= 0 && !inDirty[km]) {
+          inDirty[km] = 1;
+          dirty.push_back(km);
+          std::push_heap(dirty.begin(), dirty.end());
+        }
+      }
+    }
+    // Hanging nodes take their interpolation again: those that moved (smoothed, or their
+    // masters changed) must limit their neighbours and be limited by them once more.
+    for (size_t k = 0; k < hanging.size(); ++k) before[k] = cs.nodeMt(hanging[k].node);
+    cs.applyConstraints();
+    seeds.clear();
+    std::fill(seeded.begin(), seeded.end(), 0);
+    for (size_t k = 0; k < hanging.size(); ++k) {
+      const SymMt& now = cs.nodeMt(hanging[k].node);
+      const SymMt& was = before[k];
+      const double scale = std::max({std::abs(was.a), std::abs(was.b), std::abs(was.c)});
+      if (std::max({std::abs(now.a - was.a), std::abs(now.b - was.b), std::abs(now.c - was.c)}) <= tol * scale)
+        continue;
+      const int d = hanging[k].node;
+      // Finer than before: limiting its neighbours (taking it) is enough. Otherwise its
+      // neighbours must limit it again too.
+      const Mat2 iw = toMetric(now).transform().inverse();
+      const Mat2 q = iw * toMetric(was).tensor() * iw;
+      const double half = 0.5 * (q(0, 0) - q(1, 1)), off = q(0, 1);
+      const bool finer = 0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off) <= 1.0 + tol;
+      if (finer) {
+        if (!seeded[d]) {
+          seeded[d] = 1;
+          seeds.push_back(d);
+        }
+      } else {
+        seedWithNeighbours(d);
+      }
+    }
+    for (int m : movedMasters) seedWithNeighbours(m);
+    if (seeds.empty()) {
+      settled = true;
+      break;
+    }
+    std::sort(seeds.begin(), seeds.end());
+    updates += gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed);
+  }
+  if (!settled) {
+    std::vector<int> fstart, fnbr;
+    cs.edgeGraph(false, fstart, fnbr);
+    seeds.clear();
+    for (int i = 0; i < n; ++i)
+      if (cs.nodeIsFree(i)) seeds.push_back(i);
+    updates += gradationWorkSet(cs, fstart, fnbr, seeds, slope, tol, changed);
+  }
+  cs.applyConstraints();
+  return updates;
+}
+
+}  // namespace anisomesh

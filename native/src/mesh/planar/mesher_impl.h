@@ -1,0 +1,256 @@
+#pragma once
+// Private header of the planar mesher (one class, its operations in one file each under
+// mesh/planar/): metric Delaunay meshing of a planar domain by the coordinate-transformation
+// approach. Exact Delaunay triangulation of the boundary points in a super-box
+// (boundary_recovery.cpp), boundary recovery by edge flips, removal of outside triangles by
+// parity flood fill, frontal-Delaunay insertion of inner nodes in the metric (insertion.cpp:
+// Rebay-style point placement, Bowyer-Watson cavities judged by each triangle's metric
+// circumcircle; the kernel in delaunay_kernel.cpp), then an adaptation loop
+// (improvement.cpp): metric edge swaps (swaps.cpp), collapse of short edges and split of
+// long inner edges (collapse_split.cpp), length-bounded node smoothing (smoothing.cpp), each
+// pass on the edges that changed. Data layout is flat arrays of triangle records with
+// neighbour indices (topology.cpp); no per-insertion heap allocation on the hot path; the
+// vertices are renumbered along a Hilbert curve (renumbering.cpp) before the improvement
+// passes for cache locality. The driver, Mesher::run, is mesh/planar_mesher.cpp.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <deque>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../mesh_internal.h"
+#include "anisomesh/core/error.h"
+#include "anisomesh/mesh/planar_mesher.h"
+#include "anisomesh/mesh/predicates.h"
+
+namespace anisomesh {
+namespace planar {
+
+using Clock = std::chrono::steady_clock;
+inline double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+constexpr int kSuper = 4;                                // super-box corners are vertices 0..3
+constexpr double kIdealRadius = 0.57735026918962576;     // circumradius of the unit equilateral triangle
+constexpr double kAcceptRadius = 0.70710678118654752;    // triangles with metric radius below are done
+constexpr int kBucketOffset = 4 * 1100;                  // bucket index offset: covers every double exponent
+constexpr double kEstimateFactor = 1.0;                  // measured: within ~10% on the layer test cases
+constexpr double kSwapSkipQuality = 0.97;                // pairs whose worse triangle is better are not swapped
+constexpr double kCollapseLength = 0.70710678118654752;  // shorter edges are collapsed
+constexpr double kCollapseMaxLength = 1.3;               // ... unless a new edge would be longer
+constexpr double kCollapseMinQuality = 0.4;              // ... or a triangle worse than this (or than before)
+// Final short-edge rounds (after the adaptation loop): the edges still shorter than
+// kCollapseLength are collapsed where the merged vertex can sit at unit length from its
+// ring, new edges up to kFinalCollapseMaxLength (just under sqrt2) but no triangle below
+// kFinalCollapseMinQuality (or below the worst one before).
+constexpr double kFinalCollapseMaxLength = 1.41;
+constexpr double kFinalCollapseMinQuality = 0.75;
+constexpr int kFinalCollapseRounds = 2;
+constexpr double kSplitLength = 1.41421356237309505;  // longer inner edges are split at their midpoint
+constexpr double kSplitMinQuality = 0.4;              // ... unless a triangle gets worse than this (and than before)
+constexpr double kSmoothSkipQuality = 0.9;            // balls whose worst triangle is better are not smoothed
+constexpr double kSmoothMinGain = 0.005;              // smaller gains of the worst triangle are not taken
+// Smoothing makes no ring edge shorter than this (unless it already is): a little above
+// 1/sqrt2, as the vertex-averaged Mt overestimates the length integral in a graded metric.
+constexpr double kSmoothMinLength = 0.715;
+
+inline int next3(int i) { return i == 2 ? 0 : i + 1; }
+
+// orient2d (predicates.h) with its floating-point filter inlined, the same value: the
+// hot predicate of point location and cavity checks; the exact evaluation stays out of line.
+inline double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+  constexpr double kEps = 1.1102230246251565e-16;  // 2^-53
+  constexpr double kBound = (3.0 + 16.0 * kEps) * kEps;
+  const double detleft = (a.x() - c.x()) * (b.y() - c.y());
+  const double detright = (a.y() - c.y()) * (b.x() - c.x());
+  const double det = detleft - detright;
+  const double bound = kBound * (std::fabs(detleft) + std::fabs(detright));
+  if (det > bound || -det > bound) return det;
+  return orient2d(a, b, c);
+}
+inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
+
+// Metric-space circumcircle of a triangle under its own (vertex-averaged) metric.
+struct TriCache {
+  double cx = 0, cy = 0;  // physical circumcentre
+  double r2 = 0;          // squared metric radius
+  SymMt m;                // the triangle's metric
+};
+
+class Mesher {
+ public:
+  Mesher(const std::vector<BoundaryLoop>& loops, const ControlSpace& cs, const PlanarMesherOptions& opt)
+      : loops_(loops), cs_(cs), opt_(opt) {}
+
+  Mesh run();
+
+ private:
+  // ---- setup and output ----
+  void validate() const;
+  void checkProgress(double fraction);
+  SymMt queryMetric(const Vec2& p) const { return SymMt::from(cs_.metricAt(p).transform()); }
+  Mesh output() const;
+
+  // ---- triangle storage ----
+  int allocTri();
+  void setNbrAcross(int tri, int a, int b, int newNbr);  // in tri, edge (b, a) now borders newNbr
+  bool cons(int t, int i) const { return (tri_[t].c >> i) & 1; }
+  int findEdge(int a, int b, int* idx) const;  // triangle holding directed edge a->b, opposite index
+  int liveTriangles() const { return static_cast<int>(tri_.size() - freeTris_.size()); }
+
+  // ---- Delaunay kernel ----
+  int locate(const Vec2& x, int start, bool stopAtConstraints);
+  template <class InCircle>
+  bool buildCavity(const Vec2& x, int t0, InCircle inCircle);
+  int commitCavity(int v);  // fans the cavity from vertex v, returns one new triangle
+  void flip(int t, int i);
+
+  // ---- stages ----
+  void triangulateBoundary();
+  void recoverEdge(int a, int b);
+  void removeOutside();
+  double estimateMetricArea();
+  double metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double da, double db, double dc, int depth,
+                       std::int64_t& budget) const;
+  void insertInnerNodes();
+  void renumberSpatially();
+  void improve();
+  int swapSweep(const std::vector<int>& work, std::vector<int>& next);
+  int smoothPass(std::vector<int>& touched);
+  template <class EdgeOp>
+  int scanEdges(const std::vector<int>* list, EdgeOp&& op);
+  int lengthPass(const std::vector<int>* list, std::vector<int>& touched);
+  bool tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touched);
+  int shortEdgePass(const std::vector<int>* list, std::vector<int>& touched);
+  bool trySplit(int t, int i, std::vector<int>& touched);
+
+  // ---- metric helpers ----
+  void computeCache(int t);
+  double triQuality(int a, int b, int c) const;
+  double triQuality(int a, int b, int c, const Vec2& pa) const;  // with a moved to pa
+
+  const std::vector<BoundaryLoop>& loops_;
+  const ControlSpace& cs_;
+  const PlanarMesherOptions& opt_;
+
+  // Vertex: position and cached metric Mt side by side (one cache miss, not two).
+  struct Vtx {
+    Vec2 p;
+    SymMt m;
+  };
+  std::vector<Vtx> vx_;
+  std::vector<std::uint8_t> vbnd_;  // 1: boundary or super vertex (never moved), 2: removed
+  std::vector<int> vtri_;
+  // Triangle: vertices (counter-clockwise), neighbours (n[i] across the edge opposite
+  // v[i]) and constrained-edge bits, together in one cache line.
+  struct Tri {
+    std::array<int, 3> v;
+    std::array<int, 3> n;
+    std::uint8_t c;      // constrained-edge bits
+    std::uint8_t acc;    // frontal insertion: accepted (done)
+    std::uint32_t mark;  // cavity / work-list epoch
+  };
+  std::vector<Tri> tri_;
+  std::vector<int> freeTris_;
+  std::vector<std::array<int, 2>> bedges_;  // boundary edges (mesher vertex ids)
+  std::vector<int> bedgeRefs_;
+  int nBoundary_ = 0;
+
+  // cavity scratch (reused)
+  std::vector<std::uint32_t> forbid_, vmark_;
+  std::uint32_t epoch_ = 0, fepoch_ = 0;
+  std::vector<int> cav_;
+  struct BndEdge {
+    int a, b, outer;
+    bool c;
+  };
+  std::vector<BndEdge> bnd_;
+  std::vector<int> startAt_, endAt_, newTris_;
+  std::uint32_t rng_ = 12345u;
+
+  // frontal state
+  std::vector<TriCache> cache_;
+  std::vector<std::uint32_t> stamp_, queued_;
+  std::vector<double> tq_;  // triangle metric quality (improvement stage)
+  std::vector<int> colBall_, colRing_, colBallB_;
+  // tryCollapse limits; colOptimal_: a midpoint collapse puts the merged vertex at the point
+  // its ring sees at unit metric length (as smoothing does) instead of the midpoint.
+  double colMaxLength_ = kCollapseMaxLength, colMinQuality_ = kCollapseMinQuality;
+  bool colOptimal_ = false;
+  std::vector<std::uint8_t> vdirty_;  // improvement: vertex whose surroundings changed
+
+  double estimate_ = 0.0;
+  double elementRatio_ = 1.0;  // final elements per triangle
+  MesherTimings timings_;
+};
+
+inline double Mesher::triQuality(int a, int b, int c) const { return triQuality(a, b, c, vx_[a].p); }
+
+inline double Mesher::triQuality(int a, int b, int c, const Vec2& pa) const {
+  const SymMt m = SymMt::average3(vx_[a].m, vx_[b].m, vx_[c].m);
+  return metricTriangleQuality(m, pa, vx_[b].p, vx_[c].p);
+}
+
+// Cavity of x: triangles reachable from t0 across unconstrained edges whose circumcircle
+// (as judged by inCircle) contains x, reduced until x sees every cavity boundary edge
+// strictly counter-clockwise (star-shaped, so the fan is valid). False if impossible.
+template <class InCircle>
+bool Mesher::buildCavity(const Vec2& x, int t0, InCircle inCircle) {
+  ++fepoch_;
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    ++epoch_;
+    cav_.clear();
+    cav_.push_back(t0);
+    tri_[t0].mark = epoch_;
+    for (size_t k = 0; k < cav_.size(); ++k) {
+      const int t = cav_[k];
+      for (int i = 0; i < 3; ++i) {
+        if (cons(t, i)) continue;
+        const int nb = tri_[t].n[i];
+        if (nb < 0 || tri_[nb].mark == epoch_ || (attempt > 0 && forbid_[nb] == fepoch_)) continue;
+        if (inCircle(nb)) {
+          tri_[nb].mark = epoch_;
+          cav_.push_back(nb);
+        }
+      }
+    }
+    bnd_.clear();
+    bool ok = true;
+    for (const int t : cav_) {
+      for (int i = 0; i < 3; ++i) {
+        const int nb = tri_[t].n[i];
+        if (nb >= 0 && tri_[nb].mark == epoch_ && !cons(t, i)) continue;
+        const int a = tri_[t].v[next3(i)], b = tri_[t].v[prev3(i)];
+        if (orient(vx_[a].p, vx_[b].p, x) <= 0.0) {
+          if (t == t0) return false;
+          forbid_[t] = fepoch_;
+          ok = false;
+        } else {
+          bnd_.push_back({a, b, nb, cons(t, i)});
+        }
+      }
+    }
+    if (!ok) continue;
+    if (bnd_.size() == cav_.size() + 2) return true;  // a disc without inner vertices
+    // A vertex whose whole ball is in the cavity would be lost (possible with per-triangle
+    // metrics): take its triangles out of the cavity and retry.
+    if (vmark_.size() < vx_.size() + 1) vmark_.resize(vx_.size() + 1024, 0);
+    for (const auto& e : bnd_) vmark_[e.a] = epoch_;
+    for (const int t : cav_)
+      for (int i = 0; i < 3; ++i)
+        if (vmark_[tri_[t].v[i]] != epoch_) {
+          if (t == t0) return false;
+          forbid_[t] = fepoch_;
+        }
+  }
+  return false;
+}
+
+}  // namespace planar
+}  // namespace anisomesh

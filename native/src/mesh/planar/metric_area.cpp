@@ -1,0 +1,73 @@
+// Planar mesher: metric area of the domain (the element estimate of the budget check).
+#include "mesher_impl.h"
+
+namespace anisomesh {
+namespace planar {
+
+// Integral of det(Mt) over the domain (metric area), adaptive over the boundary triangles.
+double Mesher::metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double da, double db, double dc, int depth,
+                             std::int64_t& budget) const {
+  const double area = 0.5 * std::fabs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+  const Vec2 g = (a + b + c) / 3.0;
+  const double dg = cs_.metricAt(g).transform().determinant();
+  --budget;
+  const double lo = std::min({da, db, dc, dg}), hi = std::max({da, db, dc, dg});
+  if (depth >= 14 || budget <= 0 || hi <= 1.2 * lo) return area * dg;  // centroid rule
+  const Vec2 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
+  const double dab = cs_.metricAt(ab).transform().determinant();
+  const double dbc = cs_.metricAt(bc).transform().determinant();
+  const double dca = cs_.metricAt(ca).transform().determinant();
+  budget -= 3;
+  return metricAreaRec(a, ab, ca, da, dab, dca, depth + 1, budget) +
+         metricAreaRec(ab, b, bc, dab, db, dbc, depth + 1, budget) +
+         metricAreaRec(ca, bc, c, dca, dbc, dc, depth + 1, budget) +
+         metricAreaRec(ab, bc, ca, dab, dbc, dca, depth + 1, budget);
+}
+
+// Metric area of the domain, the larger of two estimates: adaptive quadrature over the
+// boundary triangles (resolves metric features that touch the boundary) and a scanline
+// sampling on a grid of up to 256 rows with even-odd coverage (sees features inside the domain that
+// no boundary triangle vertex samples).
+double Mesher::estimateMetricArea() {
+  std::int64_t budget = 200000;
+  double adaptive = 0.0;
+  for (const auto& tr : tri_) {
+    const auto& t = tr.v;
+    const Vec2 &a = vx_[t[0]].p, &b = vx_[t[1]].p, &c = vx_[t[2]].p;
+    adaptive += metricAreaRec(a, b, c, vx_[t[0]].m.det(), vx_[t[1]].m.det(), vx_[t[2]].m.det(), 0, budget);
+  }
+  Vec2 lo = vx_[kSuper].p, hi = lo;
+  for (int v = kSuper; v < kSuper + nBoundary_; ++v) {
+    lo = lo.cwiseMin(vx_[v].p);
+    hi = hi.cwiseMax(vx_[v].p);
+  }
+  // As many rows as boundary points (64..256): the sampling stays cheap next to the mesh.
+  const int kRows = std::min(256, std::max(64, nBoundary_));
+  const double dy = (hi.y() - lo.y()) / kRows, dx = (hi.x() - lo.x()) / kRows;
+  if (!(dx > 0.0) || !(dy > 0.0)) return adaptive;
+  double grid = 0.0;
+  std::vector<double> xs;
+  for (int r = 0; r < kRows; ++r) {
+    const double y = lo.y() + (r + 0.5) * dy;
+    xs.clear();
+    for (const auto& e : bedges_) {
+      const Vec2 &p = vx_[e[0]].p, &q = vx_[e[1]].p;
+      if ((p.y() > y) != (q.y() > y)) xs.push_back(p.x() + (y - p.y()) / (q.y() - p.y()) * (q.x() - p.x()));
+    }
+    std::sort(xs.begin(), xs.end());
+    for (size_t k = 0; k + 1 < xs.size(); k += 2) {
+      const double xa = xs[k], xb = xs[k + 1];
+      int j = std::max(0, static_cast<int>((xa - lo.x()) / dx));
+      for (; j < kRows; ++j) {
+        const double c0 = std::max(xa, lo.x() + j * dx), c1 = std::min(xb, lo.x() + (j + 1) * dx);
+        if (c0 >= xb) break;
+        if (c1 <= c0) continue;
+        grid += (c1 - c0) * dy * cs_.metricAt(Vec2(0.5 * (c0 + c1), y)).transform().determinant();
+      }
+    }
+  }
+  return std::max(adaptive, grid);
+}
+
+}  // namespace planar
+}  // namespace anisomesh

@@ -1,0 +1,188 @@
+#pragma once
+// Private header of the surface mesher (paper section 3, Algorithm 1, on a model of
+// patches): the per-run state (ModelMesher) and the helpers its operation files share.
+// Driver: surface_mesh.cpp; patch control spaces: patch_control_space.cpp; shared curves
+// and contour discretization: shared_curves.cpp; section 3.2 boundary checks:
+// boundary_checks.cpp; merging of the patch meshes: merging.cpp; 3D quality measures:
+// surface_quality.cpp.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+
+#include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/controlspace/quadtree_control_space.h"
+#include "anisomesh/core/error.h"
+#include "anisomesh/core/portable_math.h"
+#include "anisomesh/geometry/discretize.h"
+#include "anisomesh/surface/surface_mesh.h"
+
+namespace anisomesh {
+namespace surface_mesher {
+
+using Clock = std::chrono::steady_clock;
+
+inline double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+inline std::string fmt(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
+inline std::string fmtUv(const Vec2& p) { return "(u, v) = (" + fmt(p.x()) + ", " + fmt(p.y()) + ")"; }
+
+inline std::string patchLabel(const SurfacePatch& p, int index) {
+  return "patch '" + (p.name.empty() ? std::to_string(index) : p.name) + "'";
+}
+
+// Cost counters shared by every patch of one run.
+struct Counters {
+  long long curvature = 0;
+  double curvatureSeconds = 0.0;
+  long long queries = 0;
+  double querySeconds = 0.0;
+};
+
+// Counts (and times) the queries the discretization and the mesher make; Mp comes from
+// the surface itself (section 4.3 allows either).
+class CountingControlSpace : public ControlSpace {
+ public:
+  CountingControlSpace(const ControlSpace& inner, const Surface& s, Counters& c) : inner_(inner), s_(s), c_(c) {}
+  Metric metricAt(const Vec2& p) const override {
+    const auto t0 = Clock::now();
+    Metric m = inner_.metricAt(p);
+    c_.querySeconds += since(t0);
+    ++c_.queries;
+    return m;
+  }
+  Mat2 parameterizationAt(const Vec2& p) const override { return parameterizationMatrix(s_, p); }
+  Box2 bounds() const override { return inner_.bounds(); }
+
+ private:
+  const ControlSpace& inner_;
+  const Surface& s_;
+  Counters& c_;
+};
+
+inline const Contour& contourOf(const SurfacePatch& p, int k) {
+  return k == 0 ? p.domain.outer : p.domain.holes[size_t(k - 1)];
+}
+
+inline int contourCount(const SurfacePatch& p) { return 1 + int(p.domain.holes.size()); }
+
+// One boundary curve of one patch and its current discretization (own t ascending).
+struct Slot {
+  int patch = 0, contour = 0, curve = 0;
+  CurvePtr c;
+  int minSegments = 1;
+  int master = -1;  // slot discretized with this one (the "a" side), or -1
+  bool masterReversed = false;
+  int follower = -1;      // the "b" side when this slot is a master
+  std::vector<double> t;  // parameters, 0 ... 1
+  std::vector<int> gid;   // merged-mesh vertex of each point
+  bool invalid = true;
+};
+
+inline std::string slotName(const SurfaceModel& m, const Slot& s) {
+  return patchLabel(m.patches[size_t(s.patch)], s.patch) + " " + contourName(s.contour) + " curve " +
+         std::to_string(s.curve);
+}
+
+// 3D point of a slot's curve at t.
+inline Vec3 slotPoint(const SurfaceModel& m, const Slot& s, double t) {
+  return m.patches[size_t(s.patch)].surface->point(s.c->point(t));
+}
+
+// Everything one run keeps per patch.
+struct PatchState {
+  std::unique_ptr<AdaptiveControlSpace> cs;
+  std::unique_ptr<CountingControlSpace> counted;
+  std::vector<std::vector<int>> slots;  // per contour, per curve: slot index
+  bool invalid = true;
+  bool modified = false;
+};
+
+class ModelMesher {
+ public:
+  ModelMesher(const SurfaceModel& m, const SurfaceMeshOptions& o) : m_(m), o_(o) {}
+  Mesh run(SurfaceMeshReport* report);
+
+ private:
+  void setupSlots();
+  void validateSharing();
+  void assignCornerIds();
+  void discretize(int slot);
+  std::vector<double> discretizeShared(const Slot& a, const Slot& b, std::vector<double>* tb);
+  // Boundary loops of a patch with the merged-mesh id of every point and whether each edge lies on a shared curve.
+  // curveMid (optional): per loop edge, the (u, v) of the curve at the middle parameter of the edge.
+  std::vector<BoundaryLoop> loopsOf(int patch, std::vector<int>* ids, std::vector<char>* sharedEdge,
+                                    std::vector<Vec2>* curveMid = nullptr) const;
+  void adaptAcrossShared();
+  void checkPatchBoundary(int patch);
+  // Queues a source for the patch's control space (inserted by flushSources()).
+  template <class S>
+  void addSource(int patch, const S& s) {
+    pending_[size_t(patch)].emplace_back(std::in_place_type<S>, s);
+  }
+  void flushSources();
+  std::vector<ControlSpaceGlyph> glyphs() const;
+  const ControlSpace& space(int patch) const { return *ps_[size_t(patch)].counted; }
+  Vec2 uvOf(const Slot& s, size_t i) const { return s.c->point(s.t[i]); }
+
+  const SurfaceModel& m_;
+  SurfaceMeshOptions o_;
+  Counters counters_;
+  std::vector<Slot> slots_;
+  std::vector<PatchState> ps_;
+  std::vector<std::vector<MetricSource>> pending_;
+  int nextId_ = 0;
+  int invalidations_ = 0;
+  std::vector<double> elementQuality_;
+  double size_ = 1.0;
+};
+
+std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& patch,
+                                                            const std::vector<Source3D>& sources3d,
+                                                            const SurfaceMeshOptions& o, Counters& counters);
+
+double modelSize(const SurfaceModel& m);
+
+// Distance between the chord x0x1 and the surface, along the surface normal at samples of
+// the parameter segment u0u1 (the edge-to-surface gap, without the tangential offset a
+// curved parameter line adds).
+double normalChordDeviation(const Surface& s, const Vec2& u0, const Vec2& u1, const Vec3& x0, const Vec3& x1);
+
+// The same gap inside the triangle (u0, u1, u2) -> (x0, x1, x2): at the 10 interior
+// barycentric points (i, j, k) / 6 (centroid included), the distance from the flat
+// triangle's point to the tangent plane at the surface point of the same parameter.
+double normalTriangleDeviation(const Surface& s, const Vec2 u[3], const Vec3 x[3]);
+
+// 3D quad quality in a constant metric: min over corners of 2 |e1 x e2|_M / (|e1|_M^2 + |e2|_M^2)
+// (1 for a unit square; as metricQuadQuality in the parameter plane).
+double quadQuality3D(const Vec3 x[4], const Mat3& m3);
+
+// Flips whole patches so that elements on both sides of every shared edge traverse it in
+// opposite directions (one consistent 3D orientation), starting from the first patch of
+// each connected group; a patch whose sharing contradicts itself (non-orientable) is left.
+// patchTriangles / patchQuads: element counts per patch, in the order of out's lists.
+void orientPatches(Mesh& out, const std::vector<int>& patchTriangles, const std::vector<int>& patchQuads,
+                   const std::set<std::array<int, 2>>& shared);
+
+// All-quad split of one patch's mesh in its (u, v): each triangle into 3 quads, each quad
+// into 4, one midpoint per edge. Boundary points are the first nb; the loop edge from
+// boundary point i to next[i] gets its point at curveMid[i] (on the contour curve). Returns,
+// for every new point, the boundary edge (i, next[i]) it splits or {-1, -1}.
+std::vector<std::array<int, 2>> splitPatchIntoQuads(Mesh& pm, size_t nb, const std::vector<int>& next,
+                                                    const std::vector<Vec2>& curveMid);
+
+}  // namespace surface_mesher
+}  // namespace anisomesh

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Static checks, one pass/fail line each in node --test's "# pass N / # fail N" form so that
+# run-all.sh counts them: clang-format (every C++ file), clang-tidy (bugprone and performance
+# checks of .clang-tidy over the core and the CLI, through build/native/compile_commands.json),
+# ESLint (eslint.config.js over the package, the page and the JS tests).
+set -uo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+cd "$root"
+pass=0; fail=0
+check() {  # check NAME COMMAND...: runs it, counts it, prints its output on failure
+  local name="$1"; shift
+  local out
+  if out=$("$@" 2>&1); then
+    echo "ok - $name"; pass=$((pass + 1))
+  else
+    echo "not ok - $name"; echo "$out" | head -60; fail=$((fail + 1))
+  fi
+}
+
+mapfile -t cxx < <(git ls-files '*.cpp' '*.h' '*.hpp')
+check "clang-format (${#cxx[@]} files)" clang-format --dry-run --Werror "${cxx[@]}"
+
+tidy() {
+  [ -f build/native/compile_commands.json ] || { echo "no build/native/compile_commands.json"; return 1; }
+  # A file passes when clang-tidy reports nothing of ours (WarningsAsErrors turns findings into errors).
+  git ls-files 'native/src/*.cpp' 'native/cli/*.cpp' |
+    xargs -P"$(nproc)" -n1 clang-tidy -p build/native --quiet 2>/dev/null | grep -E 'error:|warning:' && return 1
+  return 0
+}
+check "clang-tidy (bugprone, performance)" tidy
+
+check "eslint" npx --no-install eslint .
+
+echo "# pass $pass"
+echo "# fail $fail"
+[ "$fail" -eq 0 ]

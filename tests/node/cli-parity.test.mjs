@@ -1,0 +1,97 @@
+// One CLI: the npm CLI (wasm/cli.js) and the native one accept the same commands and
+// options and give the same exit code, the same output bytes, the same stdout (JSON
+// compared as values) and, for usage errors, the same stderr. Every option of every
+// command appears in at least one row of the table below (checked against the usage text).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import { existsSync, mkdtempSync, mkdirSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = fileURLToPath(new URL('../..', import.meta.url));
+const nodeCli = join(root, 'wasm/cli.js');
+const nativeCli = process.env.ANISOMESH_CLI ?? join(root, 'build/native/bin/anisomesh');
+const dir = mkdtempSync(join(tmpdir(), 'anisomesh-parity-'));
+test.after(() => rmSync(dir, { recursive: true, force: true }));
+
+const planar = join(root, 'examples/point_source.json');
+const surface = join(root, 'examples/surface/surface_p2_holes.json');
+const input = join(dir, 'in.mesh'), sol = join(dir, 'in.sol'), inputMsh = join(dir, 'in.msh');
+
+// Each row: the arguments, with OUT standing for the output file (in a folder per CLI).
+const rows = [
+  [], ['--version'], ['--help'], ['-h'], ['frobnicate'],
+  ['metric', '0.5', '0.1', '1'], ['metric', '0', '2', '2'], ['metric', '0.5', '0.1'], ['metric', 'x', '1', '1'],
+  ['metric', '0', '0', '1'], ['metric', '1', '1', '1', '1'],
+  ['mesh', planar, '-o', 'OUT.mesh', '--stats'], ['mesh', planar, '--output', 'OUT.vtk'], ['mesh', planar, '-o', 'OUT.obj'],
+  ['mesh', planar, '-o', 'OUT.svg'], ['mesh', planar, '-o', 'OUT.mesh', '--quads', '--stats'],
+  ['mesh', planar, '-o', 'OUT.mesh', '--all-quads'], ['mesh', planar, '-o', 'OUT.mesh', '--no-updates', '--stats'],
+  ['mesh', planar, '-o', 'OUT.mesh', '--max-elements', '100000'], ['mesh', planar, '-o', 'OUT.mesh', '--max-elements', '10'],
+  ['mesh', planar, '-o', 'OUT.mesh', '--max-elements', '0'], ['mesh', '-in', planar, '-out', 'OUT.mesh', '-v', '1'],
+  ['mesh', planar, '-o', 'OUT.mesh', '-v', '0'],
+  ['mesh', surface, '-o', 'OUT.svg'], ['mesh', surface, '-o', 'OUT.svg', '--svg-view', '-70,35'],
+  ['mesh', surface, '-o', 'OUT.svg', '--svg-uv'], ['mesh', surface, '-o', 'OUT.svg', '--svg-control-space'],
+  ['mesh', surface, '-o', 'OUT.svg', '--svg-uv', '--svg-control-space', '--quads'], ['mesh', surface, '-o', 'OUT.mesh', '--stats'],
+  ['mesh', surface, '-o', 'OUT.svg', '--svg-view', '10'], ['mesh', surface, '-o', 'OUT.svg', '--svg-view', 'a,b'],
+  ['mesh', planar], ['mesh', '-o', 'OUT.mesh'], ['mesh', planar, '-o', 'OUT.stl'], ['mesh', planar, '-o', 'OUT.mesh', '--frob'],
+  ['mesh', planar, planar, '-o', 'OUT.mesh'], ['mesh', planar, '-o'], ['mesh', join(dir, 'missing.json'), '-o', 'OUT.mesh'],
+  ['remesh', input, '-sol', sol, '-o', 'OUT.mesh', '--stats'], ['remesh', input, '--sol', sol, '-o', 'OUT.vtk', '-hgrad', '2'],
+  ['remesh', input, '-sol', sol, '-o', 'OUT.svg', '--hgrad', '1.5', '-hmin', '0.04', '--hmax', '0.2'],
+  ['remesh', '-in', input, '-sol', sol, '-out', 'OUT.mesh', '-hgrad', '-1', '-v', '1'],
+  ['remesh', input, '-o', 'OUT.mesh', '-hmax', '0.1', '--stats'], ['remesh', input, '-o', 'OUT.mesh', '--hmin', '0.2'],
+  ['remesh', input, '-o', 'OUT.mesh', '-hsiz', '0.08', '--stats'], ['remesh', input, '-o', 'OUT.mesh', '--hsiz', '0.1', '-hgrad', '0'],
+  ['remesh', input, '-sol', sol, '-o', 'OUT.mesh', '--max-elements', '20'],
+  ['remesh', input, '-o', 'OUT.mesh'], ['remesh', input, '-sol', sol, '-hsiz', '0.1', '-o', 'OUT.mesh'],
+  ['remesh', input, '-sol', sol, '-o', 'OUT.mesh', '-hgrad', '0.5'], ['remesh', input, '-sol', sol, '-o', 'OUT.mesh', '-hmin', '1', '-hmax', '0.1'],
+  ['remesh', input, '-sol', sol, '-o', 'OUT.mesh', '-hsiz', '0'], ['remesh', '-sol', sol, '-o', 'OUT.mesh'],
+  ['mesh', planar, '-o', 'OUT.msh'], ['mesh', surface, '-o', 'OUT.msh', '--quads'], ['mesh', planar, '-o', 'OUT.vtu', '--quads'],
+  ['mesh', surface, '-o', 'OUT.vtu'], ['remesh', input, '-hmax', '0.1', '-o', 'OUT.vtu'], ['remesh', inputMsh, '-hmax', '0.1', '-o', 'OUT.msh'],
+  ['remesh', join(dir, 'in.txt'), '-hmax', '0.1', '-o', 'OUT.mesh'],
+  ['remesh', input, '-sol', sol, '-o', 'OUT.mesh', '--bogus'], ['remesh', input, '-sol', join(dir, 'missing.sol'), '-o', 'OUT.mesh'],
+];
+
+function run(cli, args, folder) {
+  mkdirSync(folder, { recursive: true });
+  const a = args.map((x) => (x.startsWith('OUT') ? join(folder, x) : x));
+  const r = cli === 'native' ? spawnSync(nativeCli, a, { encoding: 'utf8' }) : spawnSync(process.execPath, [nodeCli, ...a], { encoding: 'utf8' });
+  const files = Object.fromEntries(readdirSync(folder).map((f) => [f, readFileSync(join(folder, f))]));
+  return { status: r.status, stdout: r.stdout, stderr: r.stderr, files };
+}
+
+// stdout as a value, without the timings (wall clock, different on every run).
+const untimed = (v) => (v && typeof v === 'object' && !Array.isArray(v)
+  ? Object.fromEntries(Object.entries(v).filter(([k]) => !/seconds|timings/i.test(k)).map(([k, x]) => [k, untimed(x)]))
+  : v);
+const stdoutValue = (text) => {
+  try { return untimed(JSON.parse(text)); } catch { return text; }
+};
+
+test('npm CLI = native CLI on every command and option', { timeout: 600000 }, () => {
+  assert.ok(existsSync(nativeCli), `no native CLI at ${nativeCli}`);
+  assert.equal(spawnSync(nativeCli, ['mesh', planar, '-o', input]).status, 0);
+  assert.equal(spawnSync(nativeCli, ['mesh', planar, '-o', inputMsh]).status, 0);
+  writeFileSync(join(dir, 'in.txt'), 'not a mesh');
+  const n = Number(readFileSync(input, 'utf8').match(/Vertices\s+(\d+)/)[1]);
+  writeFileSync(sol, `MeshVersionFormatted 1\nDimension 2\nSolAtVertices\n${n}\n1 1\n${'0.06\n'.repeat(n)}End\n`);
+
+  // Every option in the usage text is exercised by some row.
+  const help = spawnSync(nativeCli, ['--help'], { encoding: 'utf8' }).stdout;
+  const options = new Set(help.match(/(?<![\w-])--?[a-z][a-z-]*/g));
+  const used = new Set(rows.flat());
+  for (const o of options) assert.ok(used.has(o), `option ${o} of the usage text is in no parity row`);
+  for (const cmd of help.matchAll(/^ {2}([a-z]+) /gm)) assert.ok(rows.some((r) => r[0] === cmd[1]), `command ${cmd[1]}`);
+
+  rows.forEach((args, i) => {
+    const what = `anisomesh ${args.join(' ')}`;
+    const a = run('native', args, join(dir, `native-${i}`));
+    const b = run('node', args, join(dir, `node-${i}`));
+    assert.equal(b.status, a.status, `${what}: exit ${b.status} vs native ${a.status}\n${b.stderr}\n${a.stderr}`);
+    assert.deepEqual(Object.keys(b.files), Object.keys(a.files), `${what}: files written`);
+    for (const f of Object.keys(a.files)) assert.ok(a.files[f].equals(b.files[f]), `${what}: ${f} differs`);
+    assert.deepEqual(stdoutValue(b.stdout), stdoutValue(a.stdout), `${what}: stdout`);
+    if (a.status === 2 || /%\n/.test(a.stderr)) assert.equal(b.stderr, a.stderr, `${what}: stderr`);
+    else if (a.status === 1) assert.equal(b.stderr.match(/^anisomesh: error [A-Z_]+/)?.[0], a.stderr.match(/^anisomesh: error [A-Z_]+/)?.[0], `${what}: ${b.stderr} vs ${a.stderr}`);
+  });
+});

@@ -1,0 +1,65 @@
+// Surface cases and SVG domains through the package: per-patch control spaces
+// (createControlSpace(surfaceCase, { patch })), the overlay glyphs, per-corner patch
+// parameters and 3D qualities from meshCase, and domainFromSvg.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { loadAnisomesh, AnisomeshError } from 'anisomesh';
+
+const am = await loadAnisomesh();
+const surface = (name) => readFileSync(new URL(`../../examples/surface/${name}.json`, import.meta.url), 'utf8');
+
+test('createControlSpace of a surface case: each patch its own (u, v) control space', () => {
+  const text = surface('surface_two_patch_c');
+  const a = am.createControlSpace(text, { patch: 0 }), b = am.createControlSpace(JSON.parse(text), { patch: 1 });
+  try {
+    // Patch A carries the fine C-shaped source; B far from the shared edge is coarse.
+    const [ma, mb] = [a.metricAt([0.2, 0.5]), b.metricAt([0.8, 0.5])];
+    assert.ok(ma.m11 > 0 && mb.m11 > 0);
+    assert.ok(a.inspect().nodes.length > 0);
+    assert.match(a.toVtk(), /^# vtk DataFile[\s\S]*TENSORS metric/);
+    assert.notDeepEqual(a.inspect().nodes.length, b.inspect().nodes.length);
+  } finally {
+    a.dispose();
+    b.dispose();
+  }
+  assert.throws(() => am.createControlSpace(text, { patch: 2 }), (e) => e instanceof AnisomeshError && e.code === 'INVALID_ARGUMENT' && /2 patches/.test(e.message));
+  assert.throws(() => am.createControlSpace(text, { patch: -1 }), (e) => e.code === 'INVALID_ARGUMENT');
+});
+
+test('meshCase of a surface: glyphs, element patches, corner parameters and 3D qualities', () => {
+  const r = am.meshCase(surface('surface_two_patch_c'), { measures: true, controlSpaceGlyphs: true, patchParams: true });
+  const nt = r.mesh.triangles.length / 3, nq = r.mesh.quads.length / 4;
+  assert.equal(r.elementPatch.length, nt + nq);
+  assert.equal(r.cornerParams.length, 2 * (3 * nt + 4 * nq));
+  assert.deepEqual([...new Set(r.elementPatch)].sort(), [0, 1]);
+  assert.equal(r.measures.quality.length, nt + nq);
+  const mean = r.measures.quality.reduce((s, x) => s + x, 0) / (nt + nq);
+  assert.ok(Math.abs(mean - r.stats.quality.mean) < 1e-4, `${mean} vs ${r.stats.quality.mean}`);
+  const g = r.glyphs;
+  assert.ok(g.patch.length > 10 && g.offsets.length === g.patch.length + 1);
+  assert.equal(g.uv.length / 2, g.offsets.at(-1));
+  assert.equal(g.xyz.length / 3, g.offsets.at(-1));
+  // Without the options: none of it.
+  const plain = am.meshCase(surface('surface_two_patch_c'));
+  assert.equal(plain.glyphs, undefined);
+  assert.equal(plain.cornerParams, undefined);
+});
+
+test('domainFromSvg: a drawing with a hole is a domain that meshes', () => {
+  const d = am.domainFromSvg('<svg><path d="M0 0 h100 v50 h-100 z"/><circle cx="50" cy="25" r="10"/></svg>', { size: 4 });
+  assert.equal(d.holes.length, 1);
+  const { mesh, stats } = am.meshCase({ domain: d, controlSpace: { hmin: 0.1, hmax: 0.1 } });
+  let area = 0;
+  const v = mesh.vertices;
+  for (let t = 0; t < mesh.triangles.length; t += 3) {
+    const [a, b, c] = [mesh.triangles[t], mesh.triangles[t + 1], mesh.triangles[t + 2]];
+    area += 0.5 * ((v[2 * b] - v[2 * a]) * (v[2 * c + 1] - v[2 * a + 1]) - (v[2 * c] - v[2 * a]) * (v[2 * b + 1] - v[2 * a + 1]));
+  }
+  assert.ok(Math.abs(area - (8 - Math.PI * 0.16)) < 0.01, `area ${area}`);
+  assert.equal(stats.inverted, 0);
+  assert.throws(() => am.domainFromSvg('<svg><path d="M0 0 L1 0 L1 1"/></svg>'), (e) => e.code === 'OPEN_CONTOUR');
+  assert.throws(() => am.domainFromSvg('<svg/>'), (e) => e.code === 'INVALID_DOMAIN');
+  assert.throws(() => am.domainFromSvg(42), (e) => e.code === 'INVALID_ARGUMENT');
+  assert.throws(() => am.domainFromSvg('<svg/>', { size: 0 }), (e) => e.code === 'INVALID_ARGUMENT');
+});
