@@ -88,9 +88,9 @@ TEST(ControlSpaceBudget, DerivedFromTheElementBudget) {
   EXPECT_EQ(codeOf(
                 [&] {
                   runCase(std::string("{") + kSquare +
-                              R"(, "controlSpace": {"hmax": 0.1, "maxLevel": 20, "refineThreshold": 0.001},
+                              R"J(, "controlSpace": {"hmax": 0.1, "maxLevel": 20, "refineThreshold": 0.001},
                               "sources": [{"type": "analytic", "field": "expression", "h1": "0.001 + 0.05 * abs(sin(40 * x) * sin(40 * y))"}]
-})",
+})J",
                           opt);
 },
                 &msg),
