@@ -56,16 +56,12 @@ for layer in native sanitize; do
   echo "$layer (ctest): $((total - bad)) passed, $bad failed"
   passed=$((passed + total - bad)); failed=$((failed + bad))
 done
-<<<<<<< HEAD
 if [ -f "$logs/fuzz.log" ]; then
   p=$(grep -c '^fuzz .*: passed' "$logs/fuzz.log" || true); f=$(grep -c '^fuzz .*: failed' "$logs/fuzz.log" || true)
   echo "fuzz (libFuzzer): $p passed, $f failed"
   passed=$((passed + p)); failed=$((failed + f))
 fi
-for layer in node browser; do
-=======
 for layer in lint node browser; do
->>>>>>> main
   p=$(grep -E '^# pass [0-9]+' "$logs/$layer.log" | tail -1 | awk '{print $3}')
   f=$(grep -E '^# fail [0-9]+' "$logs/$layer.log" | tail -1 | awk '{print $3}')
   echo "$layer (node --test): $p passed, $f failed"

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "anisomesh/io/file_io.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/io/mesh_formats.h"
 #include "anisomesh/pipeline/input_size_metrics.h"
@@ -47,6 +48,10 @@ int runRemesh(Args& args) {
       verbosity = static_cast<int>(parseSignedNumber(a, args.value(a)));
     else if (a == "--stats")
       stats = true;
+    else if (a == "--max-control-nodes")
+      options.maxControlNodes = parseCount(a, args.value(a));
+    else if (a == "--max-input-bytes")
+      setDefaultMaxInputBytes(parseCount(a, args.value(a)));
     else if (a == "--max-elements")
       options.mesher.maxElements = parseCount(a, args.value(a));
     else if (!a.empty() && a[0] == '-')

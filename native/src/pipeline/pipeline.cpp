@@ -91,9 +91,6 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   r.updatesConverged = true;
   for (int round = 0;; ++round) {
     t = Clock::now();
-<<<<<<< HEAD
-    loops = withStage("contour discretization", [&] { return discretizeDomain(spec.domain, *cs, d); });
-=======
     if (round == 0 || std::find(invalid.begin(), invalid.end(), 1) != invalid.end()) {
       const std::vector<BoundaryLoop> next = throughCache(
           *cs, cacheTolerance, r, [&](const ControlSpace& q) { return discretizeDomain(spec.domain, q, d); });
@@ -107,7 +104,6 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
     } else {
       fresh.assign(loops.size(), 0);
     }
->>>>>>> main
     r.secondsDiscretization += secondsSince(t);
     r.updateRounds = round + 1;
     if (!updates.enabled) break;
@@ -133,18 +129,6 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
     b.timings = nullptr;
     // The update rounds report no progress of their own but can still be cancelled.
     if (progress) b.progress = [&progress](double) { return progress(0.0); };
-<<<<<<< HEAD
-    int gaps = 0, refined = 0;
-    withStage("section 3.2 control-space updates", [&] {
-      const Mesh boundaryMesh = meshPlanarBoundary(loops, *cs, b);
-      gaps = proximitySources(loops, boundaryMesh, *cs, updates, &sources);
-      refined = refineNearSegments(*cs, shortOnes, analytic);
-      if (!sources.empty() || refined > 0) addCaseSources(*cs, spec, sources);
-    });
-    r.chordSources += chords;
-    r.proximitySources += gaps;
-    r.refinedElements += refined;
-=======
     const Mesh boundaryMesh =
         throughCache(*cs, cacheTolerance, r, [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, b); });
     const int gaps = proximitySources(loops, boundaryMesh, *cs, updates, &sources);
@@ -156,7 +140,6 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
     r.refinedElements += refined;
     const bool changed = !sources.empty() || refined > 0;
     if (changed) addCaseSources(*cs, spec, sources);
->>>>>>> main
     r.secondsUpdates += secondsSince(t);
     // An invalid contour discretized in this very control space would come out the same
     // (e.g. curves shorter than half a size): only a change makes another round useful.
@@ -171,12 +154,8 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   t = Clock::now();
   PlanarMesherOptions finalOptions = mesher;
   finalOptions.timings = &r.mesherTimings;
-<<<<<<< HEAD
-  Mesh mesh = withStage("meshing", [&] { return meshPlanarBoundary(loops, *cs, finalOptions); });
-=======
   Mesh mesh = throughCache(*cs, cacheTolerance, r,
                            [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, finalOptions); });
->>>>>>> main
   r.secondsMeshing = secondsSince(t);
   if (controlSpace) *controlSpace = std::move(cs);
   return mesh;
@@ -243,22 +222,14 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
   DiscretizeOptions d;
   d.maxSegments = std::max<std::int64_t>(1, options.mesher.maxElements);
   const std::vector<BoundaryLoop> loops =
-<<<<<<< HEAD
-      withStage("contour discretization", [&] { return discretizeDomain(domain, *cs, d); });
-=======
       throughCache(*cs, options.queryCache, r, [&](const ControlSpace& q) { return discretizeDomain(domain, q, d); });
->>>>>>> main
   r.secondsDiscretization = secondsSince(t);
   countBoundary(loops, report);
   t = Clock::now();
   PlanarMesherOptions finalOptions = options.mesher;
   finalOptions.timings = &r.mesherTimings;
-<<<<<<< HEAD
-  Mesh mesh = withStage("meshing", [&] { return meshPlanarBoundary(loops, *cs, finalOptions); });
-=======
   Mesh mesh = throughCache(*cs, options.queryCache, r,
                            [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, finalOptions); });
->>>>>>> main
   r.secondsMeshing = secondsSince(t);
   if (controlSpace) *controlSpace = std::move(cs);
   return mesh;

@@ -14,7 +14,6 @@ namespace anisomesh {
 
 bool isSurfaceCase(const std::string& jsonText) { return isSurfaceCaseJson(jsonText); }
 
-<<<<<<< HEAD
 namespace {
 
 // Reads a case with a reader that may let nlohmann's own exceptions escape (a number
@@ -30,10 +29,7 @@ auto readCase(const std::string& jsonText, F&& read) -> decltype(read()) {
 }
 
 CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& options) {
-=======
-CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
   checkJsonSyntax(jsonText);  // one clean message for planar and surface cases
->>>>>>> main
   CaseRun run;
   if (readCase(jsonText, [&] { return isSurfaceCaseJson(jsonText); })) {
     SurfaceCaseSpec spec = readCase(jsonText, [&] { return parseSurfaceCaseJson(jsonText); });

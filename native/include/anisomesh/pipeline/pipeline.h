@@ -72,13 +72,9 @@ struct RemeshOptions {
   double hmax = 0.0;   // clamp every requested size to <= hmax (0: off)
   double hgrad = 0.0;  // gradation ratio dr of the control space smoothing (0: off, else >= 1)
   RemeshMetricInsertion insertion = RemeshMetricInsertion::PiecewiseLinear;
-<<<<<<< HEAD
   double refineThreshold = 0.2;      // PiecewiseLinear: metric difference that splits a control element
+  double queryCache = 0.0;           // section 4 query cache tolerance (metric distance); 0: off
   std::int64_t maxControlNodes = 0;  // control-space node budget; 0: controlSpaceNodeBudget(mesher.maxElements)
-=======
-  double refineThreshold = 0.2;  // PiecewiseLinear: metric difference that splits a control element
-  double queryCache = 0.0;       // section 4 query cache tolerance (metric distance); 0: off
->>>>>>> main
   PlanarMesherOptions mesher;
 };
 

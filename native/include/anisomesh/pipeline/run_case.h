@@ -20,7 +20,6 @@
 namespace anisomesh {
 
 struct RunCaseOptions {
-<<<<<<< HEAD
   std::optional<bool> quads;          // overrides the case's options.quads
   std::optional<bool> allQuads;       // overrides options.allQuads
   std::int64_t maxElements = -1;      // > 0: overrides options.maxElements
@@ -29,18 +28,8 @@ struct RunCaseOptions {
   bool inspectControlSpace = false;   // also export the final control space (nodes, cells) as JSON
   bool vertexMetrics = false;         // planar: also the final control space's metric at every vertex
   bool controlSpaceGlyphs = false;    // surface: also CaseRun::glyphs (the final control spaces drawn)
+  bool patchParams = false;           // surface: also CaseRun::elementPatch and CaseRun::cornerParams
   bool stats = true;                  // planar: false leaves CaseRun::stats null (caseRunStats() later)
-=======
-  std::optional<bool> quads;         // overrides the case's options.quads
-  std::optional<bool> allQuads;      // overrides options.allQuads
-  std::int64_t maxElements = -1;     // > 0: overrides options.maxElements
-  bool controlSpaceUpdates = true;   // planar: the section 3.2 update loop
-  bool inspectControlSpace = false;  // also export the final control space (nodes, cells) as JSON
-  bool vertexMetrics = false;        // planar: also the final control space's metric at every vertex
-  bool controlSpaceGlyphs = false;   // surface: also CaseRun::glyphs (the final control spaces drawn)
-  bool patchParams = false;          // surface: also CaseRun::elementPatch and CaseRun::cornerParams
-  bool stats = true;                 // planar: false leaves CaseRun::stats null (caseRunStats() later)
->>>>>>> main
   // Called with a fraction in [0, 1] while meshing; returning false cancels (ErrorCode::Cancelled).
   std::function<bool(double)> progress;
 };
