@@ -50,7 +50,6 @@ test('IO_ERROR and INTERNAL are documented for file access (the Node CLI, tests/
   // INTERNAL marks a broken invariant of the core and has no input that produces it on purpose.
   const dts = readFileSync(new URL('../../wasm/index.d.ts', import.meta.url), 'utf8');
   const documented = [...dts.matchAll(/\| '([A-Z_]+)'/g)].map((m) => m[1]);
-  // OUT_OF_MEMORY: an allocation failure (named by stage natively: tests/bad_input, out_of_memory).
-  const covered = new Set([...Object.keys(cases), 'IO_ERROR', 'INTERNAL', 'OUT_OF_MEMORY']);
+  const covered = new Set([...Object.keys(cases), 'IO_ERROR', 'INTERNAL']);
   assert.deepEqual(documented.filter((c) => !covered.has(c)), []);
 });
