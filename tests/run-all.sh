@@ -29,6 +29,16 @@ cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1"
 cmake --build build/sanitize -j"$jobs"
 run_layer sanitize bash -c 'cd build/sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j"$0"' "$jobs"
 
+# libFuzzer targets (tests/fuzz), when clang is installed: the kept regressions, then a
+# short run of each target (10 s each; tests/fuzz/run.sh SECONDS for longer).
+if command -v clang++ >/dev/null 2>&1; then
+  stage "fuzz: libFuzzer targets (clang, ASan + UBSan), regressions and 10 s per target"
+  CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS=-O1 -DANISOMESH_BUILD_FUZZ=ON \
+    -DANISOMESH_BUILD_TESTS=OFF -DANISOMESH_BUILD_BENCHMARKS=OFF >/dev/null
+  cmake --build build/fuzz -j"$jobs"
+  run_layer fuzz bash tests/fuzz/run.sh 10 || true
+fi
+
 stage "wasm: build"
 bash wasm/build.sh
 
@@ -46,6 +56,11 @@ for layer in native sanitize; do
   echo "$layer (ctest): $((total - bad)) passed, $bad failed"
   passed=$((passed + total - bad)); failed=$((failed + bad))
 done
+if [ -f "$logs/fuzz.log" ]; then
+  p=$(grep -c '^fuzz .*: passed' "$logs/fuzz.log" || true); f=$(grep -c '^fuzz .*: failed' "$logs/fuzz.log" || true)
+  echo "fuzz (libFuzzer): $p passed, $f failed"
+  passed=$((passed + p)); failed=$((failed + f))
+fi
 for layer in lint node browser; do
   p=$(grep -E '^# pass [0-9]+' "$logs/$layer.log" | tail -1 | awk '{print $3}')
   f=$(grep -E '^# fail [0-9]+' "$logs/$layer.log" | tail -1 | awk '{print $3}')

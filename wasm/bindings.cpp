@@ -52,6 +52,12 @@ val guarded(F&& f) {
     out.set("error", std::string(errorCodeName(e.code())));
     out.set("message", std::string(e.what()));
     return out;
+  } catch (const std::bad_alloc&) {
+    // The run's memory is released by the unwinding: the module stays usable.
+    val out = val::object();
+    out.set("error", std::string("OUT_OF_MEMORY"));
+    out.set("message", std::string("out of memory"));
+    return out;
   } catch (const std::exception& e) {
     val out = val::object();
     out.set("error", std::string("INTERNAL"));

@@ -14,6 +14,7 @@ export type AnisomeshErrorCode =
   | 'PARSE_ERROR'
   | 'IO_ERROR'
   | 'CANCELLED'
+  | 'OUT_OF_MEMORY'
   | 'INTERNAL'
   /** JS only: the .wasm could not be fetched or instantiated (loadAnisomesh; retrying is allowed). */
   | 'WASM_LOAD_FAILED';

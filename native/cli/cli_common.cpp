@@ -1,4 +1,5 @@
 // Shared pieces of the anisomesh command line (see cli.h).
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -34,8 +35,9 @@ double parseNumber(const std::string& option, const char* text) {
 
 long long parseCount(const std::string& option, const char* text) {
   char* end = nullptr;
+  errno = 0;
   const long long v = std::strtoll(text, &end, 10);
-  if (end == text || *end != '\0' || v <= 0)
+  if (end == text || *end != '\0' || v <= 0 || errno == ERANGE)
     throw UsageError{option + " expects a positive integer, got '" + text + "'"};
   return v;
 }

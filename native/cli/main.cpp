@@ -25,6 +25,8 @@ int usage(std::ostream& os, int code) {
   os << "  adapt IN.mesh -sol F.sol|-field EXPR -o OUT (-err E|-nv N) ...\n"
         "                            adapt IN.mesh to a solution (anisomesh adapt --help for the options)\n"
         "  --version                 print the version\n"
+        "--max-control-nodes: control-space node budget (default: max-elements / 64 + 262144);\n"
+        "--max-input-bytes: larger input files are refused (default 536870912).\n"
         "--stats prints one JSON object on stdout. Errors: exit 1 (bad input), 2 (bad usage).\n";
   return code;
 }
@@ -54,8 +56,11 @@ int main(int argc, char** argv) {
   } catch (const anisomesh::Error& e) {
     std::cerr << "anisomesh: error " << anisomesh::errorCodeName(e.code()) << ": " << e.what() << "\n";
     return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "anisomesh: error OUT_OF_MEMORY: out of memory\n";
+    return 1;
   } catch (const std::exception& e) {
-    std::cerr << "anisomesh: error: " << e.what() << "\n";
+    std::cerr << "anisomesh: error INTERNAL: " << e.what() << "\n";
     return 1;
   }
 }

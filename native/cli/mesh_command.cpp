@@ -12,7 +12,7 @@ namespace {
 int runMesh(Args& args) {
   std::string input, output;
   bool stats = false, quads = false, allQuads = false, updates = true, glyphs = false;
-  long long maxElements = -1;
+  long long maxElements = -1, maxControlNodes = -1;
   int verbosity = 0;
   CaseSvgOptions svg;
   while (!args.done()) {
@@ -39,6 +39,10 @@ int runMesh(Args& args) {
       updates = false;
     else if (a == "--max-elements")
       maxElements = parseCount(a, args.value(a));
+    else if (a == "--max-control-nodes")
+      maxControlNodes = parseCount(a, args.value(a));
+    else if (a == "--max-input-bytes")
+      setDefaultMaxInputBytes(parseCount(a, args.value(a)));
     else if (!a.empty() && a[0] == '-')
       throw UsageError{"unknown option '" + a + "' for mesh"};
     else if (input.empty())
@@ -54,6 +58,7 @@ int runMesh(Args& args) {
   if (quads) o.quads = true;
   if (allQuads) o.allQuads = true;
   o.maxElements = maxElements;
+  o.maxControlNodes = maxControlNodes;
   o.controlSpaceUpdates = updates;
   o.controlSpaceGlyphs = glyphs && isSvg(output);
   o.progress = progressPrinter(verbosity);

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "anisomesh/core/parallel.h"
+#include "anisomesh/io/file_io.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/io/mesh_formats.h"
 #include "anisomesh/pipeline/input_size_metrics.h"
@@ -91,6 +92,10 @@ int runRemesh(Args& args) {
       stats = true;
     else if (a == "-threads" || a == "--threads")
       threads = parseCount(a, args.value(a));
+    else if (a == "--max-control-nodes")
+      options.maxControlNodes = parseCount(a, args.value(a));
+    else if (a == "--max-input-bytes")
+      setDefaultMaxInputBytes(parseCount(a, args.value(a)));
     else if (a == "--max-elements")
       options.mesher.maxElements = parseCount(a, args.value(a));
     else if (!a.empty() && a[0] == '-')

@@ -306,15 +306,21 @@ void BackgroundMeshControlSpace::refine(const ElementPredicate& pred, const NewN
     for (int t : work) {
       const auto& v = tri_[t];
       const double l2 = std::max({edgeKey(v[0], v[1]), edgeKey(v[1], v[2]), edgeKey(v[2], v[0])});
+      refinementTick();
       if (l2 > min2 && pred(elementOf(t))) split.push_back(t);
     }
     if (split.empty()) break;
+    // A bisection adds one node on the longest edge, about two with its conforming neighbour.
+    checkRefinementEstimate(std::int64_t(split.size()), 1.0);
     const int nodesBefore = nodeCount();
     touched_.clear();
     touchedFlag_.assign(tri_.size(), 0);
-    for (int t : split)
+    for (int t : split) {
+      refinementTick();
       if (!touchedFlag_[t]) bisectImpl(t);  // a touched triangle is already a child: re-checked next batch
-    locatorStale_ = true;                   // rebuilt by the next query, or at the end
+    }
+    checkRefinementEstimate(0, 0.0);
+    locatorStale_ = true;  // rebuilt by the next query, or at the end
     if (onNewNodes) onNewNodes(nodesBefore, nodeCount());
     work = touched_;
     std::sort(work.begin(), work.end());

@@ -33,6 +33,7 @@ std::unique_ptr<AdaptiveControlSpace> buildAdaptiveControlSpace(const ControlSpa
     o.interpolation = spec.backgroundInterpolation;
     cs = std::make_unique<BackgroundMeshControlSpace>(spec.box, o);
   }
+  cs->setLimits(spec.limits);
   const Metric fallback = spec.defaultMetric ? *spec.defaultMetric : Metric::isotropic(0.1 * spec.box.size().norm());
   bool any = false;
   if (!spec.sources.empty()) {

@@ -433,12 +433,21 @@ void QuadtreeControlSpace::refine(const ElementPredicate& pred, const NewNodesCa
   while (!work.empty()) {
     split.clear();
     // Decide the whole batch on the current field, then split.
-    for (int c : work)
+    for (int c : work) {
+      refinementTick();
       if (child_[c] < 0 && level_[c] < options_.maxLevel && pred(elementOf(c))) split.push_back(c);
+    }
     if (split.empty()) break;
+    // A split adds a centre and up to 4 mid-edge lattice nodes, about 3 new ones on
+    // average (shared with neighbours); serendipity leaves about 8.
+    checkRefinementEstimate(std::int64_t(split.size()), nodesPerLeaf_ == 4 ? 3.0 : 8.0);
     const int nodesBefore = nodeCount();
     const int cellsBefore = cellCount();
-    for (int c : split) splitLeafImpl(c);
+    for (int c : split) {
+      refinementTick();
+      splitLeafImpl(c);
+    }
+    checkRefinementEstimate(0, 0.0);  // balancing may have split more than the batch
     rebuildConstraints();
     if (onNewNodes) onNewNodes(nodesBefore, nodeCount());
     applyConstraints();

@@ -28,6 +28,8 @@ const char* errorCodeName(ErrorCode code) {
       return "IO_ERROR";
     case ErrorCode::Cancelled:
       return "CANCELLED";
+    case ErrorCode::OutOfMemory:
+      return "OUT_OF_MEMORY";
     case ErrorCode::Internal:
       return "INTERNAL";
   }

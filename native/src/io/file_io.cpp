@@ -1,33 +1,79 @@
 #include "anisomesh/io/file_io.h"
 
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <random>
 
+#include <dirent.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "anisomesh/core/error.h"
 
 namespace anisomesh {
+namespace {
 
-std::string readTextFile(const std::string& path) {
+std::atomic<std::int64_t> gMaxInputBytes{std::int64_t(512) << 20};
+
+// The folder and the file name of path ("." for a bare name).
+void splitPath(const std::string& path, std::string* dir, std::string* name) {
+  const size_t slash = path.find_last_of('/');
+  *dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  *name = slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+}  // namespace
+
+std::int64_t defaultMaxInputBytes() { return gMaxInputBytes.load(); }
+
+void setDefaultMaxInputBytes(std::int64_t bytes) {
+  require(bytes > 0, ErrorCode::InvalidArgument, "the input size limit must be positive");
+  gMaxInputBytes.store(bytes);
+}
+
+std::string readTextFile(const std::string& path, const ReadFileOptions& options) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
   require(f != nullptr, ErrorCode::IoError, "cannot open '" + path + "' for reading: " + std::strerror(errno));
+  struct stat st {};
+  const bool known = fstat(fileno(f), &st) == 0;
+  if (known) {
+    std::string refused;
+    if (S_ISDIR(st.st_mode))
+      refused = "'" + path + "' is a directory";
+    else if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode))
+      refused = "'" + path + "' is a device, not a file";
+    else if (S_ISREG(st.st_mode) && std::int64_t(st.st_size) > options.maxBytes)
+      refused = "'" + path + "' holds " + std::to_string(std::int64_t(st.st_size)) +
+                " bytes, above the input limit of " + std::to_string(options.maxBytes) + " bytes";
+    if (!refused.empty()) {
+      std::fclose(f);
+      throw Error(ErrorCode::IoError, refused);
+    }
+  }
   std::string out;
   // A regular file: one read into a string of its size. Anything else (a pipe, a device)
   // or a file that grows meanwhile: the rest in 64 KiB steps.
-  struct stat st;
-  const long long size = ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) ? (long long)st.st_size : -1;
+  const long long size = known && S_ISREG(st.st_mode) ? (long long)st.st_size : -1;
   if (size > 0) {
     out.resize(size_t(size));
     out.resize(std::fread(&out[0], 1, size_t(size), f));
   }
   char buf[1 << 16];
   size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
+    out.append(buf, n);
+    if (std::int64_t(out.size()) > options.maxBytes) {  // a pipe, or a file that grew
+      std::fclose(f);
+      throw Error(ErrorCode::IoError,
+                  "'" + path + "' holds more than the input limit of " + std::to_string(options.maxBytes) + " bytes");
+    }
+  }
   // ferror also catches a directory opened as a file (EISDIR on the first read).
   const bool failed = std::ferror(f) != 0;
   const std::string why = failed ? std::strerror(errno) : "";
@@ -36,16 +82,40 @@ std::string readTextFile(const std::string& path) {
   return out;
 }
 
+int removeStaleTemporaries(const std::string& path) {
+  std::string dir, name;
+  splitPath(path, &dir, &name);
+  const std::string prefix = name + ".tmp-";
+  DIR* d = opendir(dir.c_str());
+  if (!d) return 0;
+  int removed = 0;
+  while (const dirent* e = readdir(d)) {
+    const std::string entry = e->d_name;
+    if (entry.compare(0, prefix.size(), prefix) != 0) continue;
+    // path.tmp-PID-...: the writer's process id comes first.
+    char* end = nullptr;
+    const long pid = std::strtol(entry.c_str() + prefix.size(), &end, 10);
+    if (end == entry.c_str() + prefix.size() || *end != '-' || pid <= 0 || pid == long(getpid())) continue;
+    if (kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;  // still running (or unknown): keep it
+    if (std::remove((dir + "/" + entry).c_str()) == 0) ++removed;
+  }
+  closedir(d);
+  return removed;
+}
+
 void writeTextFileAtomic(const std::string& path, const std::string& contents) {
   writeTextFileAtomic(path, std::vector<std::string>{contents});
 }
 
 void writeTextFileAtomic(const std::string& path, const std::vector<std::string>& pieces) {
   require(!path.empty(), ErrorCode::IoError, "empty output path");
-  // A unique sibling name, so the rename stays on one file system.
+  removeStaleTemporaries(path);
+  // A unique sibling name, so the rename stays on one file system; the process id first,
+  // so a later write can tell a dead writer's leftover from a running one's file.
   std::random_device rd;
   const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-  const std::string tmp = path + ".tmp-" + std::to_string(rd()) + "-" + std::to_string(stamp);
+  const std::string tmp =
+      path + ".tmp-" + std::to_string(long(getpid())) + "-" + std::to_string(rd()) + "-" + std::to_string(stamp);
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   require(f != nullptr, ErrorCode::IoError,
           "cannot create '" + tmp + "' to write '" + path + "': " + std::strerror(errno));

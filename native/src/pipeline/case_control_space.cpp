@@ -169,8 +169,13 @@ void addCaseSources(AdaptiveControlSpace& cs, const CaseSpec& spec, const std::v
   finishCaseControlSpace(cs, spec);
 }
 
-std::unique_ptr<AdaptiveControlSpace> buildCaseControlSpace(const CaseSpec& spec) {
-  std::unique_ptr<AdaptiveControlSpace> cs = buildAdaptiveControlSpace(caseControlSpaceSpec(spec));
+std::unique_ptr<AdaptiveControlSpace> buildCaseControlSpace(const CaseSpec& spec,
+                                                            const std::function<bool(double)>& progress) {
+  ControlSpaceSpec s = caseControlSpaceSpec(spec);
+  s.limits.maxNodes = spec.options.maxControlNodes > 0 ? spec.options.maxControlNodes
+                                                       : controlSpaceNodeBudget(spec.options.maxElements);
+  s.limits.progress = progress;
+  std::unique_ptr<AdaptiveControlSpace> cs = buildAdaptiveControlSpace(s);
   addCaseSources(*cs, spec, caseDiscreteSources(spec));
   return cs;
 }

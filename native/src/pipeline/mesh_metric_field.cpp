@@ -6,13 +6,28 @@
 #include "anisomesh/core/error.h"
 
 namespace anisomesh {
+namespace {
+
+// The cell index floor(t) clamped to [0, n - 1], decided in double so that NaN, infinite
+// and huge t never reach an int conversion.
+int clampedCell(double t, int n) {
+  if (!(t >= 1.0)) return 0;  // also NaN
+  if (t >= double(n - 1)) return n - 1;
+  return int(t);
+}
+
+}  // namespace
 
 TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<Metric> metrics)
     : metrics_(std::move(metrics)) {
   require(int(metrics_.size()) == mesh.vertexCount(), ErrorCode::InvalidArgument,
           "metric field: " + std::to_string(metrics_.size()) + " metrics for " + std::to_string(mesh.vertexCount()) +
               " vertices");
-  for (const Vec3& p : mesh.points) pts_.push_back(p.head<2>());
+  for (const Vec3& p : mesh.points) {
+    require(p.head<2>().allFinite(), ErrorCode::InvalidDomain,
+            "metric field: vertex " + std::to_string(pts_.size() + 1) + " has a non-finite coordinate");
+    pts_.push_back(p.head<2>());
+  }
   tris_ = mesh.triangles;
   for (const auto& q : mesh.quads) {
     tris_.push_back({q[0], q[1], q[2]});
@@ -28,8 +43,8 @@ TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<M
   // About one triangle per cell on square-ish cells.
   const Vec2 size = box_.size().cwiseMax(Vec2::Constant(1e-300));
   const double side = std::sqrt(size.x() * size.y() / double(tris_.size()));
-  nx_ = std::max(1, std::min(2048, side > 0 ? int(size.x() / side) : 1));
-  ny_ = std::max(1, std::min(2048, side > 0 ? int(size.y() / side) : 1));
+  nx_ = side > 0 ? std::max(1, clampedCell(size.x() / side, 2049)) : 1;
+  ny_ = side > 0 ? std::max(1, clampedCell(size.y() / side, 2049)) : 1;
   cell_ = Vec2(size.x() / nx_, size.y() / ny_);
   auto range = [&](const std::array<int, 3>& t, int* x0, int* x1, int* y0, int* y1) {
     Vec2 lo = pts_[t[0]], hi = pts_[t[0]];
@@ -37,10 +52,10 @@ TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<M
       lo = lo.cwiseMin(pts_[v]);
       hi = hi.cwiseMax(pts_[v]);
     }
-    *x0 = std::min(nx_ - 1, std::max(0, int((lo.x() - box_.lo.x()) / cell_.x())));
-    *x1 = std::min(nx_ - 1, std::max(0, int((hi.x() - box_.lo.x()) / cell_.x())));
-    *y0 = std::min(ny_ - 1, std::max(0, int((lo.y() - box_.lo.y()) / cell_.y())));
-    *y1 = std::min(ny_ - 1, std::max(0, int((hi.y() - box_.lo.y()) / cell_.y())));
+    *x0 = clampedCell((lo.x() - box_.lo.x()) / cell_.x(), nx_);
+    *x1 = clampedCell((hi.x() - box_.lo.x()) / cell_.x(), nx_);
+    *y0 = clampedCell((lo.y() - box_.lo.y()) / cell_.y(), ny_);
+    *y1 = clampedCell((hi.y() - box_.lo.y()) / cell_.y(), ny_);
   };
   cellStart_.assign(size_t(nx_) * ny_ + 1, 0);
   int x0, x1, y0, y1;
@@ -99,8 +114,8 @@ bool TriangleMeshMetricField::meets(const Box2& b) const {
 }
 
 Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
-  const int cx = std::min(nx_ - 1, std::max(0, int(std::floor((p.x() - box_.lo.x()) / cell_.x()))));
-  const int cy = std::min(ny_ - 1, std::max(0, int(std::floor((p.y() - box_.lo.y()) / cell_.y()))));
+  const int cx = clampedCell((p.x() - box_.lo.x()) / cell_.x(), nx_);
+  const int cy = clampedCell((p.y() - box_.lo.y()) / cell_.y(), ny_);
   // Interpolates Mt at q, given in triangle t.
   auto interpolateAt = [this](int t, const Vec2& q) {
     const auto& tri = tris_[size_t(t)];

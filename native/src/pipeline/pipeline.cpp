@@ -17,6 +17,7 @@
 #include "anisomesh/geometry/discretize.h"
 #include "anisomesh/pipeline/boundary_updates.h"
 #include "anisomesh/pipeline/case_control_space.h"
+#include "anisomesh/pipeline/element_estimate.h"
 #include "anisomesh/pipeline/mesh_metric_field.h"
 #include "anisomesh/pipeline/remesh_geometry.h"
 
@@ -67,11 +68,15 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   r.secondsGeometry = secondsSince(t);
 
   t = Clock::now();
-  std::unique_ptr<AdaptiveControlSpace> cs = buildCaseControlSpace(spec);
+  std::unique_ptr<AdaptiveControlSpace> cs =
+      withStage("control-space construction", [&] { return buildCaseControlSpace(spec, progress); });
   r.secondsControlSpace = secondsSince(t);
   const MetricFunction analytic = caseAnalyticMetric(spec);
   PlanarMesherOptions mesher = mesherOptionsFromCase(spec);
   mesher.progress = progress;
+  withStage("element estimate", [&] {
+    checkElementEstimate(spec.domain, *cs, mesher.maxElements, "element estimate before contour discretization");
+  });
   DiscretizeOptions d;
   d.maxSegments = std::max<std::int64_t>(1, mesher.maxElements);
   const double cacheTolerance = spec.controlSpace.queryCache;
@@ -193,6 +198,9 @@ std::unique_ptr<AdaptiveControlSpace> buildRemeshControlSpace(const Mesh& input,
   s.hmin = options.hmin;
   s.hmax = options.hmax;
   s.gradation = options.hgrad;
+  s.limits.maxNodes =
+      options.maxControlNodes > 0 ? options.maxControlNodes : controlSpaceNodeBudget(options.mesher.maxElements);
+  s.limits.progress = options.mesher.progress;
   return buildAdaptiveControlSpace(s);
 }
 
@@ -210,10 +218,14 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
   r.secondsGeometry = secondsSince(t);
   stage("control space");
   t = Clock::now();
-  std::unique_ptr<AdaptiveControlSpace> cs = buildRemeshControlSpace(input, metrics, options);
+  std::unique_ptr<AdaptiveControlSpace> cs =
+      withStage("control-space construction", [&] { return buildRemeshControlSpace(input, metrics, options); });
   r.secondsControlSpace = secondsSince(t);
   r.controlElements = cs->elementCount();
   r.controlNodes = cs->nodeCount();
+  withStage("element estimate", [&] {
+    checkElementEstimate(domain, *cs, options.mesher.maxElements, "element estimate before contour discretization");
+  });
   stage("discretization");
   t = Clock::now();
   DiscretizeOptions d;

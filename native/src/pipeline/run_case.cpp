@@ -1,8 +1,10 @@
 #include "anisomesh/pipeline/run_case.h"
 #include "anisomesh/io/json_syntax.h"
 
+#include "anisomesh/core/error.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/control_space_export.h"
+#include "anisomesh/io/json_text.h"
 #include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/surface/patch_params.h"
@@ -12,18 +14,32 @@ namespace anisomesh {
 
 bool isSurfaceCase(const std::string& jsonText) { return isSurfaceCaseJson(jsonText); }
 
-CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
+namespace {
+
+// Reads a case with a reader that may let nlohmann's own exceptions escape (a number
+// overflowing a double is out_of_range 406): every one of them becomes a ParseError.
+template <class F>
+auto readCase(const std::string& jsonText, F&& read) -> decltype(read()) {
+  try {
+    return withStage("reading the case", read);
+  } catch (const nlohmann::json::exception& e) {
+    if (e.id == 406) requireNoJsonNumberOverflow(jsonText);  // names the path
+    throw Error(ErrorCode::ParseError, std::string("malformed JSON: ") + e.what());
+  }
+}
+
+CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& options) {
   checkJsonSyntax(jsonText);  // one clean message for planar and surface cases
   CaseRun run;
-  if (isSurfaceCaseJson(jsonText)) {
-    SurfaceCaseSpec spec = parseSurfaceCaseJson(jsonText);
+  if (readCase(jsonText, [&] { return isSurfaceCaseJson(jsonText); })) {
+    SurfaceCaseSpec spec = readCase(jsonText, [&] { return parseSurfaceCaseJson(jsonText); });
     if (options.maxElements > 0) spec.options.mesher.maxElements = options.maxElements;
     if (options.progress) spec.options.mesher.progress = options.progress;
     if (options.quads) spec.options.quads = *options.quads;
     if (options.allQuads) spec.options.allQuads = *options.allQuads;
     spec.options.controlSpaceGlyphs = options.controlSpaceGlyphs;
     SurfaceMeshReport report;
-    run.mesh = meshSurfaceCase(spec, &report);
+    run.mesh = withStage("surface meshing", [&] { return meshSurfaceCase(spec, &report); });
     run.stats = surfaceMeshReportToJson(report);
     run.elementQuality = std::move(report.elementQuality);
     run.edgeLengths = std::move(report.edgeLengths);
@@ -43,14 +59,16 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
     run.stats["quality"] = {{"mean", q["qualityMean"]}, {"min", q["qualityMin"]}};
     return run;
   }
-  CaseSpec spec = parseCaseJson(jsonText);
+  CaseSpec spec = readCase(jsonText, [&] { return parseCaseJson(jsonText); });
   if (options.quads) spec.options.quads = *options.quads;
   if (options.allQuads) spec.options.allQuads = *options.allQuads;
   if (options.maxElements > 0) spec.options.maxElements = options.maxElements;
+  if (options.maxControlNodes > 0) spec.options.maxControlNodes = options.maxControlNodes;
   BoundaryUpdateOptions updates;
   updates.enabled = options.controlSpaceUpdates;
   run.mesh = meshCase(spec, &run.report, updates, &run.finalSpace, options.progress);
-  if (options.stats) run.stats = pipelineStatsJson(run.mesh, *run.finalSpace, run.report);
+  if (options.stats)
+    run.stats = withStage("quality report", [&] { return pipelineStatsJson(run.mesh, *run.finalSpace, run.report); });
   if (options.inspectControlSpace) run.controlSpace = controlSpaceToJson(*run.finalSpace);
   if (options.vertexMetrics) {
     // The metric the mesh was built for, so colourings match the report exactly.
@@ -63,6 +81,12 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
     }
   }
   return run;
+}
+
+}  // namespace
+
+CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
+  return withStage("the case run", [&] { return runCaseUnguarded(jsonText, options); });
 }
 
 nlohmann::json caseRunStats(const CaseRun& run) {

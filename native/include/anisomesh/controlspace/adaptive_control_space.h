@@ -40,6 +40,19 @@ using ElementPredicate = std::function<bool(const ControlElement&)>;
 // Called after each batch of splits with the range [first, last) of the nodes it created.
 using NewNodesCallback = std::function<void(int first, int last)>;
 
+// Bounds on the work of building a control space (copied by clone()).
+struct ControlSpaceLimits {
+  // Node budget: refine() estimates each batch of splits first and throws
+  // ElementBudgetExceeded (naming the estimate) when it would pass this many nodes.
+  std::int64_t maxNodes = 6315000;  // standalone structures; pipelines set controlSpaceNodeBudget()
+  // Called with 0 at least every ~50 ms of refinement work; returning false throws Cancelled.
+  std::function<bool(double)> progress;
+};
+
+// The node budget derived from an element budget: a 64th of it plus 262144 (a control
+// space needs far fewer nodes than the mesh has elements; the examples use at most 124k).
+std::int64_t controlSpaceNodeBudget(std::int64_t maxElements);
+
 class AdaptiveControlSpace : public ControlSpace {
  public:
   Box2 bounds() const override { return box_; }
@@ -107,6 +120,15 @@ class AdaptiveControlSpace : public ControlSpace {
   // All nodes with their metrics and local element sizes (free nodes only: hanging ones
   // carry no information of their own). Used as discrete sources by the minimum.
   std::vector<ControlNode> controlNodes() const;
+  // Bounds on refinement (node budget, progress); refine() honours them.
+  void setLimits(ControlSpaceLimits limits) { limits_ = std::move(limits); }
+  const ControlSpaceLimits& limits() const { return limits_; }
+  // Throws ElementBudgetExceeded when splits more splits, each adding about nodesPerSplit
+  // nodes, would take the node count past limits().maxNodes (estimated before the work).
+  void checkRefinementEstimate(std::int64_t splits, double nodesPerSplit) const;
+  // Reports progress every ~50 ms (cheap to call per element); throws Cancelled when the
+  // callback returns false.
+  void refinementTick() const;
 
  private:
   std::vector<std::array<int, 2>> sortedEdges(bool structure) const;
@@ -127,6 +149,9 @@ class AdaptiveControlSpace : public ControlSpace {
   std::vector<Vec2> pos_;
   std::vector<SymMt> mt_;
   std::vector<std::uint8_t> flags_;
+  ControlSpaceLimits limits_;
+  mutable std::uint32_t ticks_ = 0;
+  mutable std::int64_t lastTickNs_ = 0;
 };
 
 }  // namespace anisomesh

@@ -45,6 +45,7 @@ struct ControlSpaceSpec {
   double hmin = 0.0;                    // 0 = no lower clamp
   double hmax = 0.0;                    // 0 = no upper clamp
   double cacheTolerance = 0.0;          // > 0: buildControlSpace wraps the result in a CachedControlSpace
+  ControlSpaceLimits limits;            // node budget and progress of the construction (kept by the result)
 };
 
 // Builds the adaptive structure described by spec (steps 1-5 above).

@@ -2,6 +2,7 @@
 // Typed errors of the core. Every bad input is reported by throwing anisomesh::Error
 // with a code (stable, machine readable, also used across the wasm boundary) and a
 // message naming what is wrong.
+#include <new>
 #include <stdexcept>
 #include <string>
 
@@ -20,6 +21,7 @@ enum class ErrorCode {
   ParseError,               // malformed file or JSON
   IoError,                  // a file that cannot be read or written
   Cancelled,                // a long run stopped on request
+  OutOfMemory,              // an allocation failed (the message names the stage)
   Internal,                 // a bug: an invariant of the core did not hold
 };
 
@@ -39,6 +41,24 @@ class Error : public std::runtime_error {
 // Throws Error(code, message) when cond is false.
 inline void require(bool cond, ErrorCode code, const std::string& message) {
   if (!cond) throw Error(code, message);
+}
+
+}  // namespace anisomesh
+
+namespace anisomesh {
+
+// Runs f; an allocation failure inside (std::bad_alloc, or std::length_error from a
+// container asked for more than it can hold) becomes Error(OutOfMemory) naming the stage.
+template <class F>
+auto withStage(const char* stage, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const std::bad_alloc&) {
+    throw Error(ErrorCode::OutOfMemory, std::string("out of memory during ") + stage);
+  } catch (const std::length_error&) {
+    throw Error(ErrorCode::OutOfMemory,
+                std::string("out of memory during ") + stage + " (a container outgrew its limit)");
+  }
 }
 
 }  // namespace anisomesh

@@ -61,6 +61,7 @@ struct CaseOptions {
   bool quads = false;
   bool allQuads = false;
   std::int64_t maxElements = 50000000;
+  std::int64_t maxControlNodes = 0;  // control-space node budget; 0: controlSpaceNodeBudget(maxElements)
 };
 
 struct CaseSpec {

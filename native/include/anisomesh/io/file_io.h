@@ -1,20 +1,39 @@
 #pragma once
-// Whole-file text I/O. Writes are atomic (temporary file in the same folder, then
-// rename), so a failed run never leaves a partial output file.
+// Whole-file text I/O. Reads are bounded (a size limit checked before reading, character
+// devices and directories refused), so /dev/zero or a huge file cannot exhaust memory.
+// Writes are atomic (temporary file in the same folder, then rename), so a failed run
+// never leaves a partial output file; the temporary of a run killed while writing is
+// removed by the next write to the same target.
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace anisomesh {
 
-// Contents of the file at path; throws IoError naming the path when it cannot be read.
-std::string readTextFile(const std::string& path);
+// The input size limit readTextFile applies by default (initially 512 MiB).
+std::int64_t defaultMaxInputBytes();
+// Changes that default (e.g. the CLI's --max-input-bytes); throws InvalidArgument unless > 0.
+void setDefaultMaxInputBytes(std::int64_t bytes);
 
-// Writes contents to path through a temporary sibling file and a rename; throws IoError
-// (and removes the temporary) on any failure, leaving path untouched.
+struct ReadFileOptions {
+  std::int64_t maxBytes = defaultMaxInputBytes();  // larger inputs are refused (IoError) before reading
+};
+
+// Contents of the file at path; throws IoError naming the path when it cannot be read,
+// is a directory or a character device (such as /dev/zero), or holds more than
+// options.maxBytes bytes (checked up front for regular files, while reading for pipes).
+std::string readTextFile(const std::string& path, const ReadFileOptions& options = {});
+
+// Writes contents to path through a temporary sibling file (path.tmp-PID-...) and a
+// rename; throws IoError (and removes the temporary) on any failure, leaving path
+// untouched. Temporaries of path left by processes that no longer run are removed first.
 void writeTextFileAtomic(const std::string& path, const std::string& contents);
 
 // The same for contents given as consecutive pieces (no joined copy in memory).
 void writeTextFileAtomic(const std::string& path, const std::vector<std::string>& pieces);
+// Removes the temporaries path.tmp-PID-* whose process PID no longer runs (what a kill
+// during writeTextFileAtomic leaves); returns how many were removed.
+int removeStaleTemporaries(const std::string& path);
 
 // Lower-case extension without the dot ("mesh" for "a/b.MESH"), empty when there is none.
 std::string fileExtension(const std::string& path);

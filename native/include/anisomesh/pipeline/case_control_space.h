@@ -10,6 +10,7 @@
 // every analytic field, section 2.3); then the discrete sources are inserted into the
 // already initialized nodes (intersected, section 2.2), then sizes are clamped to
 // [hmin, hmax] and smoothed with the gradation ratio dr (section 2.5).
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -31,8 +32,11 @@ std::vector<MetricSource> caseDiscreteSources(const CaseSpec& spec);
 // no gradation (applied afterwards, see the header comment).
 ControlSpaceSpec caseControlSpaceSpec(const CaseSpec& spec);
 
-// Builds the case's adaptive control space (see the header comment).
-std::unique_ptr<AdaptiveControlSpace> buildCaseControlSpace(const CaseSpec& spec);
+// Builds the case's adaptive control space (see the header comment) within the case's
+// node budget (options.maxControlNodes, or derived from options.maxElements); progress,
+// when given, is called during refinement and cancels it by returning false.
+std::unique_ptr<AdaptiveControlSpace> buildCaseControlSpace(const CaseSpec& spec,
+                                                            const std::function<bool(double)>& progress = {});
 
 // Section 3.2 updates: intersects more discrete sources into cs, then clamps and smooths
 // again with the case's settings (clamping and smoothing only ever make sizes smaller

@@ -12,7 +12,8 @@ namespace anisomesh {
 class TriangleMeshMetricField : public ControlSpace {
  public:
   // metrics[i] belongs to mesh.points[i]; quads are split into two triangles. Throws
-  // InvalidArgument when the counts differ or the mesh has no triangle or quad.
+  // InvalidArgument when the counts differ or the mesh has no triangle or quad,
+  // InvalidDomain for a vertex with a non-finite coordinate.
   TriangleMeshMetricField(const Mesh& mesh, std::vector<Metric> metrics);
   // Barycentric interpolation of Mt in the containing triangle; outside the mesh, the
   // nearest triangle found in the grid with its coordinates clamped to it.

@@ -77,7 +77,8 @@ struct RemeshOptions {
   // nodes are not split, so the control space grows with the output, not with the carrier
   // (0: split down to the carrier's resolution).
   double refineMinMetricSize = 0.5;
-  double queryCache = 0.0;       // section 4 query cache tolerance (metric distance); 0: off
+  double queryCache = 0.0;           // section 4 query cache tolerance (metric distance); 0: off
+  std::int64_t maxControlNodes = 0;  // control-space node budget; 0: controlSpaceNodeBudget(mesher.maxElements)
   PlanarMesherOptions mesher;
   // Called as each stage starts ("boundary", "control space", "discretization", "meshing"):
   // progress lines and per-stage timings (CLI -v).

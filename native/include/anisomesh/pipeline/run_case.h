@@ -20,15 +20,16 @@
 namespace anisomesh {
 
 struct RunCaseOptions {
-  std::optional<bool> quads;         // overrides the case's options.quads
-  std::optional<bool> allQuads;      // overrides options.allQuads
-  std::int64_t maxElements = -1;     // > 0: overrides options.maxElements
-  bool controlSpaceUpdates = true;   // planar: the section 3.2 update loop
-  bool inspectControlSpace = false;  // also export the final control space (nodes, cells) as JSON
-  bool vertexMetrics = false;        // planar: also the final control space's metric at every vertex
-  bool controlSpaceGlyphs = false;   // surface: also CaseRun::glyphs (the final control spaces drawn)
-  bool patchParams = false;          // surface: also CaseRun::elementPatch and CaseRun::cornerParams
-  bool stats = true;                 // planar: false leaves CaseRun::stats null (caseRunStats() later)
+  std::optional<bool> quads;          // overrides the case's options.quads
+  std::optional<bool> allQuads;       // overrides options.allQuads
+  std::int64_t maxElements = -1;      // > 0: overrides options.maxElements
+  std::int64_t maxControlNodes = -1;  // planar, > 0: overrides the control-space node budget
+  bool controlSpaceUpdates = true;    // planar: the section 3.2 update loop
+  bool inspectControlSpace = false;   // also export the final control space (nodes, cells) as JSON
+  bool vertexMetrics = false;         // planar: also the final control space's metric at every vertex
+  bool controlSpaceGlyphs = false;    // surface: also CaseRun::glyphs (the final control spaces drawn)
+  bool patchParams = false;           // surface: also CaseRun::elementPatch and CaseRun::cornerParams
+  bool stats = true;                  // planar: false leaves CaseRun::stats null (caseRunStats() later)
   // Called with a fraction in [0, 1] while meshing; returning false cancels (ErrorCode::Cancelled).
   std::function<bool(double)> progress;
 };
@@ -51,7 +52,9 @@ struct CaseRun {
 // True when the JSON text is a surface case (it has "patches").
 bool isSurfaceCase(const std::string& jsonText);
 
-// Parses the JSON case text, meshes it and measures the mesh in the case's metric.
+// Parses the JSON case text, meshes it and measures the mesh in the case's metric. Every
+// failure is an Error: ParseError (with the JSON path, number overflow included),
+// OutOfMemory naming the stage, or the code of the stage that refused the input.
 CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options = {});
 
 // The --stats object of a planar run made with RunCaseOptions::stats = false (the same

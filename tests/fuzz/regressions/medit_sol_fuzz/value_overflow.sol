@@ -1,0 +1,7 @@
+MeshVersionFormatted 2
+Dimension 2
+SolAtVertices
+1
+1 1
+1e999
+End

@@ -1,0 +1,208 @@
+// Bounded work on hostile input (issue 15), unit level: number overflow in JSON named by
+// its path, the control-space node budget and cancellation, the element estimate made
+// before discretization, allocation failures as OutOfMemory, bounded file reading, and
+// removal of the temporaries a killed write leaves.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <new>
+
+#include "anisomesh/controlspace/background_mesh_control_space.h"
+#include "anisomesh/controlspace/quadtree_control_space.h"
+#include "anisomesh/core/error.h"
+#include "anisomesh/geometry/curve.h"
+#include "anisomesh/io/file_io.h"
+#include "anisomesh/io/json_text.h"
+#include "anisomesh/pipeline/element_estimate.h"
+#include "anisomesh/pipeline/mesh_metric_field.h"
+#include "anisomesh/pipeline/run_case.h"
+
+namespace anisomesh {
+namespace {
+
+const char* kSquare = R"("domain": {"outer": [{"type": "polyline", "points": [[0,0],[1,0],[1,1],[0,1],[0,0]]}]})";
+
+ErrorCode codeOf(const std::function<void()>& f, std::string* message = nullptr) {
+  try {
+    f();
+  } catch (const Error& e) {
+    if (message) *message = e.what();
+    return e.code();
+  }
+  ADD_FAILURE() << "no anisomesh::Error thrown";
+  return ErrorCode::Internal;
+}
+
+TEST(JsonOverflow, PathOfTheOverflowingNumber) {
+  EXPECT_EQ(jsonOverflowPath(R"({"a": 1, "b": {"c": [1, 2, 1e999]}})"), "b.c[2]");
+  EXPECT_EQ(jsonOverflowPath(R"({"s": [{"x": 1}, {"y": [0, -1e400]}]})"), "s[1].y[1]");
+  EXPECT_EQ(jsonOverflowPath("1e999"), "(root)");
+  EXPECT_EQ(jsonOverflowPath(R"({"a": 1e300})"), "");
+}
+
+TEST(JsonOverflow, CaseRunGivesParseErrorNamingThePath) {
+  std::string msg;
+  EXPECT_EQ(codeOf([&] { runCase(std::string("{") + kSquare + R"(, "controlSpace": {"hmax": 1e999}})"); }, &msg),
+            ErrorCode::ParseError);
+  EXPECT_NE(msg.find("controlSpace.hmax"), std::string::npos) << msg;
+  // Surface cases go through the other reader.
+  EXPECT_EQ(codeOf([&] { runCase(R"({"patches": [], "metric": {"hmax": -1e999}})"); }, &msg), ErrorCode::ParseError);
+  EXPECT_NE(msg.find("metric.hmax"), std::string::npos) << msg;
+}
+
+// A unit square control space refined everywhere, as far as its levels allow.
+TEST(ControlSpaceBudget, RefinementStopsAtTheNodeBudgetBeforeTheWork) {
+  QuadtreeOptions o;
+  o.maxLevel = 20;
+  QuadtreeControlSpace cs(Box2{{0, 0}, {1, 1}}, o);
+  ControlSpaceLimits limits;
+  limits.maxNodes = 5000;
+  cs.setLimits(limits);
+  std::string msg;
+  EXPECT_EQ(codeOf([&] { cs.refine([](const ControlElement&) { return true; }, nullptr); }, &msg),
+            ErrorCode::ElementBudgetExceeded);
+  EXPECT_NE(msg.find("control-space refinement"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("node budget of 5000"), std::string::npos) << msg;
+  EXPECT_LE(cs.nodeCount(), 5000);  // the estimate came before the batch that would pass it
+  // The background mesh too.
+  BackgroundMeshControlSpace bg(Box2{{0, 0}, {1, 1}});
+  bg.setLimits(limits);
+  EXPECT_EQ(codeOf([&] { bg.refine([](const ControlElement&) { return true; }, nullptr); }),
+            ErrorCode::ElementBudgetExceeded);
+  EXPECT_LE(bg.nodeCount(), 2 * 5000);  // bisection's conforming closure may add more than one node per split
+  // The clone keeps the budget.
+  EXPECT_EQ(cs.clone()->limits().maxNodes, 5000);
+}
+
+TEST(ControlSpaceBudget, DerivedFromTheElementBudget) {
+  EXPECT_EQ(controlSpaceNodeBudget(50000000), 50000000 / 64 + 262144);
+  // A case with maxLevel 20 and a fine oscillating field stops in the control space.
+  RunCaseOptions opt;
+  opt.maxControlNodes = 20000;
+  std::string msg;
+  EXPECT_EQ(codeOf(
+                [&] {
+                  runCase(std::string("{") + kSquare +
+                              R"J(, "controlSpace": {"hmax": 0.1, "maxLevel": 20, "refineThreshold": 0.001},
+                              "sources": [{"type": "analytic", "field": "expression", "h1": "0.001 + 0.05 * abs(sin(40 * x) * sin(40 * y))"}]
+})J",
+                          opt);
+},
+                &msg),
+            ErrorCode::ElementBudgetExceeded);
+EXPECT_NE(msg.find("node budget of 20000"), std::string::npos) << msg;
+}
+
+TEST(ControlSpaceBudget, ProgressDuringRefinementCancels) {
+  QuadtreeOptions o;
+  o.maxLevel = 12;
+  QuadtreeControlSpace cs(Box2{{0, 0}, {1, 1}}, o);
+  ControlSpaceLimits limits;
+  int calls = 0;
+  limits.progress = [&](double) { return ++calls < 2; };
+  cs.setLimits(limits);
+  EXPECT_EQ(codeOf([&] { cs.refine([](const ControlElement&) { return true; }, nullptr); }), ErrorCode::Cancelled);
+  EXPECT_EQ(calls, 2);
+}
+
+TEST(ElementEstimate, MetricAreaOverUnitTriangles) {
+  QuadtreeControlSpace cs(Box2{{-0.01, -0.01}, {1.01, 1.01}});
+  for (int i = 0; i < cs.nodeCount(); ++i) cs.setNodeMetric(i, Metric::isotropic(0.01));
+  Domain square;
+  square.outer.add(std::make_shared<PolylineCurve>(std::vector<Vec2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}}));
+  const double expect = 1.0 / (0.01 * 0.01) / (std::sqrt(3.0) / 4.0);  // 23094
+  // Sampled per control element (16 here, 4 of them straddling the edge): within 25%.
+  EXPECT_NEAR(estimateElementCount(square, cs), expect, 0.25 * expect);
+  std::string msg;
+  EXPECT_EQ(codeOf([&] { checkElementEstimate(square, cs, 1000, "a stage"); }, &msg), ErrorCode::ElementBudgetExceeded);
+  EXPECT_EQ(msg.rfind("a stage: the metric asks for about", 0), 0u) << msg;
+  EXPECT_NO_THROW(checkElementEstimate(square, cs, 20000, "a stage"));  // within the slack of 2
+  // hmax 1e-6 on the unit square: refused at once, no overflow in the figure.
+  RunCaseOptions opt;
+  EXPECT_EQ(codeOf([&] { runCase(std::string("{") + kSquare + R"(, "controlSpace": {"hmax": 1e-6}})", opt); }, &msg),
+            ErrorCode::ElementBudgetExceeded);
+  EXPECT_NE(msg.find("element estimate before contour discretization"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("about 2.44e+12 elements"), std::string::npos) << msg;  // 1.057 * 1e12 / (sqrt(3) / 4)
+}
+
+TEST(OutOfMemory, AllocationFailuresBecomeCodedErrorsNamingTheStage) {
+  std::string msg;
+  EXPECT_EQ(codeOf([&] { withStage("a stage", [] { throw std::bad_alloc(); }); }, &msg), ErrorCode::OutOfMemory);
+  EXPECT_EQ(msg, "out of memory during a stage");
+  EXPECT_EQ(codeOf([&] {
+              withStage("another", [] {
+                std::vector<double> v;
+                v.reserve(v.max_size() + 1);
+              });
+            }),
+            ErrorCode::OutOfMemory);
+  EXPECT_STREQ(errorCodeName(ErrorCode::OutOfMemory), "OUT_OF_MEMORY");
+}
+
+TEST(MetricField, VertexAtInfinityIsRefusedWithoutUndefinedBehaviour) {
+  Mesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {std::numeric_limits<double>::infinity(), 1, 0}};
+  m.triangles = {{0, 1, 2}};
+  const std::vector<Metric> metrics(3, Metric::isotropic(0.1));
+  EXPECT_EQ(codeOf([&] { TriangleMeshMetricField f(m, metrics); }), ErrorCode::InvalidDomain);
+  // Finite but huge coordinates: the box size overflows to infinity, and queries at NaN or
+  // far away: no float-to-int conversion out of range (UBSan fails the test otherwise).
+  m.points = {{-1e308, -1e308, 0}, {1e308, -1e308, 0}, {1e308, 1e308, 0}};
+  const TriangleMeshMetricField f(m, metrics);
+  EXPECT_NO_THROW(f.metricAt(Vec2(0, 0)));
+  EXPECT_NO_THROW(f.metricAt(Vec2(std::nan(""), 1e300)));
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const TriangleMeshMetricField g(m, metrics);
+  EXPECT_NEAR(g.metricAt(Vec2(-1e300, 0.5)).tensor()(0, 0), 100.0, 1e-9);  // far outside: the nearest triangle
+  EXPECT_NO_THROW(g.metricAt(Vec2(-1e300, std::nan(""))));
+}
+
+TEST(FileLimits, DevicesDirectoriesAndLargeFilesAreRefusedUpFront) {
+  std::string msg;
+  EXPECT_EQ(codeOf([&] { readTextFile("/dev/zero"); }, &msg), ErrorCode::IoError);
+  EXPECT_NE(msg.find("device"), std::string::npos) << msg;
+  EXPECT_EQ(codeOf([&] { readTextFile("/tmp"); }), ErrorCode::IoError);
+  const std::string path = ::testing::TempDir() + "anisomesh_file_limit.txt";
+  writeTextFileAtomic(path, std::string(100, 'x'));
+  ReadFileOptions o;
+  o.maxBytes = 99;
+  EXPECT_EQ(codeOf([&] { readTextFile(path, o); }, &msg), ErrorCode::IoError);
+  EXPECT_NE(msg.find("above the input limit of 99 bytes"), std::string::npos) << msg;
+  o.maxBytes = 100;
+  EXPECT_EQ(readTextFile(path, o).size(), 100u);
+  const std::int64_t before = defaultMaxInputBytes();
+  setDefaultMaxInputBytes(50);
+  EXPECT_EQ(codeOf([&] { readTextFile(path); }), ErrorCode::IoError);
+  setDefaultMaxInputBytes(before);
+  EXPECT_EQ(readTextFile(path).size(), 100u);
+  std::remove(path.c_str());
+}
+
+TEST(FileLimits, TemporariesOfAKilledWriteAreRemovedByTheNextWrite) {
+  const std::string path = ::testing::TempDir() + "anisomesh_debris.mesh";
+  // A process id that no longer runs: a child that has exited and been reaped.
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  waitpid(child, nullptr, 0);
+  const std::string dead = path + ".tmp-" + std::to_string(child) + "-1-2";
+  const std::string alive = path + ".tmp-" + std::to_string(getppid()) + "-1-2";  // a running process
+  const std::string other = path + ".tmpx";
+  for (const std::string& p : {dead, alive, other}) std::ofstream(p) << "partial";
+  writeTextFileAtomic(path, "new");
+  EXPECT_FALSE(std::ifstream(dead).good()) << "the dead writer's temporary is still there";
+  EXPECT_TRUE(std::ifstream(alive).good()) << "a running writer's temporary was removed";
+  EXPECT_TRUE(std::ifstream(other).good());
+  std::ifstream in(path);
+  std::string text;
+  in >> text;
+  EXPECT_EQ(text, "new");
+  for (const std::string& p : {alive, other, path}) std::remove(p.c_str());
+}
+
+}  // namespace
+}  // namespace anisomesh
