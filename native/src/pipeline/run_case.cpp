@@ -29,7 +29,10 @@ auto readCase(const std::string& jsonText, F&& read) -> decltype(read()) {
 }
 
 CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& options) {
-  checkJsonSyntax(jsonText);  // one clean message for planar and surface cases
+  readCase(jsonText, [&] {
+    checkJsonSyntax(jsonText);
+    return 0;
+  });  // one clean message for both kinds
   CaseRun run;
   if (readCase(jsonText, [&] { return isSurfaceCaseJson(jsonText); })) {
     SurfaceCaseSpec spec = readCase(jsonText, [&] { return parseSurfaceCaseJson(jsonText); });
