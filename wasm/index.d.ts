@@ -225,6 +225,8 @@ export interface PlanarMeshStats {
     proximitySources: number;
     refinedElements: number;
     maxChordDeviation: number;
+    shortSegmentSources: number;
+    rediscretizedContours: number;
   };
   pipelineSeconds: Record<string, number>;
   timings: Record<string, number>;

@@ -26,7 +26,8 @@ const quality3dKeys = {
 } as const satisfies Record<keyof SurfaceMeshStats['quality3d'], Kind>;
 const boundaryUpdateKeys = {
   rounds: 'number', converged: 'boolean', invalidSegments: 'number', shortSegments: 'number', chordSources: 'number',
-  proximitySources: 'number', refinedElements: 'number', maxChordDeviation: 'number',
+  proximitySources: 'number', refinedElements: 'number', maxChordDeviation: 'number', shortSegmentSources: 'number',
+  rediscretizedContours: 'number',
 } as const satisfies Record<keyof PlanarMeshStats['boundaryUpdates'], Kind>;
 
 const problems: string[] = [];

@@ -40,6 +40,10 @@ TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<M
       box_.lo = box_.lo.cwiseMin(pts_[v]);
       box_.hi = box_.hi.cwiseMax(pts_[v]);
     }
+  // Barycentric determinants are products of two spans: they must stay finite.
+  const Vec2 span = box_.size();
+  require(std::isfinite(4.0 * span.x() * span.y()) && span.allFinite(), ErrorCode::InvalidDomain,
+          "metric field: the mesh's coordinates span more than the double range allows");
   // About one triangle per cell on square-ish cells.
   const Vec2 size = box_.size().cwiseMax(Vec2::Constant(1e-300));
   const double side = std::sqrt(size.x() * size.y() / double(tris_.size()));
@@ -114,6 +118,7 @@ bool TriangleMeshMetricField::meets(const Box2& b) const {
 }
 
 Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
+  if (!p.allFinite()) throw Error(ErrorCode::InvalidArgument, "metric field: the query point is not finite");
   const int cx = clampedCell((p.x() - box_.lo.x()) / cell_.x(), nx_);
   const int cy = clampedCell((p.y() - box_.lo.y()) / cell_.y(), ny_);
   // Interpolates Mt at q, given in triangle t.
@@ -158,7 +163,7 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
       for (int e = 0; e < 3; ++e) {
         const Vec2 q = closestOnSegment(p, pts_[tri[e]], pts_[tri[(e + 1) % 3]]);
         const double dist = (q - p).squaredNorm();
-        if (dist < bestDist) bestDist = dist, best = t, bestPoint = q;
+        if (dist < bestDist || best < 0) bestDist = dist, best = t, bestPoint = q;  // inf when p is far
       }
     }
     return false;

@@ -37,6 +37,7 @@ CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& opti
   if (readCase(jsonText, [&] { return isSurfaceCaseJson(jsonText); })) {
     SurfaceCaseSpec spec = readCase(jsonText, [&] { return parseSurfaceCaseJson(jsonText); });
     if (options.maxElements > 0) spec.options.mesher.maxElements = options.maxElements;
+    if (options.maxControlNodes > 0) spec.options.maxControlNodes = options.maxControlNodes;
     if (options.progress) spec.options.mesher.progress = options.progress;
     if (options.quads) spec.options.quads = *options.quads;
     if (options.allQuads) spec.options.allQuads = *options.allQuads;

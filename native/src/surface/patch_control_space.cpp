@@ -2,6 +2,8 @@
 // curvature of the surface and of the contours, user sources, gradation), its updates and glyphs.
 #include "model_mesher.h"
 
+#include "anisomesh/pipeline/element_estimate.h"
+
 namespace anisomesh {
 namespace surface_mesher {
 
@@ -88,6 +90,11 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
   qo.initialLevel = o.initialLevel;
   qo.maxLevel = o.maxLevel;
   auto cs = std::make_unique<QuadtreeControlSpace>(surf.domain(), qo);
+  // The same bounds as planar cases: a node budget from the element budget, cancellable.
+  ControlSpaceLimits limits;
+  limits.maxNodes = o.maxControlNodes > 0 ? o.maxControlNodes : controlSpaceNodeBudget(o.mesher.maxElements);
+  limits.progress = o.mesher.progress;
+  cs->setLimits(limits);
   // Main-level grid: curvature where available, extrapolation elsewhere (section 3.1).
   for (int i = 0; i < cs->nodeCount(); ++i) {
     if (!cs->nodeIsFree(i)) continue;
@@ -141,6 +148,9 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
     g.ratio = o.gradation;
     smoothGradation(*cs, g);
   }
+  // Before any contour is discretized: the metric area of the patch (pulled back, so 3D
+  // area over h^2) against the element budget.
+  checkElementEstimate(patch.domain, *cs, o.mesher.maxElements, "element estimate before contour discretization");
   return cs;
 }
 

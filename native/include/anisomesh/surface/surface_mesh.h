@@ -88,6 +88,8 @@ struct SurfaceMeshOptions {
   double refineThreshold = 0.25;  // difference() between node metrics that splits a leaf
   double sharedTolerance = 1e-6;  // shared curves must match within this * model size
   PlanarMesherOptions mesher;     // inner nodes and improvement (its quads / allQuads are ignored)
+  // Node budget of each patch's control space; 0: controlSpaceNodeBudget(mesher.maxElements).
+  std::int64_t maxControlNodes = 0;
   // Quad-dominant: triangle pairs merged in each patch's (u, v) (metric quality >= mesher.minQuadQuality);
   // shared contour edges are never merged across, so the patches stay conforming.
   bool quads = false;
