@@ -60,6 +60,15 @@ struct Piece {
   int segments = 1;
 };
 
+// Parameter bounds of the smooth pieces of c: 0, its increasing breakpoints inside (0, 1), 1.
+std::vector<double> pieceBounds(const Curve& c) {
+  std::vector<double> bounds{0.0};
+  for (double t : c.breakpoints())
+    if (t > bounds.back() && t < 1.0) bounds.push_back(t);
+  bounds.push_back(1.0);
+  return bounds;
+}
+
 }  // namespace
 
 double metricLength(const Curve& c, const ControlSpace& cs, double a, double b, double tolerance) {
@@ -69,10 +78,7 @@ double metricLength(const Curve& c, const ControlSpace& cs, double a, double b, 
 std::vector<double> discretizeCurve(const Curve& c, const ControlSpace& cs, int minSegments,
                                     const DiscretizeOptions& options) {
   const Integrand f = [&](double t) { return cs.metricAt(c.point(t)).length(c.derivative(t)); };
-  std::vector<double> bounds{0.0};
-  for (double t : c.breakpoints())
-    if (t > bounds.back() && t < 1.0) bounds.push_back(t);
-  bounds.push_back(1.0);
+  const std::vector<double> bounds = pieceBounds(c);
 
   std::vector<Piece> pieces;
   std::int64_t total = 0;
@@ -89,6 +95,9 @@ std::vector<double> discretizeCurve(const Curve& c, const ControlSpace& cs, int 
                 " would exceed the budget of " + std::to_string(options.maxSegments) + " boundary segments");
     p.segments = int(n);
     total += p.segments;
+    require(total <= options.maxSegments, ErrorCode::ElementBudgetExceeded,
+            std::string("discretizing a ") + c.typeName() + " curve needs more than the budget of " +
+                std::to_string(options.maxSegments) + " boundary segments");
     pieces.push_back(std::move(p));
   }
   // Too few segments in total: add them where the segments are longest in the metric.
@@ -151,6 +160,15 @@ std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const
             "the contour discretization exceeds the budget of " + std::to_string(options.maxSegments) +
                 " boundary segments");
   };
+  // Estimate before work: every smooth piece (a polyline keeps its vertices) is at least one
+  // segment, so a contour with more pieces than the budget is refused before any quadrature.
+  std::int64_t leastSegments = 0;
+  for (const Curve* c : curveOrder)
+    leastSegments += std::max<std::int64_t>(minimum[c], std::int64_t(pieceBounds(*c).size()) - 1);
+  require(leastSegments <= options.maxSegments, ErrorCode::ElementBudgetExceeded,
+          "the contour discretization needs at least " + std::to_string(leastSegments) +
+              " boundary segments (curve pieces and polyline vertices), over the budget of " +
+              std::to_string(options.maxSegments) + " boundary segments");
   for (const Curve* c : curveOrder) discretizeOne(c);
   checkBudget();
 

@@ -159,8 +159,12 @@ inline Dual2 powConst(const Dual2& a, double c) {
 
 // a^b in general: through exp(b log a), so it needs a > 0 unless b or a is constant.
 inline Dual2 powDual(const Dual2& a, const Dual2& b) {
-  if (isConstantDual(b)) return powConst(a, b.f);
-  const double f = pm::pow(a.f, b.f);
+  const double f = pm::pow(a.f, b.f);  // as value() computes '^' (powConst squares for 2)
+  if (isConstantDual(b)) {
+    Dual2 r = powConst(a, b.f);
+    r.f = f;
+    return r;
+  }
   const double la = pm::log(a.f);
   if (isConstantDual(a)) return chain1(b, f, f * la, f * la * la);
   const double p1 = pm::pow(a.f, b.f - 1.0);
@@ -231,8 +235,8 @@ inline Dual2 binaryDual(Op op, const Dual2& a, const Dual2& b) {
     case Op::Mul:
       return chain2(a, b, a.f * b.f, b.f, a.f, 0.0, 1.0, 0.0);
     case Op::Div: {
-      const double ib = 1.0 / b.f;
-      return chain2(a, b, a.f * ib, ib, -a.f * ib * ib, 0.0, -ib * ib, 2.0 * a.f * ib * ib * ib);
+      const double ib = 1.0 / b.f;  // the value part is the quotient itself, as in value()
+      return chain2(a, b, a.f / b.f, ib, -a.f * ib * ib, 0.0, -ib * ib, 2.0 * a.f * ib * ib * ib);
     }
     case Op::Pow:
       return powDual(a, b);
