@@ -168,26 +168,67 @@ bool findPolygonCrossing(const std::vector<std::vector<Vec2>>& polygons, Polygon
     for (int x = cellOf(a.x(), 0); x <= cellOf(b.x(), 0); ++x)
       for (int y = cellOf(a.y(), 1); y <= cellOf(b.y(), 1); ++y) cells[size_t(y) * side + x].push_back(s);
   }
-  for (const auto& cell : cells)
-    for (size_t i = 0; i < cell.size(); ++i)
-      for (size_t j = i + 1; j < cell.size(); ++j) {
-        const Segment& s = segs[size_t(cell[i])];
-        const Segment& t = segs[size_t(cell[j])];
-        Vec2 where;
-        bool meet;
-        if (s.polygon == t.polygon && s.count > 1 &&
-            (t.index == (s.index + 1) % s.count || s.index == (t.index + 1) % s.count)) {
-          if (s.count == 2) continue;
-          meet = adjacentFold(s, t, eps);
-          where = (t.index == (s.index + 1) % s.count) ? s.b : s.a;
-        } else {
-          meet = segmentsMeet(s, t, eps, &where);
-        }
-        if (meet) {
-          *out = {s.polygon, s.index, t.polygon, t.index, where};
-          return true;
-        }
+  // Boxes grown by the distance within which segmentsMeet calls an end point "on" a
+  // segment (eps / length, plus its 1e-12 parameter slack): pairs whose grown boxes are
+  // apart cannot meet, so they are skipped without changing which pair is found.
+  std::vector<Box2> grown(segs.size());
+  for (size_t s = 0; s < segs.size(); ++s) {
+    const double len = (segs[s].b - segs[s].a).norm();
+    const double margin = len > 0 ? eps / len + 1e-12 * len : 0.0;
+    grown[s] = {segs[s].a.cwiseMin(segs[s].b) - Vec2::Constant(margin),
+                segs[s].a.cwiseMax(segs[s].b) + Vec2::Constant(margin)};
+  }
+  auto overlap = [&](int s, int t) {
+    return (grown[size_t(s)].lo.array() <= grown[size_t(t)].hi.array()).all() &&
+           (grown[size_t(t)].lo.array() <= grown[size_t(s)].hi.array()).all();
+  };
+  std::vector<int> order;
+  std::vector<std::pair<int, int>> candidates;
+  for (const auto& cell : cells) {
+    // Candidate pairs (positions i < j in the cell) by a sweep along the axis the cell's
+    // segments spread over most, then tested in the order of the plain double loop over
+    // (i, j): the first meeting pair is the one that loop would find.
+    const int n = int(cell.size());
+    if (n < 2) continue;
+    Vec2 clo = Vec2::Constant(INFINITY), chi = Vec2::Constant(-INFINITY);
+    for (int s : cell) clo = clo.cwiseMin(grown[size_t(s)].lo), chi = chi.cwiseMax(grown[size_t(s)].hi);
+    const int axis = chi.x() - clo.x() >= chi.y() - clo.y() ? 0 : 1;
+    order.resize(size_t(n));
+    for (int i = 0; i < n; ++i) order[size_t(i)] = i;
+    std::sort(order.begin(), order.end(), [&](int i, int j) {
+      const double a = grown[size_t(cell[size_t(i)])].lo[axis], b = grown[size_t(cell[size_t(j)])].lo[axis];
+      return a < b || (a == b && i < j);
+    });
+    candidates.clear();
+    for (int k = 0; k < n; ++k) {
+      const int i = order[size_t(k)];
+      const double hi = grown[size_t(cell[size_t(i)])].hi[axis];
+      for (int m = k + 1; m < n; ++m) {
+        const int j = order[size_t(m)];
+        if (grown[size_t(cell[size_t(j)])].lo[axis] > hi) break;
+        if (overlap(cell[size_t(i)], cell[size_t(j)])) candidates.emplace_back(std::min(i, j), std::max(i, j));
       }
+    }
+    std::sort(candidates.begin(), candidates.end());
+    for (const auto& pair : candidates) {
+      const Segment& s = segs[size_t(cell[size_t(pair.first)])];
+      const Segment& t = segs[size_t(cell[size_t(pair.second)])];
+      Vec2 where;
+      bool meet;
+      if (s.polygon == t.polygon && s.count > 1 &&
+          (t.index == (s.index + 1) % s.count || s.index == (t.index + 1) % s.count)) {
+        if (s.count == 2) continue;
+        meet = adjacentFold(s, t, eps);
+        where = (t.index == (s.index + 1) % s.count) ? s.b : s.a;
+      } else {
+        meet = segmentsMeet(s, t, eps, &where);
+      }
+      if (meet) {
+        *out = {s.polygon, s.index, t.polygon, t.index, where};
+        return true;
+      }
+    }
+  }
   return false;
 }
 

@@ -335,6 +335,10 @@ CaseSpec parseCaseJson(const std::string& text) {
   } catch (const json::parse_error& e) {
     throw Error(ErrorCode::ParseError, std::string("(root): malformed JSON: ") + e.what());
   }
+  return parseCaseJsonTree(root);
+}
+
+CaseSpec parseCaseJsonTree(const json& root) {
   expectObject(root, "");
   checkKeys(root, "", {"domain", "controlSpace", "sources", "options", "name", "description"});
   CaseSpec spec;

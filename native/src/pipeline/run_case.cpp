@@ -29,13 +29,20 @@ auto readCase(const std::string& jsonText, F&& read) -> decltype(read()) {
 }
 
 CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& options) {
-  readCase(jsonText, [&] {
-    checkJsonSyntax(jsonText);
-    return 0;
-  });  // one clean message for both kinds
+  // Parsed once (a 1M-point polyline is 33 MB of text); on a syntax error the check
+  // below gives one clean message for both kinds of case.
+  nlohmann::json root = readCase(jsonText, [&] {
+    nlohmann::json parsed = nlohmann::json::parse(jsonText, nullptr, false);
+    if (parsed.is_discarded()) {
+      checkJsonSyntax(jsonText);  // throws (an overflowing number: out_of_range 406)
+      throw Error(ErrorCode::ParseError, "(root): malformed JSON");
+    }
+    return parsed;
+  });
   CaseRun run;
-  if (readCase(jsonText, [&] { return isSurfaceCaseJson(jsonText); })) {
-    SurfaceCaseSpec spec = readCase(jsonText, [&] { return parseSurfaceCaseJson(jsonText); });
+  if (isSurfaceCaseJsonTree(root)) {
+    SurfaceCaseSpec spec = readCase(jsonText, [&] { return parseSurfaceCaseJsonTree(root); });
+    root = nullptr;  // the tree is not needed while meshing
     if (options.maxElements > 0) spec.options.mesher.maxElements = options.maxElements;
     if (options.maxControlNodes > 0) spec.options.maxControlNodes = options.maxControlNodes;
     if (options.progress) spec.options.mesher.progress = options.progress;
@@ -63,7 +70,8 @@ CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& opti
     run.stats["quality"] = {{"mean", q["qualityMean"]}, {"min", q["qualityMin"]}};
     return run;
   }
-  CaseSpec spec = readCase(jsonText, [&] { return parseCaseJson(jsonText); });
+  CaseSpec spec = readCase(jsonText, [&] { return parseCaseJsonTree(root); });
+  root = nullptr;
   if (options.quads) spec.options.quads = *options.quads;
   if (options.allQuads) spec.options.allQuads = *options.allQuads;
   if (options.maxElements > 0) spec.options.maxElements = options.maxElements;

@@ -288,6 +288,10 @@ SurfaceCaseSpec parseSurfaceCaseJson(const std::string& text) {
   } catch (const json::parse_error& e) {
     throw Error(ErrorCode::ParseError, std::string("(root): malformed JSON: ") + e.what());
   }
+  return parseSurfaceCaseJsonTree(root);
+}
+
+SurfaceCaseSpec parseSurfaceCaseJsonTree(const json& root) {
   object(root, "");
   keys(root, "",
        {"name", "description", "metric", "adaptation", "options", "surfaces", "patches", "shared", "sources3d"});
@@ -444,12 +448,13 @@ SurfaceCaseSpec parseSurfaceCaseJson(const std::string& text) {
 
 bool isSurfaceCaseJson(const std::string& text) {
   try {
-    const json root = json::parse(text);
-    return root.is_object() && root.contains("patches");
+    return isSurfaceCaseJsonTree(json::parse(text));
   } catch (const json::parse_error&) {
     return false;
   }
 }
+
+bool isSurfaceCaseJsonTree(const json& root) { return root.is_object() && root.contains("patches"); }
 
 Mesh meshSurfaceCase(const SurfaceCaseSpec& spec, SurfaceMeshReport* report) {
   return meshSurfaceModel(spec.model, spec.options, report);

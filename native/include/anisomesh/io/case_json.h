@@ -2,6 +2,7 @@
 // The JSON case format (documented in examples/CASE_FORMAT.md): domain curves, control
 // space settings, metric sources and meshing options, parsed into plain structs.
 #include <cstdint>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -76,6 +77,8 @@ struct CaseSpec {
 // types or unknown fields, InvalidArgument / InvalidMetric (with the path) on values out
 // of range. The domain is built but not validated (see validateDomain).
 CaseSpec parseCaseJson(const std::string& text);
+// Same from JSON parsed once by the caller (runCase: a 33 MB case is not parsed twice).
+CaseSpec parseCaseJsonTree(const nlohmann::json& root);
 
 // Reads and parses a case file (IoError when unreadable).
 CaseSpec readCaseFile(const std::string& path);

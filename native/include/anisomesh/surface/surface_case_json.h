@@ -18,9 +18,13 @@ struct SurfaceCaseSpec {
 // Parses a surface case; throws ParseError naming the JSON path (and, for formulas, the
 // column), InvalidArgument / InvalidMetric with the path for values out of range.
 SurfaceCaseSpec parseSurfaceCaseJson(const std::string& text);
+// Same from JSON parsed once by the caller.
+SurfaceCaseSpec parseSurfaceCaseJsonTree(const nlohmann::json& root);
 
 // True when the JSON text is a surface case (has "patches"), to route `anisomesh mesh`.
 bool isSurfaceCaseJson(const std::string& text);
+// Same for parsed JSON.
+bool isSurfaceCaseJsonTree(const nlohmann::json& root);
 
 // Parses and meshes a surface case (meshSurfaceModel).
 Mesh meshSurfaceCase(const std::string& jsonText, SurfaceMeshReport* report = nullptr);
