@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -266,4 +267,24 @@ TEST(Expression, DomainErrorsGiveNaNForTheCallerToReport) {
   EXPECT_TRUE(std::isnan(e.value(-1, 0)));
   EXPECT_TRUE(std::isnan(e.evaluate(-1, 0).f));
   EXPECT_TRUE(std::isinf(Expression::parse("1/u").value(0, 0)));
+}
+
+// value() and the value part of evaluate() do the same operations, so they give the same
+// double (the fuzz target allows 1e-9): a quotient taken as a * (1 / b), or '^' by a
+// constant taken as a product, differed in the last bit and, under cancellation, in
+// every bit (tests/fuzz/regressions/expression_fuzz/division_value_part*).
+TEST(Expression, ValueAndTheDualValuePartAreTheSameDouble) {
+  ExpressionOptions o;
+  o.parameters = {{"a", 0.5}};
+  for (const char* text :
+       {"-v-v/-u^41^---u^1^-----808^----808^--v", "a+tan(-u-3^5^v^5/u*4)+e", "u / 3 - u * (1 / 3)",
+        "(u + v) / (u - v) - 1", "pow(u, v) / v", "u ^ (v - v + 2) - u * u", "sin(u) / cos(v) ^ 3"}) {
+    const Expression e = Expression::parse(text, o);
+    const double points[][2] = {{0.3, -0.7}, {10.0, 3.0}, {1e-8, 1e8}, {0.7, 0.1}};
+    for (const auto& p : points) {
+      const double a = e.value(p[0], p[1]), b = e.evaluate(p[0], p[1]).f;
+      if (std::isnan(a) && std::isnan(b)) continue;
+      EXPECT_EQ(a, b) << text << " at (" << p[0] << ", " << p[1] << ")";
+    }
+  }
 }

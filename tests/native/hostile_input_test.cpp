@@ -1,13 +1,16 @@
 // Bounded work on hostile input (issue 15), unit level: number overflow in JSON named by
 // its path, the control-space node budget and cancellation, the element estimate made
 // before discretization, allocation failures as OutOfMemory, bounded file reading, and
-// removal of the temporaries a killed write leaves.
+// removal of the temporaries a killed write leaves; the contour estimate from the polyline
+// vertices and the crossing search behind polyline_1m.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <new>
@@ -16,6 +19,8 @@
 #include "anisomesh/controlspace/quadtree_control_space.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/geometry/curve.h"
+#include "anisomesh/geometry/discretize.h"
+#include "anisomesh/geometry/domain.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/json_text.h"
 #include "anisomesh/pipeline/element_estimate.h"
@@ -92,10 +97,10 @@ TEST(ControlSpaceBudget, DerivedFromTheElementBudget) {
                               "sources": [{"type": "analytic", "field": "expression", "h1": "0.001 + 0.05 * abs(sin(40 * x) * sin(40 * y))"}]
 })J",
                           opt);
-},
+                },
                 &msg),
             ErrorCode::ElementBudgetExceeded);
-EXPECT_NE(msg.find("node budget of 20000"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("node budget of 20000"), std::string::npos) << msg;
 }
 
 TEST(ControlSpaceBudget, ProgressDuringRefinementCancels) {
@@ -204,6 +209,96 @@ TEST(FileLimits, TemporariesOfAKilledWriteAreRemovedByTheNextWrite) {
   in >> text;
   EXPECT_EQ(text, "new");
   for (const std::string& p : {alive, other, path}) std::remove(p.c_str());
+}
+
+// Estimate before work: a polyline keeps its vertices, so one with more vertices than
+// the segment budget is refused before a single metric query (polyline_1m took 71 s).
+TEST(ContourEstimate, PolylineWithMoreVerticesThanTheBudgetIsRefusedBeforeAnyQuery) {
+  std::vector<Vec2> pts;
+  const int n = 5000;
+  for (int i = 0; i <= n; ++i) {
+    const double t = 2.0 * M_PI * (i % n) / n;
+    pts.emplace_back(std::cos(t), std::sin(t));
+  }
+  Domain d;
+  d.outer.add(std::make_shared<PolylineCurve>(pts, 1));
+  int queries = 0;
+  const AnalyticControlSpace cs(Box2{Vec2(-2, -2), Vec2(2, 2)}, [&](const Vec2&) {
+    ++queries;
+    return Metric::isotropic(0.1);
+  });
+  DiscretizeOptions o;
+  o.maxSegments = 4999;
+  try {
+    discretizeDomain(d, cs, o);
+    FAIL() << "a 5000-vertex polyline fits a budget of 4999 segments";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::ElementBudgetExceeded);
+    EXPECT_NE(std::string(e.what()).find("at least 5000"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(queries, 0);
+  o.maxSegments = 5000;  // just enough: discretized, each vertex kept
+  EXPECT_EQ(discretizeDomain(d, cs, o).front().points.size(), size_t(n));
+  EXPECT_GT(queries, 0);
+}
+
+double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+// Proper crossing of segments ab and cd (points in general position: no touching).
+bool properCross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  return orient(a, b, c) * orient(a, b, d) < 0 && orient(c, d, a) * orient(c, d, b) < 0;
+}
+
+// The grid with a sweep per cell tests fewer pairs than every pair in a cell: it must
+// still find a crossing exactly when one exists, and the pair it names must cross.
+TEST(PolygonCrossing, FindsACrossingExactlyWhenEveryPairTestFindsOne) {
+  std::srand(15);
+  auto uniform = [] { return double(std::rand()) / RAND_MAX; };
+  int crossingSets = 0, cleanSets = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    // Star-shaped polygons (simple) with random radii, sometimes overlapping each other.
+    std::vector<std::vector<Vec2>> polygons;
+    const int count = 1 + trial % 3;
+    for (int k = 0; k < count; ++k) {
+      const Vec2 centre(3.0 * uniform(), 3.0 * uniform());
+      const int n = 3 + int(60 * uniform());
+      const double r0 = 0.2 + uniform();
+      std::vector<Vec2> poly;
+      for (int i = 0; i < n; ++i) {
+        const double a = 2.0 * M_PI * (i + 0.5 * uniform()) / n;
+        const double r = r0 * (0.6 + 0.4 * uniform());
+        poly.push_back(centre + r * Vec2(std::cos(a), std::sin(a)));
+      }
+      if (trial % 7 == 3 && n > 4) std::swap(poly[1], poly[3]);  // a bow tie: self-crossing
+      polygons.push_back(poly);
+    }
+    bool expected = false;
+    std::vector<std::array<int, 2>> ids;  // (polygon, segment)
+    for (int p = 0; p < count; ++p)
+      for (int i = 0; i < int(polygons[size_t(p)].size()); ++i) ids.push_back({p, i});
+    auto seg = [&](int p, int i, int end) {
+      const auto& poly = polygons[size_t(p)];
+      return poly[size_t((i + end) % int(poly.size()))];
+    };
+    for (size_t s = 0; s < ids.size() && !expected; ++s)
+      for (size_t t = s + 1; t < ids.size() && !expected; ++t)
+        expected = properCross(seg(ids[s][0], ids[s][1], 0), seg(ids[s][0], ids[s][1], 1), seg(ids[t][0], ids[t][1], 0),
+                               seg(ids[t][0], ids[t][1], 1));
+    PolygonCrossing x;
+    const bool found = findPolygonCrossing(polygons, &x);
+    ASSERT_EQ(found, expected) << "trial " << trial;
+    if (found) {
+      ++crossingSets;
+      EXPECT_TRUE(properCross(seg(x.polygonA, x.segmentA, 0), seg(x.polygonA, x.segmentA, 1),
+                              seg(x.polygonB, x.segmentB, 0), seg(x.polygonB, x.segmentB, 1)))
+          << "trial " << trial;
+    } else {
+      ++cleanSets;
+    }
+  }
+  EXPECT_GT(crossingSets, 30);
+  EXPECT_GT(cleanSets, 30);
 }
 
 }  // namespace
