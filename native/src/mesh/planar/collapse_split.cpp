@@ -251,6 +251,7 @@ int Mesher::scanEdges(const std::vector<int>* list, EdgeOp&& op) {
   const int n = list ? static_cast<int>(list->size()) : static_cast<int>(tri_.size());
   for (int k = 0; k < n; ++k) {
     const int t = list ? (*list)[k] : k;
+    tickProgress();
     if (tri_[t].v[0] < 0) continue;
     for (int i = 0; i < 3; ++i) {
       const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];

@@ -94,6 +94,13 @@ class Mesher {
   // ---- setup and output ----
   void validate() const;
   void checkProgress(double fraction);
+  // The progress callback again, at the last fraction, every 4096 steps of a long sweep
+  // (one improvement pass over a million triangles is seconds of work in wasm).
+  void tickProgress() {
+    if (opt_.progress && (++progressTicks_ & 4095) == 0) checkProgress(lastFraction_);
+  }
+  std::uint64_t progressTicks_ = 0;
+  double lastFraction_ = 0.0;
   SymMt queryMetric(const Vec2& p) const { return SymMt::from(cs_.metricAt(p).transform()); }
   Mesh output() const;
 

@@ -12,6 +12,7 @@ int Mesher::smoothPass(std::vector<int>& touched) {
   std::vector<SymMt> edgeM, triM;
   const int nv = static_cast<int>(vx_.size());
   for (int v = kSuper; v < nv; ++v) {
+    tickProgress();
     if (vbnd_[v] || !vdirty_[v]) continue;  // clean: nothing around it changed since its last visit
     ring.clear();
     ballTri.clear();

@@ -9,6 +9,7 @@ namespace planar {
 int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
   int swaps = 0;
   for (const int t : work) {
+    tickProgress();
     if (tri_[t].v[0] < 0) continue;
     for (int i = 0; i < 3; ++i) {
       const int nb = tri_[t].n[i];

@@ -29,7 +29,8 @@ void Mesher::validate() const {
 }
 
 void Mesher::checkProgress(double fraction) {
-  if (opt_.progress && !opt_.progress(std::min(1.0, std::max(0.0, fraction))))
+  lastFraction_ = std::min(1.0, std::max(0.0, fraction));
+  if (opt_.progress && !opt_.progress(lastFraction_))
     throw Error(ErrorCode::Cancelled, "meshPlanarBoundary: cancelled by the progress callback");
 }
 
