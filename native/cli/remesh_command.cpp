@@ -58,7 +58,7 @@ class StageLog {
 
 int runRemesh(Args& args) {
   std::string input, sol, output;
-  bool stats = false;
+  bool stats = false, ridgeAngle = false, noRidges = false;
   double hsiz = 0;
   int verbosity = 0;
   long long threads = 1;
@@ -86,6 +86,19 @@ int runRemesh(Args& args) {
     else if (a == "-hsiz" || a == "--hsiz") {
       hsiz = parseNumber(a, args.value(a));
       if (!(hsiz > 0)) throw UsageError{a + " expects a positive size"};
+    } else if (a == "-hausd" || a == "--hausd") {
+      options.hausdorff = parseNumber(a, args.value(a));
+      if (!(options.hausdorff > 0)) throw UsageError{a + " expects a positive distance"};
+    } else if (a == "-ar" || a == "--ar") {
+      const double deg = parseNumber(a, args.value(a));
+      if (deg > 180) throw UsageError{a + " expects an angle in degrees from 0 to 180"};
+      if (noRidges) throw UsageError{"-ar and -nr exclude each other"};
+      ridgeAngle = true;
+      options.ridgeAngle = deg * 0.017453292519943295;
+    } else if (a == "-nr" || a == "--nr") {
+      if (ridgeAngle) throw UsageError{"-ar and -nr exclude each other"};
+      noRidges = true;
+      options.ridgeAngle = 3.141592653589793;  // no turn is larger: no angle corners
     } else if (a == "-v")
       verbosity = static_cast<int>(parseSignedNumber(a, args.value(a)));
     else if (a == "--stats")
