@@ -251,7 +251,9 @@ MeshFormat formatFromName(const std::string& name) {
   if (name == "obj") return MeshFormat::Obj;
   if (name == "msh") return MeshFormat::Gmsh;
   if (name == "msh2") return MeshFormat::Gmsh22;
-  throw Error(ErrorCode::InvalidArgument, "unknown mesh format '" + name + "' (expected mesh, vtk, obj, msh or msh2)");
+  if (name == "meshb") return MeshFormat::MeditBinary;
+  throw Error(ErrorCode::InvalidArgument,
+              "unknown mesh format '" + name + "' (expected mesh, meshb, vtk, obj, msh or msh2)");
 }
 
 // Per-edge metric lengths, per-element metric qualities (triangles, then quads) and the
@@ -429,10 +431,16 @@ val caseStats() {
 val writeMeshText(val mesh, std::string format) {
   return guarded([&] {
     val out = val::object();
-    if (format == "svg")
+    if (format == "svg") {
       out.set("text", writeSvg(meshFromJs(mesh)));
-    else
+    } else if (formatFromName(format) == MeshFormat::MeditBinary) {  // bytes: a Uint8Array copy
+      const std::string bytes = writeMeshString(meshFromJs(mesh), MeshFormat::MeditBinary);
+      out.set("bytes",
+              val::global("Uint8Array")
+                  .new_(typed_memory_view(bytes.size(), reinterpret_cast<const unsigned char*>(bytes.data()))));
+    } else {
       out.set("text", writeMeshString(meshFromJs(mesh), formatFromName(format)));
+    }
     return out;
   });
 }

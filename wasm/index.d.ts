@@ -357,6 +357,8 @@ export interface AdaptIteration {
 
 /** 'msh': Gmsh 4.1 ASCII, 'msh2': Gmsh 2.2 ASCII (readMesh takes either as 'msh'). */
 export type MeshFormat = 'mesh' | 'vtk' | 'obj' | 'msh' | 'msh2';
+/** Binary Medit (libMeshb, as MMG reads and writes it): bytes, not text. */
+export type BinaryMeshFormat = 'meshb';
 
 export interface MeshCaseOptions {
   /** Also return the final control space's nodes and cells (planar cases). */
@@ -468,8 +470,12 @@ export interface Anisomesh {
   ): { mesh: MeshArrays; fields: Float64Array[]; iterations: AdaptIteration[] };
   /** The mesh as text in a file format ('svg' for a picture of a planar mesh). */
   writeMesh(mesh: MeshArrays, format?: MeshFormat | 'svg'): string;
+  /** The mesh as a binary Medit .meshb file. */
+  writeMesh(mesh: MeshArrays, format: BinaryMeshFormat): Uint8Array;
   /** Parses mesh text. */
   readMesh(text: string, format?: MeshFormat): MeshArrays;
+  /** Parses the bytes of a binary Medit .meshb file. */
+  readMesh(bytes: Uint8Array, format: BinaryMeshFormat): MeshArrays;
   /** Parses a Medit .sol (scalar sizes or tensors): m11, m12, m22 per vertex. */
   readSol(text: string, vertexCount: number): Float64Array;
   /** Writes per-vertex tensors (m11, m12, m22 each) as a Medit .sol. */

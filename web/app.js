@@ -378,6 +378,7 @@ function removeSource(i) {
 
 const inlineErrors = [];
 function clearErrors() {
+  $('view-error').hidden = true;
   for (const e of inlineErrors.splice(0)) {
     e.el.remove?.();
     e.ctrl?.domElement.classList.remove('has-error');
@@ -606,6 +607,10 @@ function fail(error, version) {
   state.lastError = error;
   clearErrors();
   showError(error.target, `${error.code}: ${error.message}`);
+  // Also at the top of the view, where it is seen whatever the panel's scroll position.
+  const banner = $('view-error');
+  banner.textContent = `${error.code}: ${error.message}${state.lastStats ? ' (previous mesh shown)' : ''}`;
+  banner.hidden = false;
   // The previous mesh stays on screen; the status says it is not the current input.
   statusText.textContent = state.lastStats ? 'input error · previous mesh shown' : 'input error';
   status.classList.add('err');
