@@ -435,9 +435,9 @@ val writeMeshText(val mesh, std::string format) {
       out.set("text", writeSvg(meshFromJs(mesh)));
     } else if (formatFromName(format) == MeshFormat::MeditBinary) {  // bytes: a Uint8Array copy
       const std::string bytes = writeMeshString(meshFromJs(mesh), MeshFormat::MeditBinary);
-      out.set("bytes",
-              val::global("Uint8Array")
-                  .new_(typed_memory_view(bytes.size(), reinterpret_cast<const unsigned char*>(bytes.data()))));
+      out.set("bytes", val::global("Uint8Array")
+                           .new_(emscripten::typed_memory_view(bytes.size(),
+                                                               reinterpret_cast<const unsigned char*>(bytes.data()))));
     } else {
       out.set("text", writeMeshString(meshFromJs(mesh), formatFromName(format)));
     }
