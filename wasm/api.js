@@ -116,6 +116,7 @@ function checkAdaptOptions(options) {
     throw argError('options.iterations: expected a positive integer');
   }
   if (options.relative !== undefined) out.relative = Boolean(options.relative);
+  if (options.measures !== undefined) out.measures = Boolean(options.measures);
   if (options.norm !== undefined) {
     const n = String(options.norm);
     if (!['1', '2', 'inf'].includes(n)) throw argError(`options.norm: expected 1, 2 or 'inf', got ${options.norm}`);

@@ -586,7 +586,7 @@ val metricFromFieldJs(val mesh, val fields, val options) {
 }
 
 // The adaptation loop: fields are per-vertex values (transferred) or expressions in x, y
-// (re-sampled); { mesh, fields, iterations }.
+// (re-sampled); { mesh, fields, iterations, measures? }.
 val adaptJs(val mesh, val fields, val expressions, val options) {
   return guarded([&] {
     const Mesh input = meshFromJs(mesh);
@@ -628,6 +628,8 @@ val adaptJs(val mesh, val fields, val expressions, val options) {
       its.call<void>("push", j);
     }
     out.set("iterations", its);
+    // measures: the last mesh measured in the last iteration's control space (as meshCase).
+    if (options["measures"].isTrue()) out.set("measures", meshMeasures(r.mesh, r.controlSpace.get()));
     return out;
   });
 }

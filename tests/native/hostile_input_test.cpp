@@ -92,10 +92,10 @@ TEST(ControlSpaceBudget, DerivedFromTheElementBudget) {
                               "sources": [{"type": "analytic", "field": "expression", "h1": "0.001 + 0.05 * abs(sin(40 * x) * sin(40 * y))"}]
 })J",
                           opt);
-},
+                },
                 &msg),
             ErrorCode::ElementBudgetExceeded);
-EXPECT_NE(msg.find("node budget of 20000"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("node budget of 20000"), std::string::npos) << msg;
 }
 
 TEST(ControlSpaceBudget, ProgressDuringRefinementCancels) {

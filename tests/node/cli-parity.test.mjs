@@ -83,9 +83,11 @@ function run(cli, args, folder) {
 // Timings in text lines ("(0.03 s)", "wall 0.000 s cpu 0.000 s", "peak RSS 12.5 MiB"): masked.
 const untimedText = (text) => text.replace(/\d+(\.\d+)?(e-?\d+)? s\b/g, 'T s').replace(/peak RSS [\d.]+ MiB/g, 'peak RSS M MiB');
 // stdout as a value, without the timings (wall clock, different on every run).
-const untimed = (v) => (v && typeof v === 'object' && !Array.isArray(v)
-  ? Object.fromEntries(Object.entries(v).filter(([k]) => !/seconds|timings/i.test(k)).map(([k, x]) => [k, untimed(x)]))
-  : v);
+const untimed = (v) => {
+  if (Array.isArray(v)) return v.map(untimed);
+  if (!v || typeof v !== 'object') return v;
+  return Object.fromEntries(Object.entries(v).filter(([k]) => !/seconds|timings/i.test(k)).map(([k, x]) => [k, untimed(x)]));
+};
 const stdoutValue = (text) => {
   try { return untimed(JSON.parse(text)); } catch { return untimedText(text); }
 };
