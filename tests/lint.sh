@@ -22,9 +22,14 @@ check "clang-format (${#cxx[@]} files)" clang-format --dry-run --Werror "${cxx[@
 
 tidy() {
   [ -f build/native/compile_commands.json ] || { echo "no build/native/compile_commands.json"; return 1; }
-  # A file passes when clang-tidy reports nothing of ours (WarningsAsErrors turns findings into errors).
-  git ls-files 'native/src/*.cpp' 'native/cli/*.cpp' |
-    xargs -P"$(nproc)" -n1 clang-tidy -p build/native --quiet 2>/dev/null | grep -E 'error:|warning:' && return 1
+  # A file passes when clang-tidy reports nothing of ours (WarningsAsErrors turns findings into
+  # errors) and exits 0: a crash that prints no finding fails too (xargs exits 123 or 125).
+  local out status
+  out=$(git ls-files 'native/src/*.cpp' 'native/cli/*.cpp' |
+    xargs -P"$(nproc)" -n1 clang-tidy -p build/native --quiet 2>/dev/null)
+  status=$?
+  grep -E 'error:|warning:' <<<"$out" && return 1
+  [ "$status" -eq 0 ] || { echo "clang-tidy exited with status $status"; echo "$out" | tail -20; return 1; }
   return 0
 }
 check "clang-tidy (bugprone, performance)" tidy

@@ -116,6 +116,7 @@ function checkAdaptOptions(options) {
     throw argError('options.iterations: expected a positive integer');
   }
   if (options.relative !== undefined) out.relative = Boolean(options.relative);
+  if (options.measures !== undefined) out.measures = Boolean(options.measures);
   if (options.norm !== undefined) {
     const n = String(options.norm);
     if (!['1', '2', 'inf'].includes(n)) throw argError(`options.norm: expected 1, 2 or 'inf', got ${options.norm}`);
@@ -321,14 +322,19 @@ export function wrapCore(core) {
       const values = expressions.length ? [] : checkFieldValues(list, mesh.vertices.length / mesh.dimension);
       return unwrap(core.adapt(mesh, values, expressions, checkAdaptOptions(options)));
     },
-    /** The mesh as text: 'mesh' (Medit), 'vtk', 'obj' or 'svg'. */
+    /** The mesh as text: 'mesh' (Medit), 'vtk', 'obj', 'msh', 'msh2' or 'svg'; 'meshb': bytes (a Uint8Array). */
     writeMesh(mesh, format = 'mesh') {
       checkMesh(mesh);
-      return unwrap(core.writeMesh(mesh, String(format))).text;
+      const out = unwrap(core.writeMesh(mesh, String(format)));
+      return out.bytes ?? out.text;
     },
-    /** Parses mesh text: 'mesh' (Medit), 'vtk' or 'obj'. */
+    /** Parses mesh text ('mesh', 'vtk', 'obj', 'msh') or the bytes of a 'meshb' (a Uint8Array). */
     readMesh(text, format = 'mesh') {
-      if (typeof text !== 'string') throw argError('text: expected a string');
+      if (String(format) === 'meshb') {
+        if (!(text instanceof Uint8Array)) throw argError('bytes: expected a Uint8Array for the meshb format');
+      } else if (typeof text !== 'string') {
+        throw argError('text: expected a string');
+      }
       return unwrap(core.readMesh(text, String(format))).mesh;
     },
     /** Parses a Medit .sol (scalar sizes or tensors) for vertexCount vertices: Float64Array m11, m12, m22 per vertex. */

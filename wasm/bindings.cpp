@@ -251,7 +251,9 @@ MeshFormat formatFromName(const std::string& name) {
   if (name == "obj") return MeshFormat::Obj;
   if (name == "msh") return MeshFormat::Gmsh;
   if (name == "msh2") return MeshFormat::Gmsh22;
-  throw Error(ErrorCode::InvalidArgument, "unknown mesh format '" + name + "' (expected mesh, vtk, obj, msh or msh2)");
+  if (name == "meshb") return MeshFormat::MeditBinary;
+  throw Error(ErrorCode::InvalidArgument,
+              "unknown mesh format '" + name + "' (expected mesh, meshb, vtk, obj, msh or msh2)");
 }
 
 // Per-edge metric lengths, per-element metric qualities (triangles, then quads) and the
@@ -429,10 +431,16 @@ val caseStats() {
 val writeMeshText(val mesh, std::string format) {
   return guarded([&] {
     val out = val::object();
-    if (format == "svg")
+    if (format == "svg") {
       out.set("text", writeSvg(meshFromJs(mesh)));
-    else
+    } else if (formatFromName(format) == MeshFormat::MeditBinary) {  // bytes: a Uint8Array copy
+      const std::string bytes = writeMeshString(meshFromJs(mesh), MeshFormat::MeditBinary);
+      out.set("bytes", val::global("Uint8Array")
+                           .new_(emscripten::typed_memory_view(bytes.size(),
+                                                               reinterpret_cast<const unsigned char*>(bytes.data()))));
+    } else {
       out.set("text", writeMeshString(meshFromJs(mesh), formatFromName(format)));
+    }
     return out;
   });
 }
@@ -578,7 +586,7 @@ val metricFromFieldJs(val mesh, val fields, val options) {
 }
 
 // The adaptation loop: fields are per-vertex values (transferred) or expressions in x, y
-// (re-sampled); { mesh, fields, iterations }.
+// (re-sampled); { mesh, fields, iterations, measures? }.
 val adaptJs(val mesh, val fields, val expressions, val options) {
   return guarded([&] {
     const Mesh input = meshFromJs(mesh);
@@ -620,6 +628,8 @@ val adaptJs(val mesh, val fields, val expressions, val options) {
       its.call<void>("push", j);
     }
     out.set("iterations", its);
+    // measures: the last mesh measured in the last iteration's control space (as meshCase).
+    if (options["measures"].isTrue()) out.set("measures", meshMeasures(r.mesh, r.controlSpace.get()));
     return out;
   });
 }

@@ -1,3 +1,4 @@
+/* global Module */  // the Emscripten loader this is linked into defines it
 // Linked before the npm CLI's loader (--pre-js): Node's fetch refuses file paths, so the
 // loader is handed the wasm bytes, read beside it; a missing file is a coded error.
 try {

@@ -301,7 +301,7 @@ export interface CaseResult<S extends MeshStats = MeshStats> {
    * smallest requested size at each vertex, measured as the quality report measures them;
    * for surface cases the 3D metric quality of each element (the report's quality3d).
    */
-  measures?: { edges: Uint32Array; edgeLength?: Float32Array; quality?: Float32Array; vertexH?: Float32Array };
+  measures?: MeshMeasures;
   /** Surface cases with controlSpaceGlyphs: the final per-patch control spaces drawn as ellipses. */
   glyphs?: ControlSpaceGlyphs;
   /** Surface cases with patchParams: the patch index of each element (triangles, then quads). */
@@ -324,6 +324,18 @@ export interface ControlSpace {
   dispose(): void;
 }
 
+/** Per-item measures of a mesh (meshCase and adapt with measures: true). */
+export interface MeshMeasures {
+  /** Distinct element edges (a < b pairs). */
+  edges: Uint32Array;
+  /** Metric length of each edge (planar runs). */
+  edgeLength?: Float32Array;
+  /** Metric quality of each element, triangles then quads (planar runs; 3D for surfaces). */
+  quality?: Float32Array;
+  /** Smallest requested size at each vertex (planar runs). */
+  vertexH?: Float32Array;
+}
+
 /** Options of adapt() and metricFromField(): exactly one of err or nv. */
 export interface AdaptOptions {
   /** Error level: M = 2 c |H| / err (c = 2/9). */
@@ -341,6 +353,8 @@ export interface AdaptOptions {
   hgrad?: number;
   iterations?: number;
   maxElements?: number;
+  /** adapt(): also return the last mesh's measures in the last control space. */
+  measures?: boolean;
 }
 
 /** One adaptation iteration's figures (errorLinf/errorL2 for expression fields only). */
@@ -357,6 +371,8 @@ export interface AdaptIteration {
 
 /** 'msh': Gmsh 4.1 ASCII, 'msh2': Gmsh 2.2 ASCII (readMesh takes either as 'msh'). */
 export type MeshFormat = 'mesh' | 'vtk' | 'obj' | 'msh' | 'msh2';
+/** Binary Medit (libMeshb, as MMG reads and writes it): bytes, not text. */
+export type BinaryMeshFormat = 'meshb';
 
 export interface MeshCaseOptions {
   /** Also return the final control space's nodes and cells (planar cases). */
@@ -465,11 +481,15 @@ export interface Anisomesh {
     mesh: MeshArrays,
     fields: Float64Array | Float64Array[] | string | string[],
     options: AdaptOptions,
-  ): { mesh: MeshArrays; fields: Float64Array[]; iterations: AdaptIteration[] };
+  ): { mesh: MeshArrays; fields: Float64Array[]; iterations: AdaptIteration[]; measures?: MeshMeasures };
   /** The mesh as text in a file format ('svg' for a picture of a planar mesh). */
   writeMesh(mesh: MeshArrays, format?: MeshFormat | 'svg'): string;
+  /** The mesh as a binary Medit .meshb file. */
+  writeMesh(mesh: MeshArrays, format: BinaryMeshFormat): Uint8Array;
   /** Parses mesh text. */
   readMesh(text: string, format?: MeshFormat): MeshArrays;
+  /** Parses the bytes of a binary Medit .meshb file. */
+  readMesh(bytes: Uint8Array, format: BinaryMeshFormat): MeshArrays;
   /** Parses a Medit .sol (scalar sizes or tensors): m11, m12, m22 per vertex. */
   readSol(text: string, vertexCount: number): Float64Array;
   /** Writes per-vertex tensors (m11, m12, m22 each) as a Medit .sol. */

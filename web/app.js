@@ -8,9 +8,10 @@ import { defaultView, encodeState, decodeState, checkCase, errorTarget, InputErr
 import { Views, softwareWebGL } from './views.js';
 import { moveHandle } from './overlays.js';
 import { drawHistogram } from './histogram.js';
-import { qualityColor, lengthColor, sizeColor, css } from './colors.js';
+import { qualityColor, lengthColor, sizeColor, fieldColor, css } from './colors.js';
 import { uniqueEdges } from './measure.js';
 import { createSurfaceEditor } from './surface_editor.js';
+import { createAdaptMode } from './adapt_mode.js';
 
 const $ = (id) => document.getElementById(id);
 const EDIT_DEBOUNCE_MS = 120;
@@ -246,7 +247,7 @@ let sourceGui = fSrc.addFolder('Selected source');
 
 const fDisp = gui.addFolder('Display');
 fDisp.add(state.view, 'view', { '2D': '2d', '2D | 3D': 'split', '3D': '3d' }).name('view').onChange(applyViewMode);
-fDisp.add(state.view, 'colorBy', { 'element quality': 'quality', none: 'none' }).name('faces').onChange(restyle);
+fDisp.add(state.view, 'colorBy', { 'element quality': 'quality', 'field (adaptation)': 'field', none: 'none' }).name('faces').onChange(restyle);
 fDisp.add(state.view, 'edges', { 'metric length': 'length', plain: 'plain', off: 'off' }).name('edges').onChange(restyle);
 fDisp.add(state.view, 'controlSpace').name('control space').onChange(restyle);
 fDisp.add(state.view, 'sources').name('sources').onChange(restyle);
@@ -378,6 +379,7 @@ function removeSource(i) {
 
 const inlineErrors = [];
 function clearErrors() {
+  $('view-error').hidden = true;
   for (const e of inlineErrors.splice(0)) {
     e.el.remove?.();
     e.ctrl?.domElement.classList.remove('has-error');
@@ -606,6 +608,10 @@ function fail(error, version) {
   state.lastError = error;
   clearErrors();
   showError(error.target, `${error.code}: ${error.message}`);
+  // Also at the top of the view, where it is seen whatever the panel's scroll position.
+  const banner = $('view-error');
+  banner.textContent = `${error.code}: ${error.message}${state.lastStats ? ' (previous mesh shown)' : ''}`;
+  banner.hidden = false;
   // The previous mesh stays on screen; the status says it is not the current input.
   statusText.textContent = state.lastStats ? 'input error · previous mesh shown' : 'input error';
   status.classList.add('err');
@@ -619,14 +625,14 @@ function settle() {
 }
 
 function idle() {
-  return editTimer === null && !meshRunner.busy && !dragWaiting;
+  return editTimer === null && !meshRunner.busy && !dragWaiting && !state.adapting;
 }
 
 // The mesh part of a result on screen (the quality report and the histograms follow
 // when the report arrives).
 function showResult(result) {
   if (result.mesh.dimension === 3 || state.surface) state.view.view === '2d' && applyViewMode('split');
-  views.setMesh(result, styleOf());
+  views.setMesh(result, styleOf(result));
   views.setControlSpace(result.overlay, state.view.controlSpace);
   state.overlay = result.overlay;
   state.lastMeasures = result.measures;
@@ -639,8 +645,10 @@ function showResult(result) {
   views.setSources(sourceList(), state.selected, state.view.sources);
 }
 
-function styleOf() {
-  return { colorBy: state.view.colorBy, edges: state.view.edges, lift: state.view.lift };
+function styleOf(result = views.result) {
+  // The field colours only adapted meshes (the adaptation mode); a case's mesh shows its quality.
+  const colorBy = state.view.colorBy === 'field' && !result?.measures?.field ? 'quality' : state.view.colorBy;
+  return { colorBy, edges: state.view.edges, lift: state.view.lift };
 }
 
 function restyle() {
@@ -724,6 +732,12 @@ function ramp(fn, lo, hi) {
 function renderLegend() {
   const parts = [];
   if (state.view.colorBy === 'quality') parts.push(`quality 0${ramp(qualityColor, 0, 1)}1`);
+  const field = state.lastMeasures?.field;
+  if (state.view.colorBy === 'field' && field) {
+    let lo = Infinity, hi = -Infinity;
+    for (const v of field) lo = Math.min(lo, v), hi = Math.max(hi, v);
+    parts.push(`u ${lo.toPrecision(2)}${ramp(fieldColor, 0, 1)}${hi.toPrecision(2)}`);
+  }
   if (state.view.edges === 'length') parts.push(`edge length ½${ramp(lengthColor, 0.5, 2)}2`);
   const cl = views.controlLegend;
   if (state.view.controlSpace && cl) parts.push(`control space h ${cl.hmin.toPrecision(2)}${ramp(sizeColor, 0, 1)}${cl.hmax.toPrecision(2)} (${cl.count} ${state.overlay?.glyphs ? 'ellipses' : state.overlay?.sampled ? 'samples' : 'nodes'})`);
@@ -1064,6 +1078,59 @@ views.canvas.addEventListener('keydown', (e) => {
   }
 });
 
+// --- adaptation mode (adapt_mode.js) ----------------------------------------------------
+
+// The figures of an adapted mesh for the stats panel and the histograms, from its measures.
+function adaptedStats(result) {
+  const m = result.measures, it = result.iteration;
+  const range = (a) => {
+    let lo = Infinity, hi = -Infinity, sum = 0, within = 0;
+    for (const x of a) {
+      lo = Math.min(lo, x), hi = Math.max(hi, x), sum += x;
+      if (x >= Math.SQRT1_2 && x <= Math.SQRT2) within++;
+    }
+    return { min: lo, max: hi, mean: sum / (a.length || 1), within: within / (a.length || 1) };
+  };
+  const l = range(m.edgeLength), q = range(m.quality);
+  return {
+    vertices: it.vertices, triangles: it.triangles, quads: 0, edges: m.edges.length / 2, inverted: 0, degenerate: 0,
+    edgeLength: { min: l.min, mean: l.mean, max: l.max, fractionWithinSqrt2: l.within },
+    quality: { min: q.min, mean: q.mean },
+    notes: [`adapted to u(x, y): L2 error ${it.errorL2?.toExponential(2)}, L∞ ${it.errorLinf?.toExponential(2)}`],
+  };
+}
+const adaptMode = createAdaptMode({
+  runner: meshRunner,
+  getMesh: () => (state.surface ? null : views.mesh),
+  show(result, { iteration, of }) {
+    result.measures.field = result.field;
+    result.overlay = null;
+    if (state.view.colorBy !== 'field') {
+      state.view.colorBy = 'field';
+      gui.controllersRecursive().forEach((c) => c.updateDisplay());
+    }
+    showResult(result);
+    views.renderNow(['2d', '3d']);
+    const stats = adaptedStats(result);
+    state.lastStats = stats;
+    renderStats(stats);
+    renderHistograms(result.measures, stats);
+    renderLegend();
+    statusText.textContent = `adapted: iteration ${iteration} of ${of}, ${stats.vertices} vertices`;
+  },
+  onStart() { state.adapting = true; status.classList.remove('err'); },
+  onEnd(error) {
+    state.adapting = false;
+    if (error) statusText.textContent = 'adaptation failed · previous mesh shown';
+    settle();
+  },
+  backToCase() {
+    if (state.view.colorBy === 'field') state.view.colorBy = 'quality';
+    gui.controllersRecursive().forEach((c) => c.updateDisplay());
+    edited(0);
+  },
+});
+
 // --- test hooks -------------------------------------------------------------------------
 
 const app = {
@@ -1106,6 +1173,8 @@ const app = {
     renderLegend();
   },
   checkExpression,
+  /** The adaptation mode: run({ expression, iterations }) resolves with its state. */
+  adapt: adaptMode,
   loadCaseText,
   loadSvgText,
   undo,

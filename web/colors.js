@@ -29,6 +29,12 @@ export function sizeColor(t) {
   return lerpStops(sizeStops, t);
 }
 
+// A field's value scaled to [0, 1] (adaptation mode): blue (low) .. white .. red (high).
+const fieldStops = [[0.16, 0.30, 0.67], [0.55, 0.70, 0.88], [0.96, 0.96, 0.94], [0.93, 0.60, 0.45], [0.70, 0.13, 0.16]];
+export function fieldColor(t) {
+  return lerpStops(fieldStops, t);
+}
+
 export function css([r, g, b]) {
   return `rgb(${Math.round(r * 255)}, ${Math.round(g * 255)}, ${Math.round(b * 255)})`;
 }

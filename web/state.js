@@ -4,7 +4,7 @@
 /** View settings kept in the URL next to the case. */
 export const defaultView = () => ({
   view: 'split',            // '2d' | '3d' | 'split'
-  colorBy: 'quality',       // 'quality' | 'none'
+  colorBy: 'quality',       // 'quality' | 'field' (adaptation mode) | 'none'
   edges: 'length',          // 'length' (metric length colours) | 'plain' | 'off'
   controlSpace: false,      // control-space overlay (structure + ellipses at nodes)
   sources: true,            // source handles, ellipses and radii

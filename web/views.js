@@ -6,7 +6,7 @@
 // Mode '2d', '3d' or 'split' (side by side, scissored viewports of the same canvas).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { qualityColor, lengthColor, sizeColor } from './colors.js';
+import { qualityColor, lengthColor, sizeColor, fieldColor } from './colors.js';
 import { sourceOverlay } from './overlays.js';
 
 const BG = 0xf7f7f5;
@@ -313,7 +313,7 @@ export class Views {
 
   /**
    * Shows a mesh result from the worker: { mesh, measures: { edges, edgeLength, quality, vertexH } }.
-   * style: { colorBy: 'quality'|'none', edges: 'length'|'plain'|'off', lift, hmax }
+   * style: { colorBy: 'quality'|'field'|'none', edges: 'length'|'plain'|'off', lift, hmax }
    */
   setMesh(result, style) {
     this.mesh = result.mesh;
@@ -354,8 +354,9 @@ export class Views {
     const nt = mesh.triangles.length / 3, nq = mesh.quads.length / 4;
     const faceVerts = 3 * (nt + 2 * nq);
     const quality = style.colorBy === 'quality' ? measures.quality : null;
+    const field = style.colorBy === 'field' ? measures.field : null;  // per vertex (adaptation mode)
     const faceCol = this.#attribute(g.faces2, 'color', faceVerts);
-    fillFaceColors(faceCol.array, mesh, quality);
+    fillFaceColors(faceCol.array, mesh, quality, field);
     if (layout) fillFacesLaidOut(this.#attribute(g.faces2, 'position', faceVerts).array, mesh, layout);
     else fillFaces(this.#attribute(g.faces2, 'position', faceVerts).array, mesh, uvPos);
     this.#share(g.faces3, g.faces2, flat, faceVerts);
@@ -966,13 +967,26 @@ const lengthLut = table((x) => lengthColor(2 ** (2 * x - 1)));  // x = 0.5 + 0.5
 const lutIndex = (x) => 3 * Math.round(LUT * (x < 0 ? 0 : x > 1 ? 1 : x));
 
 // Colour of each face vertex (triangles, then quads as two triangles): quality colours or plain.
-function fillFaceColors(out, mesh, quality) {
+function fillFaceColors(out, mesh, quality, field = null) {
   const nt = mesh.triangles.length / 3, nq = mesh.quads.length / 4;
   let o = 0;
   const put = (r, g, b, times) => { for (let k = 0; k < times; k++) { out[o++] = r; out[o++] = g; out[o++] = b; } };
+  let lo = Infinity, hi = -Infinity;
+  if (field) for (let i = 0; i < field.length; i++) { lo = Math.min(lo, field[i]); hi = Math.max(hi, field[i]); }
+  const span = hi > lo ? hi - lo : 1;
+  // An element's field colour: the mean of its corners' values, scaled to the field's range.
+  const shade = (vs) => {
+    let sum = 0;
+    for (const v of vs) sum += field[v];
+    return fieldColor((sum / vs.length - lo) / span);
+  };
   for (let e = 0; e < nt + nq; e++) {
     const times = e < nt ? 3 : 6;
-    if (quality) {
+    if (field) {
+      const vs = e < nt ? mesh.triangles.subarray(3 * e, 3 * e + 3) : mesh.quads.subarray(4 * (e - nt), 4 * (e - nt) + 4);
+      const c = shade(vs);
+      put(c[0], c[1], c[2], times);
+    } else if (quality) {
       const i = lutIndex(quality[e]);
       put(qualityLut[i], qualityLut[i + 1], qualityLut[i + 2], times);
     } else put(FACE_PLAIN[0], FACE_PLAIN[1], FACE_PLAIN[2], times);

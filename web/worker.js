@@ -132,6 +132,17 @@ const ops = {
       core: timings,
     };
   },
+  // One iteration of the adaptation loop (the page runs them one at a time and draws each):
+  // the mesh adapted to the expression u(x, y), the field at its vertices, the iteration's
+  // figures (N, errors) and the mesh measured in the adaptation metric.
+  adapt({ mesh, expression, options }, { progress, marks }) {
+    progress('adapting', null);
+    marks.coreStart = wallNow();
+    const r = am.adapt(mesh, expression, { ...options, iterations: 1, measures: true });
+    marks.coreEnd = wallNow();
+    lastMeshJob = null;
+    return { mesh: r.mesh, field: r.fields[0], iteration: r.iterations[0], measures: r.measures };
+  },
   // The quality report of the planar mesh job `of`, which must be the last job run here.
   report({ of }, { progress }) {
     if (of !== lastMeshJob) throw Object.assign(new Error(`report: job ${of} is not the last mesh job (${lastMeshJob})`), { code: 'INVALID_ARGUMENT' });

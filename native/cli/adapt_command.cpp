@@ -28,8 +28,9 @@ const char* kAdaptUsage =
     "  adapts IN.mesh K times (default 3) to the fields: Hessian recovery, metric of error level E\n"
     "  (absolute, or relative to the field's range) or of N vertices minimizing the L^p interpolation\n"
     "  error (-norm, default inf), remeshing, field transfer (-sol) or re-sampling (-field).\n"
-    "  Writes OUT (.mesh, .vtk, .obj or .svg) and the fields at its vertices beside it (OUT's stem\n"
-    "  + .sol; several fields: stem.1.sol, stem.2.sol, ...); -svg: a picture coloured by the first field.\n"
+    "  IN and OUT: .mesh, .meshb, .msh, .vtk, .obj (OUT also .svg); the fields are written at OUT's\n"
+    "  vertices beside it (OUT's stem + .sol, .solb for a .meshb OUT; several fields: stem.1.sol,\n"
+    "  stem.2.sol, ...); -sol reads .sol or .solb; -svg: a picture coloured by the first field.\n"
     "  --control-threshold: metric difference splitting a control-space element (default 1).\n"
     "  Prints one line per iteration (--stats: one JSON object instead).\n";
 
@@ -149,7 +150,7 @@ int run(int argc, char** argv) {
     }
   }
 
-  const Mesh mesh = readMeditFile(input);
+  const Mesh mesh = readMeshFile(input);
   AdaptResult r;
   if (!sols.empty()) {
     std::vector<std::vector<double>> fields;
@@ -182,7 +183,9 @@ int run(int argc, char** argv) {
   for (size_t k = 0; k < r.fields.size(); ++k) {
     SolData sol;
     sol.values = r.fields[k];
-    writeSolFile(stem(output) + (r.fields.size() == 1 ? "" : "." + std::to_string(k + 1)) + ".sol", sol);
+    writeSolFile(stem(output) + (r.fields.size() == 1 ? "" : "." + std::to_string(k + 1)) +
+                     (fileExtension(output) == "meshb" ? ".solb" : ".sol"),
+                 sol);
   }
   if (!svg.empty()) writeTextFileAtomic(svg, fieldSvg(r.mesh, r.fields[0]));
 

@@ -75,7 +75,7 @@ Command meshCommand() {
       "mesh",
       "  mesh CASE.json -o OUT [--quads] [--all-quads] [--stats] [--max-elements N] [--no-updates] [-v N]\n"
       "                            mesh a JSON case, planar or surface (OUT: .mesh, .vtk, .obj, .msh, .vtu or .svg;\n"
-      "                            -in CASE.json / -out OUT as in MMG; -v 1: progress on stderr)\n"
+      "                            .svg; -in CASE.json / -out OUT as in MMG; -v 1: progress on stderr)\n"
       "      [--svg-uv] [--svg-view AZ,EL] [--svg-control-space]\n"
       "                            .svg of a surface: 3D view from azimuth AZ, elevation EL (degrees;\n"
       "                            default -63,34), or the parameter plane; control-space ellipses over it\n",

@@ -58,7 +58,7 @@ class StageLog {
 
 int runRemesh(Args& args) {
   std::string input, sol, output;
-  bool stats = false;
+  bool stats = false, ridgeAngle = false, noRidges = false;
   double hsiz = 0;
   int verbosity = 0;
   long long threads = 1;
@@ -86,6 +86,19 @@ int runRemesh(Args& args) {
     else if (a == "-hsiz" || a == "--hsiz") {
       hsiz = parseNumber(a, args.value(a));
       if (!(hsiz > 0)) throw UsageError{a + " expects a positive size"};
+    } else if (a == "-hausd" || a == "--hausd") {
+      options.hausdorff = parseNumber(a, args.value(a));
+      if (!(options.hausdorff > 0)) throw UsageError{a + " expects a positive distance"};
+    } else if (a == "-ar" || a == "--ar") {
+      const double deg = parseNumber(a, args.value(a));
+      if (deg > 180) throw UsageError{a + " expects an angle in degrees from 0 to 180"};
+      if (noRidges) throw UsageError{"-ar and -nr exclude each other"};
+      ridgeAngle = true;
+      options.ridgeAngle = deg * 0.017453292519943295;
+    } else if (a == "-nr" || a == "--nr") {
+      if (ridgeAngle) throw UsageError{"-ar and -nr exclude each other"};
+      noRidges = true;
+      options.ridgeAngle = 3.141592653589793;  // no turn is larger: no angle corners
     } else if (a == "-v")
       verbosity = static_cast<int>(parseSignedNumber(a, args.value(a)));
     else if (a == "--stats")
@@ -151,14 +164,19 @@ int runRemesh(Args& args) {
 
 Command remeshCommand() {
   return {"remesh",
-          "  remesh IN.mesh [-sol IN.sol] -o OUT [-hgrad R] [-hmin H] [-hmax H] [-hsiz H] [-v N] [--stats]\n"
-          "         [--max-elements N] [-threads N]\n"
-          "                            remesh the domain of IN.mesh (or .msh, .vtk, .obj) under the metric IN.sol, as\n"
-          "                            a background-mesh control space (-hgrad: gradation ratio dr >= 1,\n"
-          "                            -1 or 0: off); without -sol: isotropic sizes, -hsiz H everywhere or\n"
-          "                            the input's edge lengths clamped to [-hmin, -hmax]; -in / -out as in MMG;\n"
-          "                            -v 1: also per-stage wall and CPU seconds and peak RSS on stderr;\n"
-          "                            -threads N: worker threads (the same output for any N)\n",
+          "  remesh IN.mesh [-sol IN.sol] -o OUT [-hgrad R] [-hmin H] [-hmax H] [-hsiz H] [-hausd H]\n"
+          "         [-ar ANGLE | -nr] [-v N] [--stats] [--max-elements N] [-threads N]\n"
+          "                            remesh the domain of IN.mesh (or .meshb, .msh, .vtk, .obj) under the\n"
+          "                            metric IN.sol (or .solb), as a background-mesh control space (-hgrad:\n"
+          "                            gradation ratio dr >= 1, -1 or 0: off); without -sol: isotropic sizes,\n"
+          "                            -hsiz H everywhere or the input's edge lengths clamped to [-hmin, -hmax];\n"
+          "                            -hausd H: the boundary between corners becomes a smooth curve through\n"
+          "                            the input's boundary vertices, re-discretized under the metric within\n"
+          "                            the distance H of it (without: the input's boundary edges are kept);\n"
+          "                            -ar ANGLE: boundary turns above ANGLE degrees are corners (default 45),\n"
+          "                            -nr: no angle corners (reference changes and ends only);\n"
+          "                            -in / -out as in MMG; -v 1: also per-stage wall and CPU seconds and\n"
+          "                            peak RSS on stderr; -threads N: worker threads (the same output for any N)\n",
           runRemesh};
 }
 

@@ -148,6 +148,30 @@ test('bad input shows an inline error next to its control, keeps the mesh, and r
   await page.close();
 });
 
+test('an error shows at the top of the view and the status no longer says meshed; a fix clears both', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('holes-off'));
+  assert.match(await page.locator('#status-text').textContent(), /^meshed in/);
+  assert.equal(await page.locator('#view-error').isVisible(), false);
+  // The panel scrolled to its end: the control's own message is out of sight there.
+  await page.evaluate(() => { const p = document.getElementById('panel'); p.scrollTop = p.scrollHeight; });
+  await settle(page, () => { const a = window.anisomeshApp; a.state.case.sources[1].radius = 0; a.edited(0); });
+  const banner = page.locator('#view-error');
+  assert.equal(await banner.isVisible(), true);
+  assert.match(await banner.textContent(), /^[A-Z_]+: .*radius.*positive.*\(previous mesh shown\)$/);
+  const [b, v] = await Promise.all([banner.boundingBox(), page.locator('#view').boundingBox()]);
+  const viewport = page.viewportSize();
+  assert.ok(b.y >= v.y && b.y + b.height <= v.y + 80 && b.y + b.height <= viewport.height, `banner at ${JSON.stringify(b)}, view ${JSON.stringify(v)}`);
+  const status = await page.locator('#status-text').textContent();
+  assert.doesNotMatch(status, /meshed/);
+  assert.match(status, /input error/);
+  await settle(page, () => { const a = window.anisomeshApp; a.state.case.sources[1].radius = 0.4; a.edited(0); });
+  assert.equal(await banner.isVisible(), false);
+  assert.match(await page.locator('#status-text').textContent(), /^meshed in/);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
 test('a surface preset with quads draws its quads in both views', async () => {
   const { page, errors } = await openPage(env.browser, env.url);
   await settle(page, () => window.anisomeshApp.loadPreset('sphere'));

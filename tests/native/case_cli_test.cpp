@@ -37,7 +37,7 @@ TEST(CaseCli, UsageErrorsExit2) {
   EXPECT_EQ(run("mesh case.json -o").code, 2);
   const CliRun ext = run("mesh case.json -o out.stl");
   EXPECT_EQ(ext.code, 2);
-  EXPECT_NE(ext.err.find(".mesh, .vtk, .obj or .msh"), std::string::npos) << ext.err;
+  EXPECT_NE(ext.err.find(".mesh, .meshb, .vtk, .obj or .msh"), std::string::npos) << ext.err;
   EXPECT_EQ(run("remesh in.mesh -o out.mesh").code, 2);  // no -sol
   EXPECT_EQ(run("remesh in.mesh -sol in.sol -o out.mesh -hmin abc").code, 2);
   EXPECT_EQ(run("remesh in.mesh -sol in.sol -o out.mesh -hmin 2 -hmax 1").code, 2);

@@ -87,7 +87,7 @@ TEST(IoFormats, DispatchByExtension) {
     FAIL();
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
-    EXPECT_NE(std::string(e.what()).find(".mesh, .vtk, .obj or .msh"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find(".mesh, .meshb, .vtk, .obj or .msh"), std::string::npos);
   }
   const Mesh m = sampleMesh();
   for (MeshFormat f : {MeshFormat::Medit, MeshFormat::Vtk, MeshFormat::Obj})

@@ -162,8 +162,8 @@ TEST(IoSol, FileRoundTrip) {
 
 TEST(IoSol, Errors) {
   const std::string head = "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n2\n";
-  expectError([&] { parseSol(head + "1 2\n1 1\n2 2\nEnd\n"); }, ErrorCode::ParseError,
-              "line 5: expected solution type 1 (scalar) or 3 (symmetric tensor), got 2");
+  expectError([&] { parseSol(head + "1 4\n1 1\n2 2\nEnd\n"); }, ErrorCode::ParseError,
+              "line 5: expected solution type 1 (scalar), 2 (vector) or 3 (symmetric tensor), got 4");
   expectError([&] { parseSol(head + "2 1 1\n1 1\n"); }, ErrorCode::ParseError,
               "line 5: expected 1 solution field, got 2");
   expectError([&] { parseSol(head + "1 3\n1 0 1\n1 0 oops\n"); }, ErrorCode::ParseError,

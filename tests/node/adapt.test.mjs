@@ -38,6 +38,19 @@ test('adapt() to values transfers them; metricFromField() gives m11, m12, m22 pe
   for (let i = 0; i < n; ++i) assert.ok(f.metrics[3 * i] > 0 && f.metrics[3 * i] * f.metrics[3 * i + 2] > f.metrics[3 * i + 1] ** 2);
 });
 
+test('adapt() with measures: the last mesh measured in the adaptation metric (edges, lengths, qualities)', () => {
+  const r = am.adapt(square, 'tanh(30*(x+y-1))', { nv: 800, norm: 2, hmax: 0.2, iterations: 2, measures: true });
+  const nt = r.mesh.triangles.length / 3, nv = r.mesh.vertices.length / 2;
+  const { edges, edgeLength, quality, vertexH } = r.measures;
+  assert.equal(quality.length, nt);
+  assert.equal(vertexH.length, nv);
+  assert.equal(edgeLength.length, edges.length / 2);
+  assert.equal(edges.length / 2, nv + nt - 1, 'Euler: E = V + F - 1 on a disc');
+  const within = edgeLength.filter((l) => l > Math.SQRT1_2 && l < Math.SQRT2).length / edgeLength.length;
+  assert.ok(within > 0.8, `${within} of the edges within [1/sqrt2, sqrt2] of the adaptation metric`);
+  assert.equal(am.adapt(square, 'x*x', { nv: 200, iterations: 1 }).measures, undefined);
+});
+
 test('bad input gives coded errors', () => {
   const code = (f) => {
     try {

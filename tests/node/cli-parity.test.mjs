@@ -19,6 +19,7 @@ test.after(() => rmSync(dir, { recursive: true, force: true }));
 const planar = join(root, 'examples/point_source.json');
 const surface = join(root, 'examples/surface/surface_p2_holes.json');
 const input = join(dir, 'in.mesh'), sol = join(dir, 'in.sol'), inputMsh = join(dir, 'in.msh');
+const inputMeshb = join(dir, 'in.meshb'), solb = join(dir, 'in.solb'), cutMeshb = join(dir, 'cut.meshb');
 
 // Each row: the arguments, with OUT standing for the output file (in a folder per CLI).
 const rows = [
@@ -59,6 +60,15 @@ const rows = [
   ['adapt', input, '-sol', sol, '-o', 'OUT.vtk', '-nv', '200', '-isotropic', '-norm', 'inf', '--max-elements', '100000'],
   ['adapt', input, '-field', 'x', '-o', 'OUT.mesh', '-nv', '200', '-uniform'], ['adapt', input, '-field', 'x+', '-o', 'OUT.mesh', '-nv', '200'],
   ['adapt', input, '-o', 'OUT.mesh', '-nv', '200'], ['adapt', input, '-field', 'x', '-o', 'OUT.mesh'],
+  // Binary Medit and MMG's boundary options.
+  ['mesh', planar, '-o', 'OUT.meshb'], ['remesh', inputMeshb, '-sol', solb, '-o', 'OUT.meshb', '--stats'],
+  ['remesh', cutMeshb, '-hmax', '0.1', '-o', 'OUT.mesh'],
+  ['adapt', inputMeshb, '-field', 'x*y', '-o', 'OUT.meshb', '-nv', '200', '-iterations', '1'],
+  ['remesh', input, '-sol', sol, '-o', 'OUT.mesh', '-hausd', '0.0005', '--stats'],
+  ['remesh', input, '-hsiz', '0.1', '-hausd', '0.001', '-ar', '30', '-o', 'OUT.vtk'],
+  ['remesh', input, '-hsiz', '0.1', '--hausd', '0.001', '-nr', '-o', 'OUT.mesh'], ['remesh', input, '-hsiz', '0.1', '-ar', '10', '-o', 'OUT.mesh'],
+  ['remesh', input, '-hsiz', '0.1', '-hausd', '0', '-o', 'OUT.mesh'], ['remesh', input, '-hsiz', '0.1', '-ar', '200', '-o', 'OUT.mesh'],
+  ['remesh', input, '-hsiz', '0.1', '-ar', '30', '-nr', '-o', 'OUT.mesh'],
 ];
 
 function run(cli, args, folder) {
@@ -73,9 +83,11 @@ function run(cli, args, folder) {
 // Timings in text lines ("(0.03 s)", "wall 0.000 s cpu 0.000 s", "peak RSS 12.5 MiB"): masked.
 const untimedText = (text) => text.replace(/\d+(\.\d+)?(e-?\d+)? s\b/g, 'T s').replace(/peak RSS [\d.]+ MiB/g, 'peak RSS M MiB');
 // stdout as a value, without the timings (wall clock, different on every run).
-const untimed = (v) => (v && typeof v === 'object' && !Array.isArray(v)
-  ? Object.fromEntries(Object.entries(v).filter(([k]) => !/seconds|timings/i.test(k)).map(([k, x]) => [k, untimed(x)]))
-  : v);
+const untimed = (v) => {
+  if (Array.isArray(v)) return v.map(untimed);
+  if (!v || typeof v !== 'object') return v;
+  return Object.fromEntries(Object.entries(v).filter(([k]) => !/seconds|timings/i.test(k)).map(([k, x]) => [k, untimed(x)]));
+};
 const stdoutValue = (text) => {
   try { return untimed(JSON.parse(text)); } catch { return untimedText(text); }
 };
@@ -87,6 +99,14 @@ test('npm CLI = native CLI on every command and option', { timeout: 600000 }, ()
   writeFileSync(join(dir, 'in.txt'), 'not a mesh');
   const n = Number(readFileSync(input, 'utf8').match(/Vertices\s+(\d+)/)[1]);
   writeFileSync(sol, `MeshVersionFormatted 1\nDimension 2\nSolAtVertices\n${n}\n1 1\n${'0.06\n'.repeat(n)}End\n`);
+  assert.equal(spawnSync(nativeCli, ['mesh', planar, '-o', inputMeshb]).status, 0);
+  writeFileSync(cutMeshb, readFileSync(inputMeshb).subarray(0, 100));
+  // The .sol as .solb (libMeshb version 2): code, version, Dimension, SolAtVertices, End.
+  const b = Buffer.alloc(48 + 8 * n);
+  [1, 2, 3, 20, 2, 62, 40 + 8 * n, n, 1, 1].forEach((v, i) => b.writeInt32LE(v, 4 * i));
+  for (let i = 0; i < n; i++) b.writeDoubleLE(0.06, 40 + 8 * i);
+  b.writeInt32LE(54, 40 + 8 * n);
+  writeFileSync(solb, b);
 
   // Every option in the usage text is exercised by some row.
   const mainHelp = spawnSync(nativeCli, ['--help'], { encoding: 'utf8' }).stdout;

@@ -83,6 +83,20 @@ test('Medit, VTK and OBJ round trips keep counts', () => {
   assert.match(am.writeMesh(mesh, 'svg'), /^<svg/);
 });
 
+test('binary Medit .meshb: bytes as the native writer writes them, read back identical', () => {
+  const { mesh } = am.meshCase(example('point_source'));
+  const bytes = am.writeMesh(mesh, 'meshb');
+  assert.ok(bytes instanceof Uint8Array);
+  assert.deepEqual([...bytes.subarray(0, 8)], [1, 0, 0, 0, 2, 0, 0, 0]);  // code 1, version 2
+  const back = am.readMesh(bytes, 'meshb');
+  assert.deepEqual(back.vertices, mesh.vertices);
+  assert.deepEqual(back.triangles, mesh.triangles);
+  assert.deepEqual(back.edgeRefs, mesh.edgeRefs);
+  assert.equal(am.writeMesh(back, 'mesh'), am.writeMesh(mesh, 'mesh'));
+  assert.throws(() => am.readMesh(bytes.subarray(0, bytes.length - 9), 'meshb'), (e) => e.code === 'PARSE_ERROR' && /Medit binary mesh, byte \d+/.test(e.message));
+  assert.throws(() => am.readMesh('text', 'meshb'), (e) => e.code === 'INVALID_ARGUMENT');
+});
+
 test('.sol tensors round trip and drive remesh', () => {
   const { mesh } = am.meshCase(example('point_source'));
   const n = mesh.vertices.length / 2;

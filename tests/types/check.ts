@@ -88,6 +88,14 @@ compare('remesh', remeshed.stats, planarKeys);
 const svg: string | undefined = remeshed.svg;
 if (!svg?.startsWith('<svg') && !svg?.startsWith('<?xml')) problems.push('remesh svg missing');
 
+// Binary Medit: bytes out, bytes in, the same mesh; text formats stay strings.
+const meshb: Uint8Array = am.writeMesh(planar.mesh, 'meshb');
+if (!(meshb instanceof Uint8Array) || meshb[0] !== 1 || meshb[4] !== 2) problems.push('meshb: not a version 2 Uint8Array');
+const fromMeshb = am.readMesh(meshb, 'meshb');
+if (fromMeshb.triangles?.length !== planar.mesh.triangles?.length) problems.push('meshb: triangles differ');
+const medit: string = am.writeMesh(planar.mesh, 'mesh');
+if (typeof medit !== 'string') problems.push('mesh: not a string');
+
 let code: AnisomeshErrorCode | null = null;
 try {
   am.metric({ h: -1 });

@@ -133,6 +133,95 @@ std::vector<double> PolylineCurve::breakpoints() const {
   return std::vector<double>(cum_.begin() + 1, cum_.end() - 1);
 }
 
+namespace {
+
+// The derivative at b of the parabola through a, b, c at parameters -da, 0, dc (a one-sided
+// difference when a neighbour coincides).
+Vec2 besselTangent(const Vec2& a, const Vec2& b, const Vec2& c, double da, double dc) {
+  if (!(da > 0)) return dc > 0 ? Vec2((c - b) / dc) : Vec2(Vec2::Zero());
+  if (!(dc > 0)) return (b - a) / da;
+  return (dc / (da + dc)) * (b - a) / da + (da / (da + dc)) * (c - b) / dc;
+}
+
+// The derivative at a of the parabola through a, b, c at parameters 0, dab, dab + dbc.
+Vec2 endTangent(const Vec2& a, const Vec2& b, const Vec2& c, double dab, double dbc) {
+  if (!(dab > 0)) return Vec2::Zero();
+  if (!(dbc > 0)) return (b - a) / dab;
+  return ((2 * dab + dbc) / (dab + dbc)) * (b - a) / dab - (dab / (dab + dbc)) * (c - b) / dbc;
+}
+
+}  // namespace
+
+SplineCurve::SplineCurve(std::vector<Vec2> points, int ref, const Vec2* before, const Vec2* after)
+    : pts_(std::move(points)) {
+  require(pts_.size() >= 2, ErrorCode::InvalidArgument, "a spline needs at least 2 points");
+  for (const Vec2& p : pts_) require(p.allFinite(), ErrorCode::InvalidArgument, "spline points must be finite");
+  const size_t n = pts_.size();
+  cum_.assign(n, 0.0);
+  for (size_t i = 1; i < n; ++i) cum_[i] = cum_[i - 1] + (pts_[i] - pts_[i - 1]).norm();
+  const double total = cum_.back();
+  for (size_t i = 0; i < n; ++i) cum_[i] = total > 0 ? cum_[i] / total : double(i) / double(n - 1);
+  cum_.back() = 1.0;
+  const double scale = total > 0 ? total : 1.0;  // neighbours beyond the ends, in parameter units
+  tangents_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    if (i > 0 && i + 1 < n) {
+      tangents_[i] = besselTangent(pts_[i - 1], pts_[i], pts_[i + 1], cum_[i] - cum_[i - 1], cum_[i + 1] - cum_[i]);
+    } else if (i == 0 && before) {
+      tangents_[i] = besselTangent(*before, pts_[0], pts_[1], (pts_[0] - *before).norm() / scale, cum_[1]);
+    } else if (i + 1 == n && after) {
+      tangents_[i] = besselTangent(pts_[n - 2], pts_[n - 1], *after, cum_[n - 1] - cum_[n - 2],
+                                   (*after - pts_[n - 1]).norm() / scale);
+    } else if (n == 2) {
+      tangents_[i] = pts_[1] - pts_[0];  // a straight piece
+    } else if (i == 0) {
+      tangents_[i] = endTangent(pts_[0], pts_[1], pts_[2], cum_[1], cum_[2] - cum_[1]);
+    } else {
+      tangents_[i] =
+          -endTangent(pts_[n - 1], pts_[n - 2], pts_[n - 3], cum_[n - 1] - cum_[n - 2], cum_[n - 2] - cum_[n - 3]);
+    }
+  }
+  setRef(ref);
+}
+
+int SplineCurve::segmentAt(double t, double* local) const {
+  t = std::min(std::max(t, 0.0), 1.0);
+  const auto it = std::upper_bound(cum_.begin(), cum_.end(), t);
+  int i = static_cast<int>(it - cum_.begin()) - 1;
+  i = std::min(std::max(i, 0), static_cast<int>(pts_.size()) - 2);
+  const double w = cum_[i + 1] - cum_[i];
+  *local = w > 0 ? (t - cum_[i]) / w : 0.0;
+  return i;
+}
+
+Vec2 SplineCurve::point(double t) const {
+  double u;
+  const int i = segmentAt(t, &u);
+  const double w = cum_[i + 1] - cum_[i];
+  const double u2 = u * u, u3 = u2 * u;
+  return (2 * u3 - 3 * u2 + 1) * pts_[i] + (u3 - 2 * u2 + u) * w * tangents_[i] + (-2 * u3 + 3 * u2) * pts_[i + 1] +
+         (u3 - u2) * w * tangents_[i + 1];
+}
+
+Vec2 SplineCurve::derivative(double t) const {
+  double u;
+  const int i = segmentAt(t, &u);
+  const double w = cum_[i + 1] - cum_[i];
+  if (!(w > 0)) return tangents_[i];
+  const double u2 = u * u;
+  return ((6 * u2 - 6 * u) * (pts_[i] - pts_[i + 1])) / w + (3 * u2 - 4 * u + 1) * tangents_[i] +
+         (3 * u2 - 2 * u) * tangents_[i + 1];
+}
+
+Vec2 SplineCurve::secondDerivative(double t) const {
+  double u;
+  const int i = segmentAt(t, &u);
+  const double w = cum_[i + 1] - cum_[i];
+  if (!(w > 0)) return Vec2::Zero();
+  return ((12 * u - 6) * (pts_[i] - pts_[i + 1])) / (w * w) +
+         ((6 * u - 4) * tangents_[i] + (6 * u - 2) * tangents_[i + 1]) / w;
+}
+
 BezierCurve::BezierCurve(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, int ref) : p_{p0, p1, p2, p3} {
   for (const Vec2& p : p_) require(p.allFinite(), ErrorCode::InvalidArgument, "Bezier control points must be finite");
   setRef(ref);

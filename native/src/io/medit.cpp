@@ -5,6 +5,7 @@
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/io/file_io.h"
+#include "anisomesh/io/medit_binary.h"
 #include "bamg_sections.h"
 #include "tokens.h"
 
@@ -201,8 +202,8 @@ Mesh readMeditFile(const std::string& path) { return parseMedit(readTextFile(pat
 void writeMeditFile(const std::string& path, const Mesh& mesh) { writeTextFileAtomic(path, meditPieces(mesh)); }
 
 std::string writeSol(const SolData& sol) {
-  require(sol.type == 1 || sol.type == 3, ErrorCode::InvalidArgument,
-          "Medit solutions of type " + std::to_string(sol.type) + " are not supported (1 or 3)");
+  require(sol.type >= 1 && sol.type <= 3, ErrorCode::InvalidArgument,
+          "Medit solutions of type " + std::to_string(sol.type) + " are not supported (1, 2 or 3)");
   require(sol.dimension == 2 || sol.dimension == 3, ErrorCode::InvalidArgument, "solution dimension must be 2 or 3");
   const int per = sol.valuesPerVertex();
   require(sol.values.size() % size_t(per) == 0, ErrorCode::InvalidArgument,
@@ -236,9 +237,10 @@ SolData parseSol(const std::string& text) {
       const long long fields = ts.integer("the number of solution fields");
       if (fields != 1) ts.failAt(fieldsLine, "expected 1 solution field, got " + std::to_string(fields));
       const int typeLine = ts.line();
-      const long long type = ts.integer("the solution type (1 = scalar, 3 = tensor)");
-      if (type != 1 && type != 3)
-        ts.failAt(typeLine, "expected solution type 1 (scalar) or 3 (symmetric tensor), got " + std::to_string(type));
+      const long long type = ts.integer("the solution type (1 = scalar, 2 = vector, 3 = tensor)");
+      if (type < 1 || type > 3)
+        ts.failAt(typeLine,
+                  "expected solution type 1 (scalar), 2 (vector) or 3 (symmetric tensor), got " + std::to_string(type));
       sol.dimension = dimension;
       sol.type = int(type);
       const int per = sol.valuesPerVertex();
@@ -257,14 +259,20 @@ SolData parseSol(const std::string& text) {
   return sol;
 }
 
-SolData readSolFile(const std::string& path) { return parseSol(readTextFile(path)); }
+SolData readSolFile(const std::string& path) {
+  const std::string bytes = readTextFile(path);
+  return fileExtension(path) == "solb" ? parseSolBinary(bytes) : parseSol(bytes);
+}
 
-void writeSolFile(const std::string& path, const SolData& sol) { writeTextFileAtomic(path, writeSol(sol)); }
+void writeSolFile(const std::string& path, const SolData& sol) {
+  writeTextFileAtomic(path, fileExtension(path) == "solb" ? writeSolBinary(sol) : writeSol(sol));
+}
 
 std::vector<Metric> solToMetrics(const SolData& sol, int vertexCount) {
   require(sol.count() == vertexCount, ErrorCode::ParseError,
           "the solution has " + std::to_string(sol.count()) + " values but the mesh has " +
               std::to_string(vertexCount) + " vertices");
+  require(sol.type != 2, ErrorCode::InvalidArgument, "vector solutions (type 2) cannot drive a metric");
   require(sol.dimension == 2 || sol.type == 1, ErrorCode::InvalidArgument,
           "3D tensor solutions cannot drive a planar metric");
   std::vector<Metric> metrics;

@@ -7,6 +7,7 @@
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/gmsh.h"
 #include "anisomesh/io/medit.h"
+#include "anisomesh/io/medit_binary.h"
 #include "tokens.h"
 
 namespace anisomesh {
@@ -39,8 +40,9 @@ MeshFormat meshFormatFromPath(const std::string& path) {
   if (ext == "vtk") return MeshFormat::Vtk;
   if (ext == "obj") return MeshFormat::Obj;
   if (ext == "msh") return MeshFormat::Gmsh;
+  if (ext == "meshb") return MeshFormat::MeditBinary;
   throw Error(ErrorCode::InvalidArgument,
-              "unknown mesh format of '" + path + "': expected the extension .mesh, .vtk, .obj or .msh");
+              "unknown mesh format of '" + path + "': expected the extension .mesh, .meshb, .vtk, .obj or .msh");
 }
 
 std::string writeVtk(const Mesh& mesh) {
@@ -289,6 +291,8 @@ std::string writeMeshString(const Mesh& mesh, MeshFormat format) {
       return writeGmsh(mesh, GmshVersion::V41);
     case MeshFormat::Gmsh22:
       return writeGmsh(mesh, GmshVersion::V22);
+    case MeshFormat::MeditBinary:
+      return writeMeditBinary(mesh);
   }
   return writeMedit(mesh);
 }
@@ -304,6 +308,8 @@ Mesh parseMeshString(const std::string& text, MeshFormat format) {
     case MeshFormat::Gmsh:
     case MeshFormat::Gmsh22:
       return parseGmsh(text);
+    case MeshFormat::MeditBinary:
+      return parseMeditBinary(text);
   }
   return parseMedit(text);
 }

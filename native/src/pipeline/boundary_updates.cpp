@@ -141,9 +141,9 @@ double chordSources(const Domain& domain, const ControlSpace& cs, const Boundary
       for (size_t i = 0; i + 1 < ts.size(); ++i) {
         const double chord = (c.point(ts[i + 1]) - c.point(ts[i])).norm();
         if (chord <= 0) continue;
-        const double rel = chordDeviation(c, ts[i], ts[i + 1]) / chord;
+        const double dev = chordDeviation(c, ts[i], ts[i + 1]), rel = dev / chord;
         worst = std::max(worst, rel);
-        if (rel <= o.chordTolerance) continue;
+        if (rel <= o.chordTolerance && !(o.chordDistance > 0 && dev > o.chordDistance)) continue;
         if (invalidContours && ci < invalidContours->size()) (*invalidContours)[ci] = 1;
         // Tangent size from the sagitta s = h^2 / (8 R): s / h <= tol for h <= 8 R tol;
         // 0.75 leaves room for the rounding of the discretization.
@@ -152,7 +152,8 @@ double chordSources(const Domain& domain, const ControlSpace& cs, const Boundary
           const double a = ts[i] + (ts[i + 1] - ts[i]) * k / pieces, b = ts[i] + (ts[i + 1] - ts[i]) * (k + 1) / pieces;
           const double r = std::min({curvatureRadius(c, a), curvatureRadius(c, 0.5 * (a + b)), curvatureRadius(c, b)});
           if (!std::isfinite(r)) continue;
-          const double h1 = 0.75 * 8.0 * r * o.chordTolerance;
+          double h1 = 0.75 * 8.0 * r * o.chordTolerance;
+          if (o.chordDistance > 0) h1 = std::min(h1, 0.75 * std::sqrt(8.0 * r * o.chordDistance));
           const Vec2 t = c.derivative(0.5 * (a + b));
           const Vec2 pa = c.point(a), pb = c.point(b);
           if ((pb - pa).norm() <= 1e-12 * std::max(1.0, pa.norm())) continue;

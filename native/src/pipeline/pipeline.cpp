@@ -13,6 +13,7 @@
 #include "anisomesh/controlspace/control_space_spec.h"
 #include "anisomesh/controlspace/query_cache.h"
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/number_text.h"
 #include "anisomesh/core/portable_math.h"
 #include "anisomesh/geometry/discretize.h"
 #include "anisomesh/pipeline/boundary_updates.h"
@@ -47,6 +48,44 @@ void countBoundary(const std::vector<BoundaryLoop>& loops, PipelineReport* repor
   report->boundaryLoops = int(loops.size());
   report->boundaryPoints = 0;
   for (const auto& l : loops) report->boundaryPoints += int(l.points.size());
+}
+
+// MMG's -hausd: curvature sources where a chord of the discretization is farther than
+// options.hausdorff from its curve, then the domain discretized again, until no chord is
+// (or 8 rounds: a note says so, e.g. when hmin forbids the sizes needed).
+void hausdorffRounds(const Domain& domain, const RemeshOptions& options, const DiscretizeOptions& d,
+                     AdaptiveControlSpace& cs, std::vector<BoundaryLoop>& loops, PipelineReport& r) {
+  BoundaryUpdateOptions u;
+  u.chordTolerance = std::numeric_limits<double>::infinity();
+  u.chordDistance = options.hausdorff;
+  for (int round = 0;; ++round) {
+    std::vector<MetricSource> sources;
+    chordSources(domain, cs, u, &sources);
+    if (sources.empty()) break;
+    if (round >= u.maxRounds) {
+      r.updatesConverged = false;
+      r.notes.push_back("-hausd: chords farther than " + numberText(options.hausdorff) + " from the boundary after " +
+                        std::to_string(u.maxRounds) + " rounds");
+      break;
+    }
+    r.chordSources += int(sources.size());
+    r.updateRounds = round + 1;
+    DiscreteInsertionOptions o;
+    o.source.sizeFactor = 0.25;  // as the case sources (case_control_space.cpp)
+    insertSources(cs, sources, o);
+    if (options.hmin > 0 || options.hmax > 0)
+      clampSizes(cs, options.hmin > 0 ? options.hmin : std::numeric_limits<double>::min(),
+                 options.hmax > 0 ? options.hmax : std::numeric_limits<double>::infinity());
+    if (options.hgrad > 0) {
+      GradationOptions g;
+      g.ratio = options.hgrad;
+      smoothGradation(cs, g);
+    }
+    loops =
+        throughCache(cs, options.queryCache, r, [&](const ControlSpace& q) { return discretizeDomain(domain, q, d); });
+  }
+  r.controlElements = cs.elementCount();
+  r.controlNodes = cs.nodeCount();
 }
 
 }  // namespace
@@ -213,7 +252,13 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
   };
   stage("boundary");
   auto t = Clock::now();
-  const Domain domain = domainFromBoundaryLoops(boundaryLoopsFromMesh(input));
+  LoopDomainOptions loopOptions;
+  loopOptions.smooth = options.hausdorff > 0;
+  if (options.ridgeAngle >= 0)
+    loopOptions.cornerAngle = options.ridgeAngle;
+  else if (loopOptions.smooth)
+    loopOptions.cornerAngle = 0.7853981633974483;  // pi / 4
+  const Domain domain = domainFromBoundaryLoops(boundaryLoopsFromMesh(input), loopOptions);
   validateDomain(domain);
   r.secondsGeometry = secondsSince(t);
   stage("control space");
@@ -230,8 +275,9 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
   t = Clock::now();
   DiscretizeOptions d;
   d.maxSegments = std::max<std::int64_t>(1, options.mesher.maxElements);
-  const std::vector<BoundaryLoop> loops =
+  std::vector<BoundaryLoop> loops =
       throughCache(*cs, options.queryCache, r, [&](const ControlSpace& q) { return discretizeDomain(domain, q, d); });
+  if (options.hausdorff > 0) hausdorffRounds(domain, options, d, *cs, loops, r);
   r.secondsDiscretization = secondsSince(t);
   countBoundary(loops, report);
   stage("meshing");

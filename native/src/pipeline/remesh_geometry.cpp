@@ -189,7 +189,8 @@ Domain domainFromBoundaryLoops(const std::vector<BoundaryLoop>& loops, const Loo
     for (int k = 0; k < n; ++k)
       if (isBreak(k)) breaks.push_back(k);
     Contour contour;
-    if (breaks.empty()) {
+    const bool cornerFree = breaks.empty();
+    if (cornerFree) {
       // A smooth closed loop: split it in three pieces so each stays a simple curve.
       breaks = {0, n / 3, (2 * n) / 3};
     }
@@ -202,7 +203,14 @@ Domain domainFromBoundaryLoops(const std::vector<BoundaryLoop>& loops, const Loo
         k = (k + 1) % n;
       } while (k != to);
       pts.push_back(l.points[size_t(to)]);
-      contour.add(std::make_shared<PolylineCurve>(std::move(pts), l.edgeRefs[size_t(from)], false));
+      if (!options.smooth) {
+        contour.add(std::make_shared<PolylineCurve>(std::move(pts), l.edgeRefs[size_t(from)], false));
+        continue;
+      }
+      // Splits of a corner-free loop join C1: the tangents there see across them.
+      const Vec2 before = l.points[size_t((from + n - 1) % n)], after = l.points[size_t((to + 1) % n)];
+      contour.add(std::make_shared<SplineCurve>(std::move(pts), l.edgeRefs[size_t(from)],
+                                                cornerFree ? &before : nullptr, cornerFree ? &after : nullptr));
     }
     if (li == 0)
       domain.outer = std::move(contour);

@@ -57,11 +57,13 @@ struct Counters {
 class CountingControlSpace : public ControlSpace {
  public:
   CountingControlSpace(const ControlSpace& inner, const Surface& s, Counters& c) : inner_(inner), s_(s), c_(c) {}
+  // The time is sampled: one query in 32 is timed and counted 32 times (reading the clock
+  // at every query cost 7% of a surface run, as much as a cheap query itself).
   Metric metricAt(const Vec2& p) const override {
+    if ((c_.queries++ & 31) != 0) return inner_.metricAt(p);
     const auto t0 = Clock::now();
     Metric m = inner_.metricAt(p);
-    c_.querySeconds += since(t0);
-    ++c_.queries;
+    c_.querySeconds += 32.0 * since(t0);
     return m;
   }
   Mat2 parameterizationAt(const Vec2& p) const override { return parameterizationMatrix(s_, p); }

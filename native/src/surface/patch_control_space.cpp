@@ -78,11 +78,11 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
       return Mat3(Mat3::Identity() / (h * h));
     });
   }
-  auto eval = [&](const Vec2& p) {
+  auto eval = [&](const Vec2& p) {  // timed one call in 32, as CountingControlSpace
+    if ((counters.curvature++ & 31) != 0) return curv.tryMetricAt(p);
     const auto t0 = Clock::now();
     std::optional<Metric> m = curv.tryMetricAt(p);
-    counters.curvatureSeconds += since(t0);
-    ++counters.curvature;
+    counters.curvatureSeconds += 32.0 * since(t0);
     return m;
   };
 

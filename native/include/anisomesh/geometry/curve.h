@@ -101,6 +101,27 @@ class PolylineCurve : public Curve {
   bool keepVertices_ = true;
 };
 
+// C1 cubic spline interpolating points (a boundary reconstructed from its vertices: MMG's
+// -hausd): cubic Hermite pieces, parameterized by chord length, with Bessel tangents (the
+// derivative of the parabola through each vertex and its neighbours). before / after are
+// the neighbours beyond the ends on a smooth boundary (the tangent there uses them, so
+// consecutive pieces join C1); without them the end tangent is one-sided.
+class SplineCurve : public Curve {
+ public:
+  // Throws InvalidArgument with fewer than 2 points or non-finite ones.
+  SplineCurve(std::vector<Vec2> points, int ref = 0, const Vec2* before = nullptr, const Vec2* after = nullptr);
+  Vec2 point(double t) const override;
+  Vec2 derivative(double t) const override;
+  Vec2 secondDerivative(double t) const override;
+  const char* typeName() const override { return "spline"; }
+  const std::vector<Vec2>& points() const { return pts_; }
+
+ private:
+  int segmentAt(double t, double* local) const;
+  std::vector<Vec2> pts_, tangents_;  // tangents: dc/dt at the points
+  std::vector<double> cum_;           // parameter of each point, cum_[0] = 0, cum_.back() = 1
+};
+
 // Cubic Bezier curve with 4 control points.
 class BezierCurve : public Curve {
  public:

@@ -23,14 +23,14 @@ Mesh readMeditFile(const std::string& path);
 // Writes a .mesh file atomically.
 void writeMeditFile(const std::string& path, const Mesh& mesh);
 
-// A Medit solution at vertices holding one field: type 1 (scalar) or 3 (symmetric tensor,
-// m11 m12 m22 in 2D; m11 m12 m22 m13 m23 m33 in 3D).
+// A Medit solution at vertices holding one field: type 1 (scalar), 2 (vector, one value
+// per dimension) or 3 (symmetric tensor, m11 m12 m22 in 2D; m11 m12 m22 m13 m23 m33 in 3D).
 struct SolData {
   int dimension = 2;
   int type = 1;
   std::vector<double> values;  // count() * valuesPerVertex() entries
   // Number of values per vertex for this type and dimension.
-  int valuesPerVertex() const { return type == 1 ? 1 : (dimension == 2 ? 3 : 6); }
+  int valuesPerVertex() const { return type == 1 ? 1 : type == 2 ? dimension : (dimension == 2 ? 3 : 6); }
   // Number of vertices the solution covers.
   int count() const { return static_cast<int>(values.size()) / valuesPerVertex(); }
 };
@@ -41,10 +41,11 @@ std::string writeSol(const SolData& sol);
 // Parses Medit .sol text; ParseError on malformed text, unsupported types or several fields.
 SolData parseSol(const std::string& text);
 
-// Reads a .sol file (IoError when unreadable, ParseError when malformed).
+// Reads a .sol file, or a binary .solb file by its extension (IoError when unreadable,
+// ParseError when malformed).
 SolData readSolFile(const std::string& path);
 
-// Writes a .sol file atomically.
+// Writes a .sol file (a .solb file by its extension) atomically.
 void writeSolFile(const std::string& path, const SolData& sol);
 
 // Per-vertex metrics of a 2D solution: a scalar is a size h (isotropic metric h), a tensor

@@ -7,10 +7,11 @@
 
 namespace anisomesh {
 
-// Gmsh: .msh 4.1 (written for the .msh extension); Gmsh22: .msh 2.2 (read: either).
-enum class MeshFormat { Medit, Vtk, Obj, Gmsh, Gmsh22 };
+// Gmsh: .msh 4.1 (written for the .msh extension); Gmsh22: .msh 2.2 (read: either);
+// MeditBinary: .meshb (medit_binary.h). The strings of the binary format hold bytes.
+enum class MeshFormat { Medit, Vtk, Obj, Gmsh, Gmsh22, MeditBinary };
 
-// The format of a path by its extension (.mesh, .vtk, .obj, .msh); InvalidArgument otherwise.
+// The format of a path by its extension (.mesh, .meshb, .vtk, .obj, .msh); InvalidArgument otherwise.
 MeshFormat meshFormatFromPath(const std::string& path);
 
 // VTK legacy ASCII UNSTRUCTURED_GRID: lines (edges), triangles and quads, with the

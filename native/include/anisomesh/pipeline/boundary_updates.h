@@ -21,6 +21,7 @@ struct BoundaryUpdateOptions {
   double lengthMin = 0.5;  // segments outside [lengthMin, lengthMax] make the contour invalid
   double lengthMax = 2.0;
   double chordTolerance = 0.05;  // largest chord deviation from a curved contour / chord length
+  double chordDistance = 0.0;    // largest chord deviation, absolute (MMG's -hausd; 0: off)
   double dMax = 4.0;             // curvature sources: size across the contour = dMax * size along
   // Boundary triangles with metric area below eps2 times the unit equilateral triangle's
   // (sqrt3/4) joining non-adjacent boundary points refine the structure across the gap.
@@ -67,8 +68,9 @@ int refineNearSegments(AdaptiveControlSpace& cs, const std::vector<ShortSegment>
 double chordDeviation(const Curve& c, double a, double b);
 
 // Section 3.2 (b): curvature sources (h1 along the contour from the curvature radius R,
-// h1 = 0.75 * 8 R chordTolerance; h2 = dMax h1 across it) along the chords of curved
-// contours deviating from the curve by more than chordTolerance * chord, the contour
+// h1 = 0.75 * 8 R chordTolerance, or 0.75 sqrt(8 R chordDistance) when smaller; h2 = dMax h1
+// across it) along the chords of curved contours deviating from the curve by more than
+// chordTolerance * chord or chordDistance (when > 0), the contour
 // marked in invalidContours (when given, sized to the contour count). Returns the largest
 // relative deviation.
 double chordSources(const Domain& domain, const ControlSpace& cs, const BoundaryUpdateOptions& options,

@@ -79,6 +79,15 @@ struct RemeshOptions {
   double refineMinMetricSize = 0.5;
   double queryCache = 0.0;           // section 4 query cache tolerance (metric distance); 0: off
   std::int64_t maxControlNodes = 0;  // control-space node budget; 0: controlSpaceNodeBudget(mesher.maxElements)
+  // MMG's -hausd: > 0: the boundary between corners is a C1 spline through the input's
+  // boundary vertices (SplineCurve), re-discretized under the metric with every chord within
+  // this distance of it (curvature sources, section 3.2 (b), until none is farther, at most
+  // 8 rounds); 0: the input's boundary polyline.
+  double hausdorff = 0.0;
+  // MMG's -ar, radians: boundary vertices turning by more than this are corners (reference
+  // changes always are); >= pi: no angle corners (-nr); < 0: the default, pi/4 (MMG's 45
+  // degrees) with hausdorff, 0.5 for the polyline boundary.
+  double ridgeAngle = -1.0;
   PlanarMesherOptions mesher;
   // Called as each stage starts ("boundary", "control space", "discretization", "meshing"):
   // progress lines and per-stage timings (CLI -v).

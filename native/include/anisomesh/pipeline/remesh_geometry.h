@@ -18,12 +18,16 @@ namespace anisomesh {
 std::vector<BoundaryLoop> boundaryLoopsFromMesh(const Mesh& mesh);
 
 struct LoopDomainOptions {
-  // A vertex whose direction turns by more than this (radians) stays a boundary point.
+  // A vertex whose direction turns by more than this (radians) is a corner: it stays a
+  // boundary point (MMG's -ar; >= pi: no angle corners, MMG's -nr).
   double cornerAngle = 0.5;
+  // The pieces become C1 splines through the loop's vertices (SplineCurve, joined C1 where
+  // a smooth loop is only split), else polylines (MMG's -hausd reconstruction).
+  bool smooth = false;
 };
 
 // A domain whose curves are the loops split where the edge reference changes and at
-// corners; each piece is a polyline whose inner vertices may be moved across.
+// corners; each piece is a polyline whose inner vertices may be moved across, or a spline.
 Domain domainFromBoundaryLoops(const std::vector<BoundaryLoop>& loops, const LoopDomainOptions& options = {});
 
 // The metrics with their requested sizes clamped to [hmin, hmax] (a bound <= 0 is off).
