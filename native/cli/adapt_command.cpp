@@ -157,9 +157,10 @@ int run(int argc, char** argv) {
     for (const std::string& s : sols) {
       const SolData sol = readSolFile(s);
       require(sol.type == 1, ErrorCode::ParseError, s + ": adapt needs scalar solutions (type 1)");
-      require(sol.count() == mesh.vertexCount(), ErrorCode::InvalidArgument,
-              s + ": " + std::to_string(sol.count()) + " values for " + std::to_string(mesh.vertexCount()) +
-                  " vertices of " + input);
+      std::string msg = s;
+      msg += ": " + std::to_string(sol.count()) + " values for " + std::to_string(mesh.vertexCount());
+      msg += " vertices of " + input;
+      require(sol.count() == mesh.vertexCount(), ErrorCode::InvalidArgument, msg);
       fields.push_back(sol.values);
     }
     r = adaptToFields(mesh, fields, o);

@@ -118,6 +118,7 @@ AdaptResult adaptToFunctions(const Mesh& mesh, const std::vector<FieldFunction>&
   require(!functions.empty(), ErrorCode::InvalidArgument, "adapt: no field given");
   auto sampleAll = [&functions](const Mesh& m) {
     std::vector<std::vector<double>> f;
+    f.reserve(functions.size());
     for (const auto& fn : functions) f.push_back(sampleField(m, fn));
     return f;
   };

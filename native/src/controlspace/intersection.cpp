@@ -71,12 +71,12 @@ void intersectControlSpace(AdaptiveControlSpace& cs1, const ControlSpace& cs2, c
             std::max(worst, std::sqrt(std::max(0.5 * (q(0, 0) + q(1, 1)) + std::sqrt(half * half + off * off), 0.0)));
       };
       if (el.size() == 4) {  // leaf: a 4 x 4 grid of interior points
-        const Vec2 lo = cs1.nodePosition(el[0]), hi = cs1.nodePosition(el[2]);
+        const Vec2 &lo = cs1.nodePosition(el[0]), &hi = cs1.nodePosition(el[2]);
         for (int a = 0; a < 4; ++a)
           for (int b = 0; b < 4; ++b)
             check(Vec2(lo.x() + (a + 0.5) / 4 * (hi.x() - lo.x()), lo.y() + (b + 0.5) / 4 * (hi.y() - lo.y())));
       } else {  // triangle: the points of barycentric coordinates in quarters, but vertices
-        const Vec2 A = cs1.nodePosition(el[0]), B = cs1.nodePosition(el[1]), C = cs1.nodePosition(el[2]);
+        const Vec2 &A = cs1.nodePosition(el[0]), &B = cs1.nodePosition(el[1]), &C = cs1.nodePosition(el[2]);
         for (int a = 0; a <= 4; ++a)
           for (int b = 0; a + b <= 4; ++b)
             if (a < 4 && b < 4 && a + b > 0) check((a * A + b * B + (4 - a - b) * C) / 4.0);

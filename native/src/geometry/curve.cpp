@@ -9,6 +9,18 @@
 #include "anisomesh/geometry/quadrature.h"
 
 namespace anisomesh {
+
+// The piece i of a curve with cumulative normalized lengths cum (cum[0] = 0, cum.back() = 1)
+// holding t (clamped to [0, 1]), and t's position in it in [0, 1].
+static int pieceAt(const std::vector<double>& cum, double t, double* local) {
+  t = std::min(std::max(t, 0.0), 1.0);
+  const auto it = std::upper_bound(cum.begin(), cum.end(), t);
+  int i = static_cast<int>(it - cum.begin()) - 1;
+  i = std::min(std::max(i, 0), static_cast<int>(cum.size()) - 2);
+  const double w = cum[i + 1] - cum[i];
+  *local = w > 0 ? (t - cum[i]) / w : 0.0;
+  return i;
+}
 namespace {
 // Not M_PI: strict C++17 headers (libc++/musl under Emscripten) need not define it.
 constexpr double kPiValue = 3.14159265358979323846;
@@ -105,15 +117,7 @@ PolylineCurve::PolylineCurve(std::vector<Vec2> points, int ref, bool keepVertice
   setRef(ref);
 }
 
-int PolylineCurve::segmentAt(double t, double* local) const {
-  t = std::min(std::max(t, 0.0), 1.0);
-  const auto it = std::upper_bound(cum_.begin(), cum_.end(), t);
-  int i = static_cast<int>(it - cum_.begin()) - 1;
-  i = std::min(std::max(i, 0), static_cast<int>(pts_.size()) - 2);
-  const double w = cum_[i + 1] - cum_[i];
-  *local = w > 0 ? (t - cum_[i]) / w : 0.0;
-  return i;
-}
+int PolylineCurve::segmentAt(double t, double* local) const { return pieceAt(cum_, t, local); }
 
 Vec2 PolylineCurve::point(double t) const {
   double u;
@@ -184,15 +188,7 @@ SplineCurve::SplineCurve(std::vector<Vec2> points, int ref, const Vec2* before, 
   setRef(ref);
 }
 
-int SplineCurve::segmentAt(double t, double* local) const {
-  t = std::min(std::max(t, 0.0), 1.0);
-  const auto it = std::upper_bound(cum_.begin(), cum_.end(), t);
-  int i = static_cast<int>(it - cum_.begin()) - 1;
-  i = std::min(std::max(i, 0), static_cast<int>(pts_.size()) - 2);
-  const double w = cum_[i + 1] - cum_[i];
-  *local = w > 0 ? (t - cum_[i]) / w : 0.0;
-  return i;
-}
+int SplineCurve::segmentAt(double t, double* local) const { return pieceAt(cum_, t, local); }
 
 Vec2 SplineCurve::point(double t) const {
   double u;

@@ -97,7 +97,10 @@ int removeStaleTemporaries(const std::string& path) {
     const long pid = std::strtol(entry.c_str() + prefix.size(), &end, 10);
     if (end == entry.c_str() + prefix.size() || *end != '-' || pid <= 0 || pid == long(getpid())) continue;
     if (kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;  // still running (or unknown): keep it
-    if (std::remove((dir + "/" + entry).c_str()) == 0) ++removed;
+    std::string path = dir;
+    path += '/';
+    path += entry;
+    if (std::remove(path.c_str()) == 0) ++removed;
   }
   closedir(d);
   return removed;

@@ -265,7 +265,8 @@ std::vector<Subpath> shapes(const std::string& svg) {
       if (!attribute(tag, "d", &d)) continue;
     } else if (name == "polygon") {
       if (!attribute(tag, "points", &d)) continue;
-      d = "M " + d + " Z";
+      d.insert(0, "M ");
+      d += " Z";
     } else if (name == "rect") {
       const double x = numberAttr(tag, "x", where, 0), y = numberAttr(tag, "y", where, 0);
       const double w = numberAttr(tag, "width", where, 0), h = numberAttr(tag, "height", where, 0);

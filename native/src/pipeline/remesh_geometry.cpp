@@ -142,6 +142,7 @@ std::vector<BoundaryLoop> boundaryLoopsFromMesh(const Mesh& mesh) {
 
   // Outer loop first; orientation outer counter-clockwise, holes clockwise.
   std::vector<double> area;
+  area.reserve(loops.size());
   for (const auto& l : loops) area.push_back(signedArea(l.points));
   size_t outer = 0;
   for (size_t i = 1; i < loops.size(); ++i)

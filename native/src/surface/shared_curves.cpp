@@ -176,8 +176,8 @@ std::vector<double> ModelMesher::discretizeShared(const Slot& a, const Slot& b, 
     int samples = 32;
     std::vector<double> t, cum;
     for (int pass = 0; pass < 2; ++pass) {
-      t.assign(size_t(samples + 1), 0.0);
-      cum.assign(size_t(samples + 1), 0.0);
+      t.assign(size_t(samples) + 1, 0.0);
+      cum.assign(size_t(samples) + 1, 0.0);
       Vec2 ua = a.c->point(bounds[k]), ub = b.c->point(mapB(bounds[k]));
       for (int i = 0; i <= samples; ++i) {
         t[size_t(i)] = bounds[k] + (bounds[k + 1] - bounds[k]) * i / samples;
@@ -334,8 +334,8 @@ void ModelMesher::adaptAcrossShared() {
       toB.points.push_back(ub);
       toB.metrics.push_back(pullBackMetric(ma, db));
     }
-    if (!toA.points.empty()) addSource(a.patch, std::move(toA));
-    if (!toB.points.empty()) addSource(b.patch, std::move(toB));
+    if (!toA.points.empty()) addSource(a.patch, toA);
+    if (!toB.points.empty()) addSource(b.patch, toB);
   }
 }
 
