@@ -24,7 +24,8 @@ export const surfaceKinds = {
   plane: () => ({ type: 'plane', origin: [0, 0, 0], a1: [1, 0, 0], a2: [0, 1, 0], domain: [[0, 0], [1, 1]] }),
   cylinder: () => ({ type: 'cylinder', radius: 1, center: [0, 0, 0], domain: [[0, 0], [3, 1.5]] }),
   sphere: () => ({ type: 'sphere', radius: 1, center: [0, 0, 0], domain: [[0, -1.2], [3, 1.2]] }),
-  torus: () => ({ type: 'torus', majorRadius: 1, minorRadius: 0.35, center: [0, 0, 0], domain: [[0, 0], [3, TAU]] }),
+  // The core's default parameter range (the whole torus): a case without a domain keeps its meaning.
+  torus: () => ({ type: 'torus', majorRadius: 1, minorRadius: 0.35, center: [0, 0, 0], domain: [[0, 0], [TAU, TAU]] }),
   bezier: () => ({ type: 'bezier', points: bezierNet() }),
   p2: () => ({ type: 'p2', domain: [[-10, -10], [10, 10]] }),
 };
