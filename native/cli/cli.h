@@ -2,6 +2,7 @@
 // Shared pieces of the anisomesh command line: the command table entry, argument walking,
 // number parsing and output writing. One command per file (mesh_command.cpp, ...); main.cpp
 // lists them in its table.
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -49,6 +50,9 @@ double parseNumber(const std::string& option, const char* text);
 double parseSignedNumber(const std::string& option, const char* text);
 // A positive integer.
 long long parseCount(const std::string& option, const char* text);
+// The budget options of the meshing commands (--max-elements, --max-control-nodes,
+// --max-input-bytes): true when a is one of them, its value parsed and stored.
+bool parseBudgetOption(const std::string& a, Args& args, std::int64_t* maxElements, std::int64_t* maxControlNodes);
 // "AZ,EL" in degrees, returned in radians.
 void parseView(const std::string& option, const std::string& text, CaseSvgOptions& svg);
 

@@ -87,4 +87,16 @@ std::function<bool(double)> progressPrinter(int verbosity) {
   };
 }
 
+bool parseBudgetOption(const std::string& a, Args& args, std::int64_t* maxElements, std::int64_t* maxControlNodes) {
+  if (a == "--max-elements")
+    *maxElements = parseCount(a, args.value(a));
+  else if (a == "--max-control-nodes")
+    *maxControlNodes = parseCount(a, args.value(a));
+  else if (a == "--max-input-bytes")
+    setDefaultMaxInputBytes(parseCount(a, args.value(a)));
+  else
+    return false;
+  return true;
+}
+
 }  // namespace anisomesh::cli

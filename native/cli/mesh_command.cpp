@@ -12,7 +12,7 @@ namespace {
 int runMesh(Args& args) {
   std::string input, output;
   bool stats = false, quads = false, allQuads = false, updates = true, glyphs = false;
-  long long maxElements = -1, maxControlNodes = -1;
+  std::int64_t maxElements = -1, maxControlNodes = -1;
   int verbosity = 0;
   CaseSvgOptions svg;
   while (!args.done()) {
@@ -37,12 +37,8 @@ int runMesh(Args& args) {
       stats = true;
     else if (a == "--no-updates")
       updates = false;
-    else if (a == "--max-elements")
-      maxElements = parseCount(a, args.value(a));
-    else if (a == "--max-control-nodes")
-      maxControlNodes = parseCount(a, args.value(a));
-    else if (a == "--max-input-bytes")
-      setDefaultMaxInputBytes(parseCount(a, args.value(a)));
+    else if (parseBudgetOption(a, args, &maxElements, &maxControlNodes))
+      continue;
     else if (!a.empty() && a[0] == '-')
       throw UsageError{"unknown option '" + a + "' for mesh"};
     else if (input.empty())

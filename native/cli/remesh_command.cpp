@@ -105,12 +105,8 @@ int runRemesh(Args& args) {
       stats = true;
     else if (a == "-threads" || a == "--threads")
       threads = parseCount(a, args.value(a));
-    else if (a == "--max-control-nodes")
-      options.maxControlNodes = parseCount(a, args.value(a));
-    else if (a == "--max-input-bytes")
-      setDefaultMaxInputBytes(parseCount(a, args.value(a)));
-    else if (a == "--max-elements")
-      options.mesher.maxElements = parseCount(a, args.value(a));
+    else if (parseBudgetOption(a, args, &options.mesher.maxElements, &options.maxControlNodes))
+      continue;
     else if (!a.empty() && a[0] == '-')
       throw UsageError{"unknown option '" + a + "' for remesh"};
     else if (input.empty())
