@@ -24,13 +24,21 @@ export const surfaceKinds = {
   plane: () => ({ type: 'plane', origin: [0, 0, 0], a1: [1, 0, 0], a2: [0, 1, 0], domain: [[0, 0], [1, 1]] }),
   cylinder: () => ({ type: 'cylinder', radius: 1, center: [0, 0, 0], domain: [[0, 0], [3, 1.5]] }),
   sphere: () => ({ type: 'sphere', radius: 1, center: [0, 0, 0], domain: [[0, -1.2], [3, 1.2]] }),
-  // The core's default parameter range (the whole torus): a case without a domain keeps its meaning.
-  torus: () => ({ type: 'torus', majorRadius: 1, minorRadius: 0.35, center: [0, 0, 0], domain: [[0, 0], [TAU, TAU]] }),
+  torus: () => ({ type: 'torus', majorRadius: 1, minorRadius: 0.35, center: [0, 0, 0], domain: [[0, 0], [3, TAU]] }),
   bezier: () => ({ type: 'bezier', points: bezierNet() }),
   p2: () => ({ type: 'p2', domain: [[-10, -10], [10, 10]] }),
 };
 
 // Fields of each kind shown in the panel: [key, label, kind ('text' | 'number'), slider range].
+// The parameter range the core gives a surface whose case has no "domain" (kinds that
+// require one are not listed): native/src/surface/surface_case_json.cpp.
+const caseDefaultDomain = {
+  plane: () => [[0, 0], [1, 1]],
+  sphere: () => [[0, -1.4], [TAU, 1.4]],
+  cylinder: () => [[0, 0], [TAU, 1]],
+  torus: () => [[0, 0], [TAU, TAU]],
+};
+
 const fields = {
   heightfield: [['z', 'z(u, v)', 'text']],
   expression: [['x', 'x(u, v)', 'text'], ['y', 'y(u, v)', 'text'], ['z', 'z(u, v)', 'text']],
@@ -85,7 +93,9 @@ export function createSurfaceEditor(ctx) {
     }
     if (s.type !== 'bezier') {
       // The parameter range [u0, u1] x [v0, v1]; the default outer contour follows it.
-      s.domain ??= surfaceKinds[s.type]().domain;
+      // A case without a domain means the core's default range (surface_case_json.cpp), not
+      // the open range a new surface of this kind starts with.
+      s.domain ??= caseDefaultDomain[s.type]?.() ?? surfaceKinds[s.type]().domain;
       const d = {};
       const def = (name, i, j) => Object.defineProperty(d, name, {
         get: () => s.domain[i][j], set: (x) => { s.domain[i][j] = x; }, enumerable: true,
