@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "anisomesh/pipeline/case_svg.h"
-#include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/case_svg.h"
+#include "anisomesh/io/run_case.h"
 
 namespace anisomesh::cli {
 

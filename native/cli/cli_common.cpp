@@ -5,9 +5,9 @@
 #include <iostream>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/io/case_vtu.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/mesh_formats.h"
-#include "anisomesh/pipeline/case_vtu.h"
 #include "cli.h"
 
 namespace anisomesh::cli {

@@ -2,7 +2,7 @@
 #include <iostream>
 
 #include "anisomesh/io/file_io.h"
-#include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/run_case.h"
 #include "cli.h"
 
 namespace anisomesh::cli {

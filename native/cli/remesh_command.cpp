@@ -12,6 +12,7 @@
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/io/mesh_formats.h"
+#include "anisomesh/io/report_json.h"
 #include "anisomesh/pipeline/input_size_metrics.h"
 #include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"

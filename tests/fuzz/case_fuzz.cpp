@@ -6,7 +6,7 @@
 #include <string>
 
 #include "anisomesh/core/error.h"
-#include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/run_case.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -217,3 +217,46 @@ TEST(CaseJson, EveryExampleParsesAndValidates) {
     EXPECT_NO_THROW(validateDomain(s.domain));
   }
 }
+
+// One reader for planar and surface cases: the same field gets the same check and the same
+// message in both (they used to differ: e.g. only the planar reader required a source's
+// radius, and the messages differed).
+TEST(CaseJson, PlanarAndSurfaceReadersCheckFieldsAlike) {
+  auto errorOf = [](auto parse, const std::string& text) -> std::pair<ErrorCode, std::string> {
+    try {
+      parse(text);
+    } catch (const Error& e) {
+      return {e.code(), e.what()};
+    } catch (const std::exception& e) {
+      return {ErrorCode::InvalidArgument, std::string("not an anisomesh::Error: ") + e.what()};
+    }
+    return {ErrorCode::InvalidArgument, "accepted"};
+  };
+  auto planar = [](const std::string& t) { parseCaseJson(t); };
+  auto surface = [](const std::string& t) { parseSurfaceCaseJson(t); };
+  // 1e999 overflows a double: nlohmann throws out_of_range (not parse_error), which used to
+  // escape both readers uncoded; now a ParseError in both kinds of case.
+  const auto p = errorOf(planar, R"({"domain": {"outer": [{"type": "circle", "center": [1e999, 0], "radius": 1}]},
+                                    "controlSpace": {"hmax": 0.1}})");
+  const auto s = errorOf(surface, R"({"patches": [{"surface": {"type": "plane"},
+      "outer": [{"type": "circle", "center": [1e999, 0.5], "radius": 0.2}]}]})");
+  EXPECT_EQ(p.first, ErrorCode::ParseError) << p.second;
+  EXPECT_EQ(s.first, ErrorCode::ParseError) << s.second;
+  EXPECT_NE(p.second.find("(root): malformed JSON"), std::string::npos) << p.second;
+  EXPECT_NE(s.second.find("(root): malformed JSON"), std::string::npos) << s.second;
+  EXPECT_FALSE(isSurfaceCaseJson(R"({"patches": [1e999]})"));
+  // A source without its radius: the same missing-field error in both.
+  const auto ps =
+      errorOf(planar, withTop(R"("sources": [{"type": "radial", "center": [0, 0], "metric": {"h1": 0.1}}])"));
+  const auto ss = errorOf(surface, R"({"patches": [{"surface": {"type": "plane"},
+      "sources": [{"type": "radial", "center": [0.5, 0.5], "metric": {"h1": 0.1}}]}]})");
+  EXPECT_EQ(ps.first, ErrorCode::ParseError) << ps.second;
+  EXPECT_EQ(ss.first, ErrorCode::ParseError) << ss.second;
+  EXPECT_NE(ps.second.find("sources[0].radius: missing field"), std::string::npos) << ps.second;
+  EXPECT_NE(ss.second.find("patches[0].sources[0].radius: missing field"), std::string::npos) << ss.second;
+  // A surface case lists only the source types it supports.
+  const auto st = errorOf(surface, R"({"patches": [{"surface": {"type": "plane"},
+      "sources": [{"type": "nodes", "points": [[0.5, 0.5]], "metrics": [{"h1": 0.1}]}]}]})");
+  EXPECT_NE(st.second.find("unknown source type 'nodes' (expected radial, segment or polyline)"), std::string::npos)
+      << st.second;
+}

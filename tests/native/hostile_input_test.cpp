@@ -25,7 +25,7 @@
 #include "anisomesh/io/json_text.h"
 #include "anisomesh/pipeline/element_estimate.h"
 #include "anisomesh/pipeline/mesh_metric_field.h"
-#include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/run_case.h"
 
 namespace anisomesh {
 namespace {

@@ -9,7 +9,7 @@
 #include "anisomesh/core/error.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/medit.h"
-#include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/run_case.h"
 
 using namespace anisomesh;
 

@@ -12,7 +12,7 @@
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/gmsh.h"
 #include "anisomesh/io/mesh_formats.h"
-#include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/run_case.h"
 
 using namespace anisomesh;
 

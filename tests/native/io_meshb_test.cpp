@@ -15,7 +15,7 @@
 #include "anisomesh/io/medit.h"
 #include "anisomesh/io/medit_binary.h"
 #include "anisomesh/io/mesh_formats.h"
-#include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/run_case.h"
 #include "cli_test_util.h"
 
 using namespace anisomesh;

@@ -11,8 +11,8 @@
 
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/mesh/quality.h"
-#include "anisomesh/pipeline/case_vtu.h"
-#include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/case_vtu.h"
+#include "anisomesh/io/run_case.h"
 
 using namespace anisomesh;
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "anisomesh/io/report_json.h"
 #include "mesh_test_util.h"
 
 using namespace anisomesh;

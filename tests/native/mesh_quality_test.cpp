@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "anisomesh/io/report_json.h"
 #include "mesh_test_util.h"
 
 using namespace anisomesh;

@@ -7,7 +7,7 @@
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/number_text.h"
 #include "anisomesh/metric/metric.h"
-#include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/run_case.h"
 
 namespace anisomesh {
 namespace {

@@ -9,6 +9,7 @@
 
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/io/medit.h"
+#include "anisomesh/io/report_json.h"
 #include "anisomesh/mesh/quality.h"
 #include "anisomesh/pipeline/pipeline.h"
 

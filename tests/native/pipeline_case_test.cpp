@@ -9,6 +9,7 @@
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/io/case_json.h"
+#include "anisomesh/io/report_json.h"
 #include "anisomesh/mesh/quality.h"
 #include "anisomesh/pipeline/case_control_space.h"
 #include "anisomesh/pipeline/mesh_statistics.h"

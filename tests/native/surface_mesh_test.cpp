@@ -9,8 +9,10 @@
 #include <sstream>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/io/case_json.h"
 #include "anisomesh/io/medit.h"
-#include "anisomesh/surface/surface_case_json.h"
+#include "anisomesh/io/run_case.h"
+#include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/surface/surface_mesh.h"
 
 namespace {

@@ -6,8 +6,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "anisomesh/io/case_json.h"
+#include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/surface/patch_params.h"
-#include "anisomesh/surface/surface_case_json.h"
 
 namespace {
 

@@ -163,32 +163,4 @@ std::vector<double> triangleMetricAreas(const Mesh& mesh, const ControlSpace& co
   return out;
 }
 
-nlohmann::json qualityReportToJson(const QualityReport& r) {
-  nlohmann::json j;
-  j["vertices"] = r.vertices;
-  j["triangles"] = r.triangles;
-  j["quads"] = r.quads;
-  j["edges"] = r.edges;
-  j["edgeLength"] = {{"min", r.edgeLengthMin},
-                     {"mean", r.edgeLengthMean},
-                     {"max", r.edgeLengthMax},
-                     {"fractionWithinSqrt2", r.edgesWithinSqrt2},
-                     {"fractionWithin0.6_1.3", r.edgesWithin06_13}};
-  j["quality"] = {{"min", r.qualityMin},
-                  {"mean", r.qualityMean},
-                  {"triangleMin", r.triangleQualityMin},
-                  {"triangleMean", r.triangleQualityMean},
-                  {"quadMin", r.quadQualityMin},
-                  {"quadMean", r.quadQualityMean},
-                  {"histogram", r.qualityHistogram}};
-  j["inverted"] = r.inverted;
-  j["degenerate"] = r.degenerate;
-  j["timings"] = {{"boundary", r.timings.boundary},
-                  {"insertion", r.timings.insertion},
-                  {"improvement", r.timings.improvement},
-                  {"quads", r.timings.quads},
-                  {"estimatedElements", r.timings.estimatedElements}};
-  return j;
-}
-
 }  // namespace anisomesh

@@ -92,35 +92,7 @@ MetricFunction caseAnalyticMetric(const CaseSpec& spec) {
   };
 }
 
-// (emplace_back with in_place_type: push_back of a temporary variant trips GCC 12's
-// false -Wmaybe-uninitialized.)
-std::vector<MetricSource> caseDiscreteSources(const CaseSpec& spec) {
-  std::vector<MetricSource> out;
-  for (const SourceSpec& s : spec.sources) {
-    const Metric m = Metric::fromSizes(s.metric.alpha, s.metric.h1, s.metric.h2);
-    switch (s.type) {
-      case SourceType::Radial:
-        out.emplace_back(std::in_place_type<RadialSource>, RadialSource{s.center, m, s.radius});
-        break;
-      case SourceType::Segment:
-        out.emplace_back(std::in_place_type<SegmentSource>, SegmentSource{s.p1, s.p2, m, s.radius});
-        break;
-      case SourceType::Polyline:
-        out.emplace_back(std::in_place_type<PolylineSource>, PolylineSource{s.points, m, s.radius});
-        break;
-      case SourceType::Nodes: {
-        NodeSource n;
-        n.points = s.points;
-        for (const MetricSizes& z : s.metrics) n.metrics.push_back(Metric::fromSizes(z.alpha, z.h1, z.h2));
-        out.emplace_back(std::in_place_type<NodeSource>, std::move(n));
-        break;
-      }
-      case SourceType::Analytic:
-        break;
-    }
-  }
-  return out;
-}
+std::vector<MetricSource> caseDiscreteSources(const CaseSpec& spec) { return discreteSources(spec.sources); }
 
 ControlSpaceSpec caseControlSpaceSpec(const CaseSpec& spec) {
   const CaseControlSpaceSpec& c = spec.controlSpace;

@@ -84,33 +84,4 @@ std::vector<double> elementQualities(const Mesh& mesh, const ControlSpace& cs) {
   return out;
 }
 
-nlohmann::json pipelineStatsJson(const Mesh& mesh, const ControlSpace& cs, const PipelineReport& r) {
-  QualityReport q = measureQuality(mesh, cs);
-  q.timings = r.mesherTimings;
-  nlohmann::json j = qualityReportToJson(q);
-  j["largestNeighbourSizeRatio"] = largestNeighbourSizeRatio(mesh);
-  j["boundaryLoops"] = r.boundaryLoops;
-  j["boundaryPoints"] = r.boundaryPoints;
-  j["controlElements"] = r.controlElements;
-  j["controlNodes"] = r.controlNodes;
-  j["pipelineSeconds"] = {{"geometry", r.secondsGeometry},
-                          {"controlSpace", r.secondsControlSpace},
-                          {"discretization", r.secondsDiscretization},
-                          {"boundaryUpdates", r.secondsUpdates},
-                          {"meshing", r.secondsMeshing}};
-  j["boundaryUpdates"] = {{"rounds", r.updateRounds},
-                          {"converged", r.updatesConverged},
-                          {"shortSegments", r.shortSegments},
-                          {"shortSegmentSources", r.shortSegmentSources},
-                          {"invalidSegments", r.invalidSegments},
-                          {"rediscretizedContours", r.rediscretizedContours},
-                          {"chordSources", r.chordSources},
-                          {"proximitySources", r.proximitySources},
-                          {"refinedElements", r.refinedElements},
-                          {"maxChordDeviation", r.maxChordDeviation}};
-  if (r.cacheHits + r.cacheMisses > 0) j["queryCache"] = {{"hits", r.cacheHits}, {"misses", r.cacheMisses}};
-  j["notes"] = r.notes;
-  return j;
-}
-
 }  // namespace anisomesh

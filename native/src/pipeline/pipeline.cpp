@@ -291,4 +291,8 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
   return mesh;
 }
 
+Mesh meshSurfaceCase(const SurfaceCaseSpec& spec, SurfaceMeshReport* report) {
+  return meshSurfaceModel(spec.model, spec.options, report);
+}
+
 }  // namespace anisomesh

@@ -1,86 +1,27 @@
 #pragma once
-// The JSON case format (documented in examples/CASE_FORMAT.md): domain curves, control
-// space settings, metric sources and meshing options, parsed into plain structs.
-#include <cstdint>
-#include <nlohmann/json_fwd.hpp>
-#include <optional>
+// The JSON case readers: planar cases (examples/CASE_FORMAT.md) and surface cases
+// (examples/SURFACE_FORMAT.md) parsed into the case model (pipeline/case_model.h), every
+// field read and every error worded by the same path-aware readers.
 #include <string>
-#include <vector>
 
-#include "anisomesh/geometry/domain.h"
-#include "anisomesh/metric/metric.h"
+#include "anisomesh/pipeline/case_model.h"
 
 namespace anisomesh {
-
-// "controlSpace": the settings of the control structure.
-struct CaseControlSpaceSpec {
-  std::string kind = "quadtree";    // "quadtree" | "background"
-  double hmin = 0.0;                // smallest allowed size (0: no clamp)
-  double hmax = 1.0;                // largest size, also the default metric
-  std::optional<double> gradation;  // dr >= 1, or none (no smoothing)
-  // quadtree: "bilinear" | "serendipity"; background: "linear" (barycentric, the default
-  // for background) | "inverse_distance" (paper eq. 11); "bilinear" means the default of the kind.
-  std::string interpolation = "bilinear";
-  double refineThreshold = 0.1;  // difference() that splits a control element (analytic fields)
-  int maxLevel = 0;              // deepest refinement; 0 = from hmin (box side / 2^L <= hmin), at most 14
-  // Section 4 query cache: > 0 reuses the last metric for a query point within this
-  // metric-space distance of the last query point (discretization and meshing); 0: off.
-  double queryCache = 0.0;
-};
-
-enum class SourceType { Radial, Segment, Polyline, Nodes, Analytic };
-
-// A named analytic metric field and its parameters (unused ones stay 0).
-struct AnalyticFieldSpec {
-  std::string field;        // "boundary_layer" | "shear_layer_circle" | "point" | "expression"
-  Vec2 p1{0, 0}, p2{0, 0};  // boundary_layer: the wall line through p1, p2
-  Vec2 center{0, 0};        // shear_layer_circle, point
-  double radius = 0.0;      // shear_layer_circle
-  double h0 = 0.0;          // size across the layer at the wall / circle, or at the point
-  double hTangent = 0.0;    // size along the layer (boundary_layer, shear_layer_circle)
-  double thickness = 0.0;   // distance over which the normal size grows from h0 to hTangent
-  double growth = 0.0;      // point: size slope with distance, h(d) = h0 + growth d
-  // expression: formulas in x, y for (alpha, h1, h2), already checked by the parser.
-  std::string alpha = "0", h1, h2;
-  std::string path;  // JSON path of the source, for evaluation errors
-};
-
-// One entry of "sources".
-struct SourceSpec {
-  SourceType type = SourceType::Radial;
-  Vec2 center{0, 0};                 // radial
-  Vec2 p1{0, 0}, p2{0, 0};           // segment
-  std::vector<Vec2> points;          // polyline, nodes
-  MetricSizes metric;                // radial, segment, polyline: (alpha, h1, h2)
-  std::vector<MetricSizes> metrics;  // nodes: one per point
-  double radius = 0.0;               // radial, segment, polyline: influence radius
-  AnalyticFieldSpec analytic;
-};
-
-// "options": meshing options.
-struct CaseOptions {
-  bool quads = false;
-  bool allQuads = false;
-  std::int64_t maxElements = 50000000;
-  std::int64_t maxControlNodes = 0;  // control-space node budget; 0: controlSpaceNodeBudget(maxElements)
-};
-
-struct CaseSpec {
-  Domain domain;
-  CaseControlSpaceSpec controlSpace;
-  std::vector<SourceSpec> sources;
-  CaseOptions options;
-};
 
 // Parses a JSON case; throws ParseError naming the JSON path (e.g.
 // "sources[2].radius: expected a number") on malformed JSON, missing fields, wrong
 // types or unknown fields, InvalidArgument / InvalidMetric (with the path) on values out
-// of range. The domain is built but not validated (see validateDomain).
+// of range (non-finite numbers included). The domain is built but not validated (see validateDomain).
 CaseSpec parseCaseJson(const std::string& text);
-// Same from JSON parsed once by the caller (runCase: a 33 MB case is not parsed twice).
-CaseSpec parseCaseJsonTree(const nlohmann::json& root);
 
 // Reads and parses a case file (IoError when unreadable).
 CaseSpec readCaseFile(const std::string& path);
+
+// Parses a surface case; throws ParseError naming the JSON path (and, for formulas, the
+// column), InvalidArgument / InvalidMetric with the path for values out of range.
+SurfaceCaseSpec parseSurfaceCaseJson(const std::string& text);
+
+// True when the JSON text is a surface case (has "patches"), to route `anisomesh mesh`.
+bool isSurfaceCaseJson(const std::string& text);
 
 }  // namespace anisomesh

@@ -3,7 +3,6 @@
 // (target 1), element shape quality in metric space, inverted/degenerate counts, and
 // the mesher's stage timings.
 #include <array>
-#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "anisomesh/controlspace/control_space.h"
@@ -57,8 +56,5 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace,
 // order of mesh.triangles: the paper's boundary-proximity check (section 3.2) flags
 // triangles of the boundary-only triangulation below eps2 = 0.2.
 std::vector<double> triangleMetricAreas(const Mesh& mesh, const ControlSpace& controlSpace);
-
-// The report as JSON (stable key names, for the CLI and the web front end).
-nlohmann::json qualityReportToJson(const QualityReport& report);
 
 }  // namespace anisomesh

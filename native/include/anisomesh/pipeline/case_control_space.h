@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "anisomesh/controlspace/control_space_spec.h"
-#include "anisomesh/io/case_json.h"
+#include "anisomesh/pipeline/case_model.h"
 
 namespace anisomesh {
 

@@ -1,8 +1,7 @@
 #pragma once
 // Pipeline-level mesh figures next to the mesher's QualityReport: the size ratio of
 // neighbouring elements (the quantity gradation bounds), per-element quality for
-// pictures, and the --stats JSON.
-#include <nlohmann/json.hpp>
+// pictures.
 #include <vector>
 
 #include "anisomesh/controlspace/control_space.h"
@@ -19,9 +18,5 @@ double largestNeighbourSizeRatio(const Mesh& mesh);
 // 4 sqrt3 A_M / sum l_M^2 with Mt averaged over the vertices; quads the smaller of the
 // two triangles of their shorter diagonal. Inverted elements get 0.
 std::vector<double> elementQualities(const Mesh& mesh, const ControlSpace& cs);
-
-// qualityReportToJson(measureQuality(mesh, cs)) merged with the pipeline report (stage
-// times, counts, section 3.2 rounds) and largestNeighbourSizeRatio.
-nlohmann::json pipelineStatsJson(const Mesh& mesh, const ControlSpace& cs, const PipelineReport& report);
 
 }  // namespace anisomesh

@@ -8,10 +8,11 @@
 #include <vector>
 
 #include "anisomesh/controlspace/adaptive_control_space.h"
-#include "anisomesh/io/case_json.h"
 #include "anisomesh/mesh/mesh.h"
 #include "anisomesh/mesh/planar_mesher.h"
 #include "anisomesh/pipeline/boundary_updates.h"
+#include "anisomesh/pipeline/case_model.h"
+#include "anisomesh/surface/surface_mesh.h"
 
 namespace anisomesh {
 
@@ -106,5 +107,8 @@ std::unique_ptr<AdaptiveControlSpace> buildRemeshControlSpace(const Mesh& input,
 // is given it receives the control space used.
 Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshOptions& options = {},
             PipelineReport* report = nullptr, std::unique_ptr<AdaptiveControlSpace>* controlSpace = nullptr);
+
+// Meshes a surface case (meshSurfaceModel with the case's options).
+Mesh meshSurfaceCase(const SurfaceCaseSpec& spec, SurfaceMeshReport* report = nullptr);
 
 }  // namespace anisomesh

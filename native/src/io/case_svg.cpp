@@ -1,5 +1,5 @@
 // The .svg picture of a case run (shared by the CLI and the WebAssembly bindings).
-#include "anisomesh/pipeline/case_svg.h"
+#include "anisomesh/io/case_svg.h"
 
 #include "anisomesh/io/svg.h"
 #include "anisomesh/pipeline/mesh_statistics.h"

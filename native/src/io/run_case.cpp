@@ -1,18 +1,22 @@
-#include "anisomesh/pipeline/run_case.h"
-#include "anisomesh/io/json_syntax.h"
+#include "anisomesh/io/run_case.h"
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/control_space_export.h"
+#include "anisomesh/io/json_syntax.h"
 #include "anisomesh/io/json_text.h"
-#include "anisomesh/pipeline/mesh_statistics.h"
+#include "anisomesh/io/report_json.h"
 #include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/surface/patch_params.h"
-#include "anisomesh/surface/surface_case_json.h"
+#include "json_reader.h"
 
 namespace anisomesh {
 
 bool isSurfaceCase(const std::string& jsonText) { return isSurfaceCaseJson(jsonText); }
+
+Mesh meshSurfaceCase(const std::string& jsonText, SurfaceMeshReport* report) {
+  return meshSurfaceCase(parseSurfaceCaseJson(jsonText), report);
+}
 
 namespace {
 

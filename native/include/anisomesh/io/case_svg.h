@@ -4,7 +4,7 @@
 // view unless uv, the surface control spaces' ellipses over the mesh when the run kept them.
 #include <string>
 
-#include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/run_case.h"
 
 namespace anisomesh {
 

@@ -1,5 +1,5 @@
 // VTK XML .vtu of a case run with metric, size, quality and edge-length fields (see case_vtu.h).
-#include "anisomesh/pipeline/case_vtu.h"
+#include "anisomesh/io/case_vtu.h"
 
 #include <algorithm>
 #include <array>

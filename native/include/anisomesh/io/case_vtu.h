@@ -6,7 +6,7 @@
 // metric edge length per cell).
 #include <string>
 
-#include "anisomesh/pipeline/run_case.h"
+#include "anisomesh/io/run_case.h"
 
 namespace anisomesh {
 

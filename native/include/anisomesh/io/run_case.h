@@ -52,6 +52,9 @@ struct CaseRun {
 // True when the JSON text is a surface case (it has "patches").
 bool isSurfaceCase(const std::string& jsonText);
 
+// Parses a surface case and meshes it (meshSurfaceCase of pipeline.h).
+Mesh meshSurfaceCase(const std::string& jsonText, SurfaceMeshReport* report = nullptr);
+
 // Parses the JSON case text, meshes it and measures the mesh in the case's metric. Every
 // failure is an Error: ParseError (with the JSON path, number overflow included),
 // OutOfMemory naming the stage, or the code of the stage that refused the input.
