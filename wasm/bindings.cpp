@@ -32,6 +32,7 @@
 #include "anisomesh/io/svg.h"
 #include "anisomesh/io/svg_import.h"
 #include "anisomesh/mesh/quality.h"
+#include "anisomesh/metric/metric_ellipse.h"
 #include "anisomesh/pipeline/case_control_space.h"
 #include "anisomesh/pipeline/input_size_metrics.h"
 #include "anisomesh/pipeline/mesh_statistics.h"
@@ -135,17 +136,12 @@ val metricDifference(val a, val b) {
 
 // Points of the unit ball boundary {x : |Mt (x - c)| = 1}, as a closed polyline
 // (segments points, xy interleaved), for drawing.
-val metricEllipse(val m, double cx, double cy, int segments) {
+val metricEllipseJs(val m, double cx, double cy, int segments) {
   return guarded([&] {
-    require(segments >= 3 && segments <= 100000, ErrorCode::InvalidArgument, "ellipse segments must be in [3, 100000]");
-    const Mat2 inv = metricFromJs(m).transform().inverse();
-    std::vector<double> xy(2 * static_cast<size_t>(segments));
-    for (int i = 0; i < segments; ++i) {
-      const double a = 2.0 * M_PI * i / segments;
-      const Vec2 p = Vec2(cx, cy) + inv * Vec2(std::cos(a), std::sin(a));
-      xy[2 * i] = p.x();
-      xy[2 * i + 1] = p.y();
-    }
+    const std::vector<Vec2> pts = anisomesh::metricEllipse(metricFromJs(m), Vec2(cx, cy), segments);
+    std::vector<double> xy;
+    xy.reserve(2 * pts.size());
+    for (const Vec2& p : pts) xy.insert(xy.end(), {p.x(), p.y()});
     val out = val::object();
     // Copy out of the heap: the view would be detached by memory growth.
     out.set("points", val(emscripten::typed_memory_view(xy.size(), xy.data())).call<val>("slice"));
@@ -767,7 +763,7 @@ EMSCRIPTEN_BINDINGS(anisomesh) {
   emscripten::function("metricInterpolate", &metricInterpolate);
   emscripten::function("metricLength", &metricLength);
   emscripten::function("metricDifference", &metricDifference);
-  emscripten::function("metricEllipse", &metricEllipse);
+  emscripten::function("metricEllipse", &metricEllipseJs);
   emscripten::function("memoryStats", &memoryStats);
   emscripten::function("meshCase", &meshCaseJson);
   emscripten::function("caseStats", &caseStats);

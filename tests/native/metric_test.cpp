@@ -5,6 +5,7 @@
 #include <random>
 
 #include "anisomesh/anisomesh.h"
+#include "anisomesh/metric/metric_ellipse.h"
 
 using namespace anisomesh;
 
@@ -138,4 +139,19 @@ TEST(Metric, DifferenceIsZeroOnlyForEqualMetrics) {
   EXPECT_NEAR(difference(a, a.scaled(2.0)), 1.0, 1e-12);  // lengths double
   EXPECT_NEAR(difference(a, a.scaled(0.5)), 1.0, 1e-12);  // lengths halve
   EXPECT_GT(difference(a, Metric::fromSizes(0.25, 0.1, 0.4)), 0.01);
+}
+
+// The drawn unit ball: every point at metric distance scale from the centre, from angle 0
+// counter-clockwise, and the segment count checked.
+TEST(MetricEllipse, PointsLieOnTheScaledUnitBall) {
+  const Metric m = Metric::fromSizes(0.6, 0.02, 0.3);
+  const Vec2 c(1.5, -2.0);
+  const auto pts = metricEllipse(m, c, 24, 0.5);
+  ASSERT_EQ(pts.size(), 24u);
+  for (const Vec2& p : pts) EXPECT_NEAR(m.length(p - c), 0.5, 1e-12);
+  EXPECT_NEAR((m.transform() * (pts[0] - c) - Vec2(0.5, 0.0)).norm(), 0.0, 1e-12);  // angle 0 first
+  const Vec2 a = m.transform() * (pts[1] - c), b = m.transform() * (pts[2] - c);
+  EXPECT_GT(a.x() * b.y() - a.y() * b.x(), 0.0);  // counter-clockwise in metric space
+  EXPECT_THROW(metricEllipse(m, c, 2), Error);
+  EXPECT_THROW(metricEllipse(m, c, 100001), Error);
 }

@@ -1,5 +1,6 @@
 // Surface meshing: the control space of each patch in its parameter plane (section 3.1:
 // curvature of the surface and of the contours, user sources, gradation), its updates and glyphs.
+#include "anisomesh/metric/metric_ellipse.h"
 #include "model_mesher.h"
 
 #include "anisomesh/pipeline/element_estimate.h"
@@ -222,12 +223,9 @@ std::vector<ControlSpaceGlyph> ModelMesher::glyphs() const {
         }
       if (!free) continue;
       accepted[binOf(cand.c.x(), cand.c.y())].push_back(cand.c);
-      const Mat2 inv = cand.m.transform().inverse();
       ControlSpaceGlyph g;
       g.patch = int(p);
-      for (int k = 0; k < 24; ++k) {
-        const double a = 6.283185307179586 * k / 24;
-        const Vec2 uv = cand.c + 0.5 * (inv * Vec2(pm::cos(a), pm::sin(a)));
+      for (const Vec2& uv : metricEllipse(cand.m, cand.c, 24, 0.5)) {
         g.uv.push_back(uv);
         g.xyz.push_back(patch.surface->point(uv.cwiseMax(dom.lo).cwiseMin(dom.hi)));
       }
