@@ -31,7 +31,7 @@ export const surfaceKinds = {
 
 // Fields of each kind shown in the panel: [key, label, kind ('text' | 'number'), slider range].
 // The parameter range the core gives a surface whose case has no "domain" (kinds that
-// require one are not listed): native/src/surface/surface_case_json.cpp.
+// require one are not listed): native/src/io/surface_case_json.cpp.
 const caseDefaultDomain = {
   plane: () => [[0, 0], [1, 1]],
   sphere: () => [[0, -1.4], [TAU, 1.4]],
@@ -93,7 +93,7 @@ export function createSurfaceEditor(ctx) {
     }
     if (s.type !== 'bezier') {
       // The parameter range [u0, u1] x [v0, v1]; the default outer contour follows it.
-      // A case without a domain means the core's default range (surface_case_json.cpp), not
+      // A case without a domain means the core's default range (io/surface_case_json.cpp), not
       // the open range a new surface of this kind starts with.
       s.domain ??= caseDefaultDomain[s.type]?.() ?? surfaceKinds[s.type]().domain;
       const d = {};

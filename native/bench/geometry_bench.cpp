@@ -3,7 +3,7 @@
 
 #include <memory>
 
-#include "anisomesh/geometry/discretize.h"
+#include "anisomesh/boundary/discretize.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/pipeline/case_control_space.h"

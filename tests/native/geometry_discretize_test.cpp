@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "anisomesh/core/error.h"
-#include "anisomesh/geometry/discretize.h"
+#include "anisomesh/boundary/discretize.h"
 
 #include "geometry_test_util.h"
 

@@ -19,7 +19,7 @@
 #include "anisomesh/controlspace/quadtree_control_space.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/geometry/curve.h"
-#include "anisomesh/geometry/discretize.h"
+#include "anisomesh/boundary/discretize.h"
 #include "anisomesh/geometry/domain.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/json_text.h"

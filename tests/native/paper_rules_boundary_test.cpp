@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "anisomesh/io/case_json.h"
-#include "anisomesh/pipeline/boundary_updates.h"
+#include "anisomesh/boundary/boundary_updates.h"
 #include "anisomesh/pipeline/pipeline.h"
 
 using namespace anisomesh;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "anisomesh/core/number_text.h"
 #include "anisomesh/io/file_io.h"
 #include "json_reader.h"
 
@@ -14,7 +15,7 @@ using namespace json_reader;  // NOLINT(google-build-using-namespace): the reade
 
 CaseControlSpaceSpec parseControlSpace(const json& v, const std::string& path) {
   expectObject(v, path);
-  checkKeys(v, path, {"kind", "hmin", "hmax", "gradation", "interpolation", "refineThreshold", "maxLevel"});
+  checkKeys(v, path, {"kind", "hmin", "hmax", "gradation", "interpolation", "refineThreshold", "maxLevel", "queryCache"});
   CaseControlSpaceSpec cs;
   if (v.contains("kind")) {
     cs.kind = string(v["kind"], child(path, "kind"));
@@ -39,6 +40,11 @@ CaseControlSpaceSpec parseControlSpace(const json& v, const std::string& path) {
     cs.maxLevel = integer(v["maxLevel"], child(path, "maxLevel"));
     require(cs.maxLevel >= 2 && cs.maxLevel <= 20, ErrorCode::InvalidArgument,
             child(path, "maxLevel") + ": must be in [2, 20], got " + std::to_string(cs.maxLevel));
+  }
+  if (v.contains("queryCache")) {
+    cs.queryCache = number(v["queryCache"], child(path, "queryCache"));
+    require(cs.queryCache >= 0, ErrorCode::InvalidArgument,
+            child(path, "queryCache") + ": must be >= 0 (0: off), got " + numberText(cs.queryCache));
   }
   if (v.contains("interpolation")) {
     cs.interpolation = string(v["interpolation"], child(path, "interpolation"));
@@ -77,7 +83,7 @@ CaseSpec parseCaseJson(const std::string& text) { return parseCaseJsonTree(parse
 
 CaseSpec parseCaseJsonTree(const json& root) {
   expectObject(root, "");
-  checkKeys(root, "", {"domain", "controlSpace", "sources", "options", "name", "description"});
+  checkKeys(root, "", {"domain", "controlSpace", "sources", "options", "boundary", "name", "description"});
   CaseSpec spec;
   const json& domain = member(root, "", "domain");
   expectObject(domain, "domain");
@@ -97,6 +103,7 @@ CaseSpec parseCaseJsonTree(const json& root) {
           {SourceType::Radial, SourceType::Segment, SourceType::Polyline, SourceType::Nodes, SourceType::Analytic}));
   }
   if (root.contains("options")) spec.options = parseOptions(root["options"], "options");
+  if (root.contains("boundary")) spec.boundary = parseBoundaryRules(root["boundary"], "boundary", true);
   return spec;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 
+#include "anisomesh/core/number_text.h"
 #include "anisomesh/geometry/expression.h"
 
 namespace anisomesh {
@@ -254,6 +255,32 @@ const char* sourceTypeName(SourceType t) {
 }
 
 }  // namespace
+
+BoundaryUpdateOptions parseBoundaryRules(const json& v, const std::string& path, bool planar) {
+  expectObject(v, path);
+  if (planar)
+    checkKeys(v, path, {"eps1", "lengthMin", "lengthMax", "eps2", "dMax", "chordTolerance", "gapElements", "maxRounds"});
+  else
+    checkKeys(v, path, {"eps1", "lengthMin", "lengthMax", "eps2", "dMax"});
+  BoundaryUpdateOptions o;
+  o.eps1 = positiveOr(v, path, "eps1", o.eps1);
+  o.lengthMin = positiveOr(v, path, "lengthMin", o.lengthMin);
+  o.lengthMax = positiveOr(v, path, "lengthMax", o.lengthMax);
+  require(o.lengthMin <= 1.0 && o.lengthMax >= 1.0, ErrorCode::InvalidArgument,
+          path + ": lengthMin <= 1 <= lengthMax is needed (unit segments are valid), got [" +
+              numberText(o.lengthMin) + ", " + numberText(o.lengthMax) + "]");
+  o.eps2 = positiveOr(v, path, "eps2", o.eps2);
+  o.dMax = positiveOr(v, path, "dMax", o.dMax);
+  require(o.dMax >= 1.0, ErrorCode::InvalidArgument, child(path, "dMax") + ": must be >= 1, got " + numberText(o.dMax));
+  o.chordTolerance = positiveOr(v, path, "chordTolerance", o.chordTolerance);
+  o.gapElements = positiveOr(v, path, "gapElements", o.gapElements);
+  if (v.contains("maxRounds")) {
+    o.maxRounds = integer(v["maxRounds"], child(path, "maxRounds"));
+    require(o.maxRounds >= 0 && o.maxRounds <= 64, ErrorCode::InvalidArgument,
+            child(path, "maxRounds") + ": must be in [0, 64], got " + std::to_string(o.maxRounds));
+  }
+  return o;
+}
 
 SourceSpec parseSource(const json& v, const std::string& path, std::initializer_list<SourceType> allowed) {
   expectObject(v, path);

@@ -83,6 +83,10 @@ CurveUse parseCurve(const json& v, const std::string& path, int defaultRef, cons
 Contour parseContour(const json& v, const std::string& path, int defaultRef, const char* form = "[x, y]");
 // {"alpha", "h1", "h2"}: alpha defaults to 0, h2 to h1.
 MetricSizes parseMetric(const json& v, const std::string& path);
+// "boundary": the section 3.2 thresholds, the paper's values where absent; planar cases
+// also take chordTolerance, gapElements and maxRounds (surfaces check chords in 3D against
+// metric.chordTolerance and bound their rounds with options.maxRounds).
+BoundaryUpdateOptions parseBoundaryRules(const json& v, const std::string& path, bool planar);
 // One entry of "sources" (radial, segment, polyline, nodes, analytic), of the types allowed.
 SourceSpec parseSource(const json& v, const std::string& path, std::initializer_list<SourceType> allowed);
 

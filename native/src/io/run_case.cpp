@@ -80,7 +80,7 @@ CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& opti
   if (options.allQuads) spec.options.allQuads = *options.allQuads;
   if (options.maxElements > 0) spec.options.maxElements = options.maxElements;
   if (options.maxControlNodes > 0) spec.options.maxControlNodes = options.maxControlNodes;
-  BoundaryUpdateOptions updates;
+  BoundaryUpdateOptions updates = spec.boundary;
   updates.enabled = options.controlSpaceUpdates;
   run.mesh = meshCase(spec, &run.report, updates, &run.finalSpace, options.progress);
   if (options.stats)

@@ -109,7 +109,8 @@ SurfaceCaseSpec parseSurfaceCaseJson(const std::string& text) { return parseSurf
 SurfaceCaseSpec parseSurfaceCaseJsonTree(const json& root) {
   expectObject(root, "");
   checkKeys(root, "",
-            {"name", "description", "metric", "adaptation", "options", "surfaces", "patches", "shared", "sources3d"});
+            {"name", "description", "metric", "adaptation", "options", "boundary", "surfaces", "patches", "shared",
+             "sources3d"});
   SurfaceCaseSpec spec;
   SurfaceMeshOptions& o = spec.options;
   if (root.contains("metric")) {
@@ -135,6 +136,7 @@ SurfaceCaseSpec parseSurfaceCaseJsonTree(const json& root) {
     withPath("metric", [&] { validate(o.metric); });
   }
   if (root.contains("adaptation")) o.adaptation = boolean(root["adaptation"], "adaptation");
+  if (root.contains("boundary")) o.boundary = parseBoundaryRules(root["boundary"], "boundary", false);
   if (root.contains("options")) {
     const json& v = root["options"];
     expectObject(v, "options");

@@ -22,7 +22,7 @@
 #include "anisomesh/controlspace/quadtree_control_space.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/portable_math.h"
-#include "anisomesh/geometry/discretize.h"
+#include "anisomesh/boundary/discretize.h"
 #include "anisomesh/surface/surface_mesh.h"
 
 namespace anisomesh {

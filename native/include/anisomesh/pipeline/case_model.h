@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "anisomesh/boundary/boundary_updates.h"
 #include "anisomesh/controlspace/metric_sources.h"
 #include "anisomesh/geometry/domain.h"
 #include "anisomesh/metric/metric.h"
@@ -73,6 +74,7 @@ struct CaseSpec {
   CaseControlSpaceSpec controlSpace;
   std::vector<SourceSpec> sources;
   CaseOptions options;
+  BoundaryUpdateOptions boundary;  // "boundary": the section 3.2 thresholds (the paper's by default)
 };
 
 // A surface case.

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "anisomesh/boundary/boundary_updates.h"
 #include "anisomesh/controlspace/adaptive_control_space.h"
 #include "anisomesh/controlspace/metric_sources.h"
 #include "anisomesh/geometry/domain.h"
@@ -83,6 +84,9 @@ struct SurfaceMeshOptions {
   bool contourCurvature = true;
   bool adaptation = true;         // adjust control spaces of adjacent patches (figs. 11-13)
   int maxRounds = 4;              // bound of Algorithm 1's invalidation loop
+  // Section 3.2 thresholds (eps1, [lengthMin, lengthMax], eps2, dMax), the same rules as planar
+  // cases; the contour chord is checked in 3D against metric.chordTolerance instead of chordTolerance.
+  BoundaryUpdateOptions boundary;
   int initialLevel = 3;           // quadtree main-level grid 2^initialLevel
   int maxLevel = 12;              // deepest quadtree level
   double refineThreshold = 0.25;  // difference() between node metrics that splits a leaf

@@ -1,4 +1,4 @@
-#include "anisomesh/geometry/discretize.h"
+#include "anisomesh/boundary/discretize.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Section 3.2 checks and control-space updates on planar boundary discretizations.
-#include "anisomesh/pipeline/boundary_updates.h"
+#include "anisomesh/boundary/boundary_updates.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/core/portable_math.h"
-#include "anisomesh/geometry/discretize.h"
+#include "anisomesh/boundary/discretize.h"
 
 namespace anisomesh {
 namespace {
