@@ -244,6 +244,8 @@ export interface SurfaceMeshStats {
   rounds: number;
   sharedEdges: number;
   invalidations: number;
+  /** Section 3.2 updates over all rounds (the same rules as planar cases). */
+  boundaryUpdates: { converged: boolean; chordSources: number; proximitySources: number; shortSegmentSources: number };
   crossSharedSizeRatioMax: number;
   edgeLength: EdgeLengthStats;
   quality: { min: number; mean: number };

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
+#include "anisomesh/boundary/discretize.h"
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/core/error.h"
-#include "anisomesh/boundary/discretize.h"
 #include "anisomesh/io/case_json.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/pipeline/case_control_space.h"

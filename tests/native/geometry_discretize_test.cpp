@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "anisomesh/core/error.h"
 #include "anisomesh/boundary/discretize.h"
+#include "anisomesh/core/error.h"
 
 #include "geometry_test_util.h"
 

@@ -15,17 +15,17 @@
 #include <limits>
 #include <new>
 
+#include "anisomesh/boundary/discretize.h"
 #include "anisomesh/controlspace/background_mesh_control_space.h"
 #include "anisomesh/controlspace/quadtree_control_space.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/geometry/curve.h"
-#include "anisomesh/boundary/discretize.h"
 #include "anisomesh/geometry/domain.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/json_text.h"
+#include "anisomesh/io/run_case.h"
 #include "anisomesh/pipeline/element_estimate.h"
 #include "anisomesh/pipeline/mesh_metric_field.h"
-#include "anisomesh/io/run_case.h"
 
 namespace anisomesh {
 namespace {

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "anisomesh/io/file_io.h"
-#include "anisomesh/mesh/quality.h"
 #include "anisomesh/io/case_vtu.h"
+#include "anisomesh/io/file_io.h"
 #include "anisomesh/io/run_case.h"
+#include "anisomesh/mesh/quality.h"
 
 using namespace anisomesh;
 

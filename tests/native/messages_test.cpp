@@ -6,8 +6,8 @@
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/number_text.h"
-#include "anisomesh/metric/metric.h"
 #include "anisomesh/io/run_case.h"
+#include "anisomesh/metric/metric.h"
 
 namespace anisomesh {
 namespace {

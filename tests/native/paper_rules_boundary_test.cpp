@@ -11,8 +11,8 @@
 #include <variant>
 #include <vector>
 
-#include "anisomesh/io/case_json.h"
 #include "anisomesh/boundary/boundary_updates.h"
+#include "anisomesh/io/case_json.h"
 #include "anisomesh/pipeline/pipeline.h"
 
 using namespace anisomesh;

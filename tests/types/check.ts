@@ -15,7 +15,7 @@ const planarKeys = {
 } as const satisfies Record<keyof PlanarMeshStats, Kind>;
 const surfaceKeys = {
   vertices: 'number', triangles: 'number', quads: 'number', inverted: 'number', patches: 'number', patchTriangles: 'object',
-  rounds: 'number', sharedEdges: 'number', invalidations: 'number', crossSharedSizeRatioMax: 'number', edgeLength: 'object',
+  rounds: 'number', sharedEdges: 'number', invalidations: 'number', boundaryUpdates: 'object', crossSharedSizeRatioMax: 'number', edgeLength: 'object',
   quality: 'object', quality3d: 'object', controlSpaceQueries: 'number', controlSpaceSeconds: 'number',
   curvatureEvaluations: 'number', curvatureSeconds: 'number', secondsTotal: 'number',
 } as const satisfies Record<keyof SurfaceMeshStats, Kind>;

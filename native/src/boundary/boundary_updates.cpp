@@ -7,9 +7,9 @@
 #include <string>
 #include <utility>
 
+#include "anisomesh/boundary/discretize.h"
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/core/portable_math.h"
-#include "anisomesh/boundary/discretize.h"
 
 namespace anisomesh {
 namespace {

@@ -15,7 +15,8 @@ using namespace json_reader;  // NOLINT(google-build-using-namespace): the reade
 
 CaseControlSpaceSpec parseControlSpace(const json& v, const std::string& path) {
   expectObject(v, path);
-  checkKeys(v, path, {"kind", "hmin", "hmax", "gradation", "interpolation", "refineThreshold", "maxLevel", "queryCache"});
+  checkKeys(v, path,
+            {"kind", "hmin", "hmax", "gradation", "interpolation", "refineThreshold", "maxLevel", "queryCache"});
   CaseControlSpaceSpec cs;
   if (v.contains("kind")) {
     cs.kind = string(v["kind"], child(path, "kind"));

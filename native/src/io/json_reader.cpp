@@ -259,7 +259,8 @@ const char* sourceTypeName(SourceType t) {
 BoundaryUpdateOptions parseBoundaryRules(const json& v, const std::string& path, bool planar) {
   expectObject(v, path);
   if (planar)
-    checkKeys(v, path, {"eps1", "lengthMin", "lengthMax", "eps2", "dMax", "chordTolerance", "gapElements", "maxRounds"});
+    checkKeys(v, path,
+              {"eps1", "lengthMin", "lengthMax", "eps2", "dMax", "chordTolerance", "gapElements", "maxRounds"});
   else
     checkKeys(v, path, {"eps1", "lengthMin", "lengthMax", "eps2", "dMax"});
   BoundaryUpdateOptions o;
@@ -267,8 +268,8 @@ BoundaryUpdateOptions parseBoundaryRules(const json& v, const std::string& path,
   o.lengthMin = positiveOr(v, path, "lengthMin", o.lengthMin);
   o.lengthMax = positiveOr(v, path, "lengthMax", o.lengthMax);
   require(o.lengthMin <= 1.0 && o.lengthMax >= 1.0, ErrorCode::InvalidArgument,
-          path + ": lengthMin <= 1 <= lengthMax is needed (unit segments are valid), got [" +
-              numberText(o.lengthMin) + ", " + numberText(o.lengthMax) + "]");
+          path + ": lengthMin <= 1 <= lengthMax is needed (unit segments are valid), got [" + numberText(o.lengthMin) +
+              ", " + numberText(o.lengthMax) + "]");
   o.eps2 = positiveOr(v, path, "eps2", o.eps2);
   o.dMax = positiveOr(v, path, "dMax", o.dMax);
   require(o.dMax >= 1.0, ErrorCode::InvalidArgument, child(path, "dMax") + ": must be >= 1, got " + numberText(o.dMax));

@@ -9,14 +9,15 @@
 #include <memory>
 #include <utility>
 
+#include "anisomesh/boundary/boundary_updates.h"
+#include "anisomesh/boundary/discretize.h"
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/controlspace/control_space_spec.h"
 #include "anisomesh/controlspace/query_cache.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/number_text.h"
 #include "anisomesh/core/portable_math.h"
-#include "anisomesh/boundary/discretize.h"
-#include "anisomesh/boundary/boundary_updates.h"
+#include "anisomesh/pipeline/algorithm1.h"
 #include "anisomesh/pipeline/case_control_space.h"
 #include "anisomesh/pipeline/element_estimate.h"
 #include "anisomesh/pipeline/mesh_metric_field.h"
@@ -98,105 +99,134 @@ PlanarMesherOptions mesherOptionsFromCase(const CaseSpec& spec) {
   return o;
 }
 
-Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdateOptions& updates,
-              std::unique_ptr<AdaptiveControlSpace>* controlSpace, const std::function<bool(double)>& progress) {
-  PipelineReport local;
-  PipelineReport& r = report ? *report : local;
-  auto t = Clock::now();
-  validateDomain(spec.domain);
-  r.secondsGeometry = secondsSince(t);
+namespace {
 
-  t = Clock::now();
-  std::unique_ptr<AdaptiveControlSpace> cs =
-      withStage("control-space construction", [&] { return buildCaseControlSpace(spec, progress); });
-  r.secondsControlSpace = secondsSince(t);
-  const MetricFunction analytic = caseAnalyticMetric(spec);
-  PlanarMesherOptions mesher = mesherOptionsFromCase(spec);
-  mesher.progress = progress;
-  withStage("element estimate", [&] {
-    checkElementEstimate(spec.domain, *cs, mesher.maxElements, "element estimate before contour discretization");
-  });
-  DiscretizeOptions d;
-  d.maxSegments = std::max<std::int64_t>(1, mesher.maxElements);
-  const double cacheTolerance = spec.controlSpace.queryCache;
+// A planar case as Algorithm 1 sees it: one patch on the plane.
+class PlanarCaseSteps final : public Algorithm1Steps {
+ public:
+  PlanarCaseSteps(const CaseSpec& spec, const BoundaryUpdateOptions& updates, PipelineReport& r,
+                  const std::function<bool(double)>& progress)
+      : spec_(spec), updates_(updates), r_(r), progress_(progress) {}
 
-  // Section 3.2 loop: the first round discretizes every contour; later rounds only the
-  // contours marked invalid (a segment outside [lengthMin, lengthMax] or a chord too far
-  // from the curve, measured in the control space of that round), the others keep their
-  // points. It ends when no contour is invalid and the control space did not change.
-  std::vector<BoundaryLoop> loops;
-  std::vector<char> invalid, fresh;
-  r.updateRounds = 0;
-  r.updatesConverged = true;
-  for (int round = 0;; ++round) {
-    t = Clock::now();
-    if (round == 0 || std::find(invalid.begin(), invalid.end(), 1) != invalid.end()) {
+  void buildControlSpaces() override {
+    const auto t = Clock::now();
+    cs_ = withStage("control-space construction", [&] { return buildCaseControlSpace(spec_, progress_); });
+    r_.secondsControlSpace = secondsSince(t);
+    analytic_ = caseAnalyticMetric(spec_);
+    mesher_ = mesherOptionsFromCase(spec_);
+    mesher_.progress = progress_;
+    withStage("element estimate", [&] {
+      checkElementEstimate(spec_.domain, *cs_, mesher_.maxElements, "element estimate before contour discretization");
+    });
+    d_.maxSegments = std::max<std::int64_t>(1, mesher_.maxElements);
+  }
+
+  // The first round discretizes every contour; later rounds only the contours marked
+  // invalid (a segment outside [lengthMin, lengthMax] or a chord too far from the curve,
+  // measured in the control space of that round), the others keep their points.
+  void discretizeInvalidContours(int round) override {
+    const auto t = Clock::now();
+    if (round == 0 || std::find(invalid_.begin(), invalid_.end(), 1) != invalid_.end()) {
       const std::vector<BoundaryLoop> next = throughCache(
-          *cs, cacheTolerance, r, [&](const ControlSpace& q) { return discretizeDomain(spec.domain, q, d); });
+          *cs_, cacheTolerance(), r_, [&](const ControlSpace& q) { return discretizeDomain(spec_.domain, q, d_); });
       if (round == 0) {
-        loops = next;
-        fresh.assign(loops.size(), 1);
+        loops_ = next;
+        fresh_.assign(loops_.size(), 1);
       } else {
-        fresh = keepValidContours(loops, next, invalid);
-        for (char f : fresh) r.rediscretizedContours += f;
+        fresh_ = keepValidContours(loops_, next, invalid_);
+        for (char f : fresh_) r_.rediscretizedContours += f;
       }
     } else {
-      fresh.assign(loops.size(), 0);
+      fresh_.assign(loops_.size(), 0);
     }
-    r.secondsDiscretization += secondsSince(t);
-    r.updateRounds = round + 1;
-    if (!updates.enabled) break;
-    if (round >= updates.maxRounds) {
-      r.updatesConverged = false;
-      r.notes.push_back("section 3.2 updates stopped after " + std::to_string(updates.maxRounds) + " rounds");
-      break;
-    }
-    t = Clock::now();
+    r_.secondsDiscretization += secondsSince(t);
+  }
+
+  bool checkBoundaries(int /*round*/) override {
+    const auto t = Clock::now();
     // (a) segment lengths: short ones update the control space, those outside
     // [lengthMin, lengthMax] make their contour invalid.
-    SegmentLengthCheck lengths = checkSegmentLengths(loops, *cs, updates);
-    invalid = lengths.invalidContours;
-    r.shortSegments += int(lengths.shortSegments.size());
-    r.invalidSegments += lengths.invalidSegments;
+    SegmentLengthCheck lengths = checkSegmentLengths(loops_, *cs_, updates_);
+    invalid_ = lengths.invalidContours;
+    r_.shortSegments += int(lengths.shortSegments.size());
+    r_.invalidSegments += lengths.invalidSegments;
     // (b) chord deviation, (c) proximity in the boundary triangulation.
     std::vector<MetricSource> sources;
-    r.maxChordDeviation = chordSources(spec.domain, *cs, updates, &sources, &invalid);
+    r_.maxChordDeviation = chordSources(spec_.domain, *cs_, updates_, &sources, &invalid_);
     const int chords = int(sources.size());
-    PlanarMesherOptions b = mesher;
+    PlanarMesherOptions b = mesher_;
     b.boundaryOnly = true;
     b.quads = b.allQuads = false;
     b.timings = nullptr;
     // The update rounds report no progress of their own but can still be cancelled.
-    if (progress) b.progress = [&progress](double) { return progress(0.0); };
-    const Mesh boundaryMesh =
-        throughCache(*cs, cacheTolerance, r, [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, b); });
-    const int gaps = proximitySources(loops, boundaryMesh, *cs, updates, &sources);
-    const int shortSources = shortSegmentSources(lengths.shortSegments, *cs, spec.controlSpace.hmin, &sources);
-    r.chordSources += chords;
-    r.proximitySources += gaps;
-    r.shortSegmentSources += shortSources;
-    const int refined = refineNearSegments(*cs, lengths.shortSegments, analytic);
-    r.refinedElements += refined;
+    if (progress_) b.progress = [this](double) { return progress_(0.0); };
+    const Mesh boundaryMesh = throughCache(*cs_, cacheTolerance(), r_,
+                                           [&](const ControlSpace& q) { return meshPlanarBoundary(loops_, q, b); });
+    const int gaps = proximitySources(loops_, boundaryMesh, *cs_, updates_, &sources);
+    const int shortSources = shortSegmentSources(lengths.shortSegments, *cs_, spec_.controlSpace.hmin, &sources);
+    r_.chordSources += chords;
+    r_.proximitySources += gaps;
+    r_.shortSegmentSources += shortSources;
+    const int refined = refineNearSegments(*cs_, lengths.shortSegments, analytic_);
+    r_.refinedElements += refined;
     const bool changed = !sources.empty() || refined > 0;
-    if (changed) addCaseSources(*cs, spec, sources);
-    r.secondsUpdates += secondsSince(t);
-    // An invalid contour discretized in this very control space would come out the same
-    // (e.g. curves shorter than half a size): only a change makes another round useful.
-    bool redo = changed;
-    for (size_t k = 0; k < invalid.size() && !redo; ++k) redo = invalid[k] && !fresh[k];
-    if (!redo) break;
+    if (changed) addCaseSources(*cs_, spec_, sources);
+    r_.secondsUpdates += secondsSince(t);
+    return changed;
   }
-  countBoundary(loops, report);
-  r.controlElements = cs->elementCount();
-  r.controlNodes = cs->nodeCount();
 
-  t = Clock::now();
-  PlanarMesherOptions finalOptions = mesher;
-  finalOptions.timings = &r.mesherTimings;
-  Mesh mesh = throughCache(*cs, cacheTolerance, r,
-                           [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, finalOptions); });
-  r.secondsMeshing = secondsSince(t);
-  if (controlSpace) *controlSpace = std::move(cs);
+  bool hasStaleInvalidContour() const override {
+    for (size_t k = 0; k < invalid_.size(); ++k)
+      if (invalid_[k] && !fresh_[k]) return true;
+    return false;
+  }
+
+  Mesh meshPatches() override {
+    countBoundary(loops_, &r_);
+    r_.controlElements = cs_->elementCount();
+    r_.controlNodes = cs_->nodeCount();
+    const auto t = Clock::now();
+    PlanarMesherOptions finalOptions = mesher_;
+    finalOptions.timings = &r_.mesherTimings;
+    Mesh mesh = throughCache(*cs_, cacheTolerance(), r_,
+                             [&](const ControlSpace& q) { return meshPlanarBoundary(loops_, q, finalOptions); });
+    r_.secondsMeshing = secondsSince(t);
+    return mesh;
+  }
+
+  std::unique_ptr<AdaptiveControlSpace> releaseControlSpace() { return std::move(cs_); }
+
+ private:
+  double cacheTolerance() const { return spec_.controlSpace.queryCache; }
+
+  const CaseSpec& spec_;
+  const BoundaryUpdateOptions& updates_;
+  PipelineReport& r_;
+  const std::function<bool(double)>& progress_;
+  std::unique_ptr<AdaptiveControlSpace> cs_;
+  MetricFunction analytic_;
+  PlanarMesherOptions mesher_;
+  DiscretizeOptions d_;
+  std::vector<BoundaryLoop> loops_;
+  std::vector<char> invalid_, fresh_;
+};
+
+}  // namespace
+
+Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdateOptions& updates,
+              std::unique_ptr<AdaptiveControlSpace>* controlSpace, const std::function<bool(double)>& progress) {
+  PipelineReport local;
+  PipelineReport& r = report ? *report : local;
+  const auto t = Clock::now();
+  validateDomain(spec.domain);
+  r.secondsGeometry = secondsSince(t);
+  PlanarCaseSteps steps(spec, updates, r, progress);
+  Algorithm1Report a;
+  Mesh mesh = runAlgorithm1(steps, updates, &a);
+  r.updateRounds = a.rounds;
+  r.updatesConverged = a.converged;
+  if (!a.note.empty()) r.notes.push_back(a.note);
+  if (controlSpace) *controlSpace = steps.releaseControlSpace();
   return mesh;
 }
 

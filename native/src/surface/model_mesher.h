@@ -6,6 +6,7 @@
 // boundary_checks.cpp; merging of the patch meshes: merging.cpp; 3D quality measures:
 // surface_quality.cpp.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -18,11 +19,12 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "anisomesh/boundary/discretize.h"
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/controlspace/quadtree_control_space.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/portable_math.h"
-#include "anisomesh/boundary/discretize.h"
+#include "anisomesh/pipeline/algorithm1.h"
 #include "anisomesh/surface/surface_mesh.h"
 
 namespace anisomesh {
@@ -113,10 +115,18 @@ struct PatchState {
   bool modified = false;
 };
 
-class ModelMesher {
+// A surface model as Algorithm 1 sees it (pipeline/algorithm1.h): the steps on every patch.
+class ModelMesher final : public Algorithm1Steps {
  public:
   ModelMesher(const SurfaceModel& m, const SurfaceMeshOptions& o) : m_(m), o_(o) {}
+  // Checks the model, then runs Algorithm 1 on it.
   Mesh run(SurfaceMeshReport* report);
+
+  void buildControlSpaces() override;
+  void discretizeInvalidContours(int round) override;
+  bool checkBoundaries(int round) override;
+  bool hasStaleInvalidContour() const override;
+  Mesh meshPatches() override;
 
  private:
   void setupSlots();
@@ -150,6 +160,8 @@ class ModelMesher {
   int invalidations_ = 0;
   std::vector<double> elementQuality_;
   double size_ = 1.0;
+  SurfaceMeshReport* report_ = nullptr;
+  std::array<int, 3> updateCounts_{};  // section 3.2 sources: chord, proximity, short segment
 };
 
 std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& patch,

@@ -69,7 +69,25 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
   validateSharing();
   assignCornerIds();
 
-  // 1-2: initial control spaces, every contour invalid.
+  report_ = report;
+  BoundaryUpdateOptions rules = o_.boundary;
+  rules.maxRounds = std::max(1, o_.maxRounds);
+  Algorithm1Report rounds;
+  Mesh out = runAlgorithm1(*this, rules, &rounds);
+  if (report) {
+    report->rounds = rounds.rounds;
+    report->converged = rounds.converged;
+    report->chordSources = updateCounts_[0];
+    report->proximitySources = updateCounts_[1];
+    report->shortSegmentSources = updateCounts_[2];
+    report->invalidations = invalidations_;
+    report->secondsTotal = since(t0);
+  }
+  return out;
+}
+
+// 1-2: initial control spaces, every contour invalid.
+void ModelMesher::buildControlSpaces() {
   for (size_t p = 0; p < m_.patches.size(); ++p) {
     try {
       ps_[p].cs = buildControlSpaceImpl(m_.patches[p], m_.sources3d, o_, counters_);
@@ -78,37 +96,52 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
     }
     ps_[p].counted = std::make_unique<CountingControlSpace>(*ps_[p].cs, *m_.patches[p].surface, counters_);
   }
+}
 
-  // 4-13: discretize invalid contours, check patches, update control spaces.
-  int round = 0;
-  for (; round < std::max(1, o_.maxRounds); ++round) {
-    bool any = false;
-    for (size_t s = 0; s < slots_.size(); ++s)
-      if (slots_[s].invalid && slots_[s].master < 0) {
-        ps_[size_t(slots_[s].patch)].invalid = true;
-        if (slots_[s].follower >= 0) ps_[size_t(slots_[size_t(slots_[s].follower)].patch)].invalid = true;
-        discretize(int(s));
-        any = true;
-        if (round > 0) ++invalidations_;
-      }
-    if (!any) break;
-    if (round == 0 && o_.adaptation) {
-      adaptAcrossShared();
-      flushSources();
+// 4: the invalid contours discretized (shared ones once, for both patches); after the
+// first round the control spaces of patches across shared contours are adapted.
+void ModelMesher::discretizeInvalidContours(int round) {
+  for (size_t s = 0; s < slots_.size(); ++s)
+    if (slots_[s].invalid && slots_[s].master < 0) {
+      ps_[size_t(slots_[s].patch)].invalid = true;
+      if (slots_[s].follower >= 0) ps_[size_t(slots_[size_t(slots_[s].follower)].patch)].invalid = true;
+      discretize(int(s));
+      if (round > 0) ++invalidations_;
     }
-    for (size_t p = 0; p < ps_.size(); ++p)
-      if (ps_[p].invalid) {
-        try {
-          checkPatchBoundary(int(p));
-        } catch (const Error& e) {
-          throw Error(e.code(), patchLabel(m_.patches[p], int(p)) + ": " + e.what());
-        }
-        ps_[p].invalid = false;
-      }
+  if (round == 0 && o_.adaptation) {
+    adaptAcrossShared();
     flushSources();
   }
+}
 
-  // 14-16: inner nodes and improvement per patch; merge.
+// 5-12: section 3.2 on each patch whose boundary was discretized or whose control space
+// changed since its last check; the updates are inserted afterwards.
+bool ModelMesher::checkBoundaries(int /*round*/) {
+  for (size_t p = 0; p < ps_.size(); ++p)
+    if (ps_[p].invalid || ps_[p].modified) {
+      ps_[p].modified = false;
+      try {
+        checkPatchBoundary(int(p));
+      } catch (const Error& e) {
+        throw Error(e.code(), patchLabel(m_.patches[p], int(p)) + ": " + e.what());
+      }
+      ps_[p].invalid = false;
+    }
+  bool changed = false;
+  for (const auto& pending : pending_) changed = changed || !pending.empty();
+  flushSources();
+  return changed;
+}
+
+bool ModelMesher::hasStaleInvalidContour() const {
+  for (const Slot& s : slots_)
+    if (s.invalid && s.master < 0) return true;
+  return false;
+}
+
+// 14-16: inner nodes and improvement per patch; merge.
+Mesh ModelMesher::meshPatches() {
+  SurfaceMeshReport* report = report_;
   Mesh out;
   out.dimension = 3;
   std::vector<int> defined(size_t(nextId_), -1);  // patch that placed each merged boundary vertex
@@ -364,8 +397,6 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
     for (const auto& e : edgeLengths) report->edgeLengths.push_back({std::min(e.a, e.b), std::max(e.a, e.b), e.length});
     if (o_.controlSpaceGlyphs) report->controlSpaceGlyphs = glyphs();
     report->patches = int(m_.patches.size());
-    report->rounds = round;
-    report->invalidations = invalidations_;
     report->vertices = out.vertexCount();
     report->triangles = int(out.triangles.size());
     report->sharedEdgeList.assign(sharedEdges.begin(), sharedEdges.end());
@@ -377,7 +408,6 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
     report->controlSpaceQueries = counters_.queries;
     report->controlSpaceSeconds = counters_.querySeconds;
     report->patchTriangles = patchTriangles;
-    report->secondsTotal = since(t0);
   }
   return out;
 }

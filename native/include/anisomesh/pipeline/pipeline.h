@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "anisomesh/boundary/boundary_updates.h"
 #include "anisomesh/controlspace/adaptive_control_space.h"
 #include "anisomesh/mesh/mesh.h"
 #include "anisomesh/mesh/planar_mesher.h"
-#include "anisomesh/boundary/boundary_updates.h"
 #include "anisomesh/pipeline/case_model.h"
 #include "anisomesh/surface/surface_mesh.h"
 

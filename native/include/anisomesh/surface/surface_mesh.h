@@ -82,8 +82,8 @@ struct SurfaceMeshOptions {
   // Section 3.1: sizes from the 3D curvature of every contour curve put into the initial
   // control space along it (false: only the section 3.2 chord check catches contour curvature).
   bool contourCurvature = true;
-  bool adaptation = true;         // adjust control spaces of adjacent patches (figs. 11-13)
-  int maxRounds = 4;              // bound of Algorithm 1's invalidation loop
+  bool adaptation = true;  // adjust control spaces of adjacent patches (figs. 11-13)
+  int maxRounds = 4;       // bound of Algorithm 1's invalidation loop
   // Section 3.2 thresholds (eps1, [lengthMin, lengthMax], eps2, dMax), the same rules as planar
   // cases; the contour chord is checked in 3D against metric.chordTolerance instead of chordTolerance.
   BoundaryUpdateOptions boundary;
@@ -144,8 +144,11 @@ struct SurfaceEdgeLength {
 
 struct SurfaceMeshReport {
   int patches = 0;
-  int rounds = 0;         // Algorithm 1 rounds until no contour was invalid
+  int rounds = 0;         // Algorithm 1 rounds (discretizations) of the section 3.2 loop
   int invalidations = 0;  // contour invalidations over all rounds
+  bool converged = true;  // false: the section 3.2 loop stopped at options.maxRounds
+  // Section 3.2 control-space updates over all rounds and patches (the rules of boundary_updates.h).
+  int chordSources = 0, proximitySources = 0, shortSegmentSources = 0;
   int vertices = 0, triangles = 0;
   int sharedEdges = 0;                   // mesh edges on shared curves
   double crossSharedSizeRatioMax = 0.0;  // largest sqrt(area) ratio of the two triangles at a shared edge
