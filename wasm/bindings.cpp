@@ -674,13 +674,13 @@ class ControlSpaceHandle {
       return out;
     });
   }
-  // The exact minimum of two built control spaces (MinimumControlSpace): the inputs are
-  // shared, so disposing them later leaves this one valid.
+  // The exact minimum of two built control spaces (minimumOf: a minimum passes on its
+  // inputs); the inputs are shared, so disposing them later leaves this one valid.
   val buildMinimum(const ControlSpaceHandle& a, const ControlSpaceHandle& b) {
     return guarded([&] {
       require(a.cs_ != nullptr && b.cs_ != nullptr, ErrorCode::InvalidArgument,
               "minimum of a control space that is not built");
-      cs_ = std::make_shared<MinimumControlSpace>(std::vector<std::shared_ptr<const ControlSpace>>{a.cs_, b.cs_});
+      cs_ = minimumOf(a.cs_, b.cs_);
       val out = val::object();
       out.set("ok", true);
       return out;

@@ -138,3 +138,20 @@ TEST(ControlSpaceMinimumLazy, BoundsParameterizationAndErrors) {
   const auto far = std::make_shared<UniformControlSpace>(box(5, 5, 6, 6), Metric::isotropic(0.1));
   EXPECT_EQ(code({a, far}), ErrorCode::InvalidDomain);
 }
+
+// Folding pairwise with minimumOf (the npm package's minimumControlSpace(a, b, c)) gives the
+// k-input minimum exactly, not the pairwise intersections (intersection is not associative).
+TEST(ControlSpaceMinimumLazy, PairwiseFoldIsTheKInputMinimum) {
+  const auto q = makeInput(1, fieldA), bg = makeInput(2, fieldB), an = makeInput(0, fieldC);
+  const auto folded = minimumOf(minimumOf(q, bg), an);
+  const auto* m = dynamic_cast<const MinimumControlSpace*>(folded.get());
+  ASSERT_NE(m, nullptr);
+  EXPECT_EQ(m->inputs().size(), 3u);
+  const MinimumControlSpace three({q, bg, an});
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < 2000; ++k) {
+    const Vec2 p(u(rng), u(rng));
+    ASSERT_EQ(folded->metricAt(p).transform(), three.metricAt(p).transform()) << p.transpose();
+  }
+}

@@ -51,4 +51,16 @@ Metric MinimumControlSpace::metricAt(const Vec2& p) const {
   return r;
 }
 
+std::shared_ptr<const ControlSpace> minimumOf(const std::shared_ptr<const ControlSpace>& a,
+                                              const std::shared_ptr<const ControlSpace>& b) {
+  std::vector<std::shared_ptr<const ControlSpace>> inputs;
+  for (const auto* s : {&a, &b}) {
+    if (const auto* m = dynamic_cast<const MinimumControlSpace*>(s->get()))
+      inputs.insert(inputs.end(), m->inputs().begin(), m->inputs().end());
+    else
+      inputs.push_back(*s);
+  }
+  return std::make_shared<MinimumControlSpace>(std::move(inputs));
+}
+
 }  // namespace anisomesh

@@ -99,9 +99,9 @@ CaseSpec parseCaseJsonTree(const json& root) {
   if (root.contains("sources")) {
     const json& s = array(root["sources"], "sources", "sources");
     for (size_t i = 0; i < s.size(); ++i)
-      spec.sources.push_back(parseSource(
-          s[i], index("sources", i),
-          {SourceType::Radial, SourceType::Segment, SourceType::Polyline, SourceType::Nodes, SourceType::Analytic}));
+      spec.sources.push_back(parseSource(s[i], index("sources", i),
+                                         {SourceType::Radial, SourceType::Segment, SourceType::Polyline,
+                                          SourceType::Curve, SourceType::Nodes, SourceType::Analytic}));
   }
   if (root.contains("options")) spec.options = parseOptions(root["options"], "options");
   if (root.contains("boundary")) spec.boundary = parseBoundaryRules(root["boundary"], "boundary", true);

@@ -246,6 +246,8 @@ const char* sourceTypeName(SourceType t) {
       return "segment";
     case SourceType::Polyline:
       return "polyline";
+    case SourceType::Curve:
+      return "curve";
     case SourceType::Nodes:
       return "nodes";
     case SourceType::Analytic:
@@ -314,6 +316,15 @@ SourceSpec parseSource(const json& v, const std::string& path, std::initializer_
       checkKeys(v, path, {"type", "points", "metric", "radius"});
       s.points = points(member(v, path, "points"), child(path, "points"), 2);
       break;
+    case SourceType::Curve: {
+      checkKeys(v, path, {"type", "curve", "t1", "t2", "metric", "radius"});
+      s.curve = parseCurve(member(v, path, "curve"), child(path, "curve"), 0).curve;
+      s.t1 = numberOr(v, path, "t1", 0.0);
+      s.t2 = numberOr(v, path, "t2", 1.0);
+      require(s.t1 >= 0.0 && s.t1 < s.t2 && s.t2 <= 1.0, ErrorCode::InvalidArgument,
+              path + ": expected 0 <= t1 < t2 <= 1, got t1 = " + numberText(s.t1) + ", t2 = " + numberText(s.t2));
+      break;
+    }
     case SourceType::Nodes: {
       checkKeys(v, path, {"type", "points", "metrics"});
       s.points = points(member(v, path, "points"), child(path, "points"), 1);

@@ -190,8 +190,9 @@ SurfaceCaseSpec parseSurfaceCaseJsonTree(const json& root) {
       if (!ss.is_array()) fail(child(path, "sources"), "expected an array of sources");
       std::vector<SourceSpec> sources;
       for (size_t k = 0; k < ss.size(); ++k)
-        sources.push_back(parseSource(ss[k], index(child(path, "sources"), k),
-                                      {SourceType::Radial, SourceType::Segment, SourceType::Polyline}));
+        sources.push_back(
+            parseSource(ss[k], index(child(path, "sources"), k),
+                        {SourceType::Radial, SourceType::Segment, SourceType::Polyline, SourceType::Curve}));
       p.sources = discreteSources(sources);
     }
     if (patchIndex.count(p.name)) fail(child(path, "name"), "duplicate patch name '" + p.name + "'");

@@ -20,6 +20,16 @@ std::vector<MetricSource> discreteSources(const std::vector<SourceSpec>& sources
       case SourceType::Polyline:
         out.emplace_back(std::in_place_type<PolylineSource>, PolylineSource{s.points, m, s.radius});
         break;
+      case SourceType::Curve: {
+        CurveSource c;
+        c.curve = [curve = s.curve](double t) { return curve->point(t); };
+        c.t1 = s.t1;
+        c.t2 = s.t2;
+        c.metric = m;
+        c.radius = s.radius;
+        out.emplace_back(std::in_place_type<CurveSource>, std::move(c));
+        break;
+      }
       case SourceType::Nodes: {
         NodeSource n;
         n.points = s.points;

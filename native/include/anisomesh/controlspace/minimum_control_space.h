@@ -31,4 +31,11 @@ class MinimumControlSpace : public ControlSpace {
   Box2 bounds_;
 };
 
+// The minimum of a and b, where a minimum among them gives its inputs instead of itself:
+// folding k spaces pairwise (as the npm package's minimumControlSpace(...spaces) does) builds
+// one MinimumControlSpace of all k, so the answer is the k-input one (intersection is not
+// associative).
+std::shared_ptr<const ControlSpace> minimumOf(const std::shared_ptr<const ControlSpace>& a,
+                                              const std::shared_ptr<const ControlSpace>& b);
+
 }  // namespace anisomesh

@@ -32,7 +32,7 @@ struct CaseControlSpaceSpec {
   double queryCache = 0.0;
 };
 
-enum class SourceType { Radial, Segment, Polyline, Nodes, Analytic };
+enum class SourceType { Radial, Segment, Polyline, Curve, Nodes, Analytic };
 
 // A named analytic metric field and its parameters (unused ones stay 0).
 struct AnalyticFieldSpec {
@@ -55,9 +55,11 @@ struct SourceSpec {
   Vec2 center{0, 0};                 // radial
   Vec2 p1{0, 0}, p2{0, 0};           // segment
   std::vector<Vec2> points;          // polyline, nodes
-  MetricSizes metric;                // radial, segment, polyline: (alpha, h1, h2)
+  CurvePtr curve;                    // curve: c(t), t in [t1, t2] (section 2.2)
+  double t1 = 0.0, t2 = 1.0;         // curve
+  MetricSizes metric;                // radial, segment, polyline, curve: (alpha, h1, h2)
   std::vector<MetricSizes> metrics;  // nodes: one per point
-  double radius = 0.0;               // radial, segment, polyline: influence radius
+  double radius = 0.0;               // radial, segment, polyline, curve: influence radius
   AnalyticFieldSpec analytic;
 };
 
