@@ -484,6 +484,15 @@ function startWaitingDrag() {
 /** Wants the control-space overlay from the worker (it costs an inspection of the structure). */
 const wantOverlay = () => Boolean(state.view.controlSpace);
 
+// A surface case's curvature stages depend on everything but the patches' 2D sources
+// (what a drag moves): the spare worker builds them once per such key, after a mesh is
+// drawn, so the worker a cancellation swaps in does not start cold.
+function warmSpareFor(c) {
+  if (!state.surface || !Array.isArray(c?.patches)) return;
+  const key = JSON.stringify({ ...c, patches: c.patches.map(({ sources, ...rest }) => rest) });
+  meshRunner.warmSpare(key, 'warm', { case: c });
+}
+
 let completionWaiters = [];
 async function remesh() {
   const version = state.caseVersion;
@@ -508,6 +517,7 @@ async function remesh() {
   try {
     const { id, result, marks, totalMs, workerMs, receivedAt } = await job;
     const b = draw(result, version, editAt, marks, receivedAt, overlay);
+    warmSpareFor(state.case);
     state.lastJob = { meshMs: Math.round(b.coreMs), workerMs: Math.round(workerMs), totalMs: Math.round(totalMs), drawMs: Math.round(b.geometryMs + b.renderMs) };
     state.lastError = null;
     clearErrors();

@@ -127,6 +127,19 @@ export class JobRunner {
     return promise;
   }
 
+  /**
+   * Runs op in the spare worker for its side effects (the core's caches), once per key and
+   * spare: a cancellation swaps in a worker that has already done that work. The result is
+   * dropped (ids 0 match no pending job). Returns whether a job was posted.
+   */
+  warmSpare(key, op, args) {
+    const spare = this.spare;
+    if (!spare || spare.warmKey === key) return false;
+    spare.warmKey = key;
+    spare.worker.postMessage({ type: 'job', id: 0, op, args, postedAt: wallNow() });
+    return true;
+  }
+
   /** Cancels every pending job: the worker is replaced by the spare (or a fresh one). */
   cancelAll() {
     if (this.pending.size === 0) return;

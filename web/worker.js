@@ -132,6 +132,14 @@ const ops = {
       core: timings,
     };
   },
+  // Builds the initial control space of every patch of a surface case and drops it: the
+  // core keeps each patch's curvature stage (native/src/surface/curvature_stage_cache.h),
+  // so this worker, a spare until a cancellation swaps it in, meshes the case without
+  // evaluating the surface's curvature again. Posted by JobRunner.warmSpare().
+  warm({ case: c }) {
+    for (let patch = 0; patch < (c?.patches?.length ?? 0); patch++) am.createControlSpace(c, { patch }).dispose();
+    return null;
+  },
   // One iteration of the adaptation loop (the page runs them one at a time and draws each):
   // the mesh adapted to the expression u(x, y), the field at its vertices, the iteration's
   // figures (N, errors) and the mesh measured in the adaptation metric.

@@ -2,9 +2,12 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "anisomesh/core/error.h"
@@ -287,4 +290,48 @@ TEST(Expression, ValueAndTheDualValuePartAreTheSameDouble) {
       EXPECT_EQ(a, b) << text << " at (" << p[0] << ", " << p[1] << ")";
     }
   }
+}
+
+namespace {
+std::uint64_t bitsOf(double x) {
+  std::uint64_t u;
+  std::memcpy(&u, &x, sizeof u);
+  return u;
+}
+}  // namespace
+
+// evaluateFirst() takes the gradient parts of evaluate()'s rules term for term: the same
+// bits for f, fu, fv (NaN for NaN), for every function and operator, with and without a
+// non-constant exponent (which goes through evaluate()), inside and outside the domains.
+TEST(Expression, FirstOrderEvaluationHasTheBitsOfTheSecondOrderOne) {
+  std::mt19937_64 rng(7);
+  std::vector<std::string> texts;
+  for (const Case& c : cases()) texts.push_back(c.text);
+  texts.insert(texts.end(), {"sqrt(u)", "log(u*v)", "u^1.5", "asin(2*u)", "1/(u-v)", "abs(u)*v", "u^0 + v^1"});
+  for (const std::string& text : texts) {
+    const Expression e = Expression::parse(text);
+    std::uniform_real_distribution<double> d(-3.0, 3.0);
+    for (int k = 0; k < 200; ++k) {
+      const double u = k == 0 ? 0.0 : d(rng), v = k == 0 ? 0.0 : d(rng);
+      const Dual2 a = e.evaluate(u, v);
+      const Dual1 b = e.evaluateFirst(u, v);
+      for (const auto& [x, y] : {std::pair{a.f, b.f}, std::pair{a.fu, b.fu}, std::pair{a.fv, b.fv}}) {
+        if (std::isnan(x) && std::isnan(y)) continue;
+        ASSERT_EQ(bitsOf(x), bitsOf(y)) << text << " at (" << u << ", " << v << ")";
+      }
+    }
+  }
+}
+
+// identity(): equal for the same formula and parameters, different when either changes.
+TEST(Expression, IdentityNamesProgramAndParameters) {
+  ExpressionOptions o;
+  o.parameters = {{"a", 0.5}};
+  Expression e = Expression::parse("a*sin(u) + v", o);
+  EXPECT_EQ(e.identity(), Expression::parse("a*sin(u) + v", o).identity());
+  EXPECT_NE(e.identity(), Expression::parse("a*sin(u) + u", o).identity());
+  const std::string before = e.identity();
+  e.setParameter("a", 0.25);
+  EXPECT_NE(e.identity(), before);
+  EXPECT_NE(Expression::parse("0.1").identity(), Expression::parse("0.10000000000000002").identity());
 }

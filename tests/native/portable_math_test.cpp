@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <vector>
 
 namespace pm = anisomesh::pm;
 
@@ -191,6 +192,22 @@ TEST(PortableMath, SpecialValuesTrig) {
     EXPECT_TRUE(std::isfinite(pm::sin(v)));
     EXPECT_LE(std::fabs(pm::sin(v)), 1.0);
     EXPECT_LE(std::fabs(pm::cos(v)), 1.0);
+  }
+}
+
+// sincos shares one argument reduction: the bits of sin and cos, for every quadrant,
+// signed zeros, non-finite and out-of-range arguments.
+TEST(PortableMath, SincosSameBitsAsSinCos) {
+  std::mt19937_64 rng(20260511);
+  std::vector<double> xs = {0.0, -0.0, kInf, -kInf, kNaN, 1e7, -1e15, 1e300, 0.7853981633974483, 2.356194490192345};
+  for (const Range& r :
+       {Range{1e-300, 1e-3, true}, Range{1e-3, 10.0, true}, Range{10.0, 1e6, true}, Range{1e6, 1e300, true}})
+    for (int i = 0; i < kPerRange; ++i) xs.push_back(sample(rng, r, false));
+  for (double x : xs) {
+    double s = 0.0, c = 0.0;
+    pm::sincos(x, s, c);
+    ASSERT_EQ(bits(s), bits(pm::sin(x))) << x;
+    ASSERT_EQ(bits(c), bits(pm::cos(x))) << x;
   }
 }
 

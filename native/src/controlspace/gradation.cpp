@@ -137,13 +137,14 @@ inline double sizeKey(const SymMt& m) {
 }
 
 // One work-set pass over the graph (start, nbr) from `seeds` (see smoothGradation);
-// nodes it changes get changed[i] = 1.
+// nodes it changes get changed[i] = 1. `heap` (empty, sized for the node count) is
+// reused across passes: the later passes of smoothGradation() take a few nodes each, so
+// allocating and clearing a node-count heap per pass would cost more than the pass.
 int gradationWorkSet(AdaptiveControlSpace& cs, const std::vector<int>& start, const std::vector<int>& nbr,
-                     const std::vector<int>& seeds, double slope, double tolerance, std::vector<char>& changed) {
-  const int n = cs.nodeCount();
+                     const std::vector<int>& seeds, double slope, double tolerance, std::vector<char>& changed,
+                     NodeHeap& heap) {
   // Ordered by the node's smallest requested size (smallest first, as in Dijkstra): a
   // node is mostly final when it is taken, so few nodes are re-queued.
-  NodeHeap heap(n);
   for (int i : seeds) heap.set(i, sizeKey(cs.nodeMt(i)));
   int updates = 0;
   auto enqueue = [&](int j, const SymMt& mj) {
@@ -215,7 +216,8 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
   for (int i = 0; i < n; ++i)
     if (!hanging.empty() || cs.nodeIsFree(i)) seeds.push_back(i);
   std::vector<char> changed(n, 0);
-  int updates = gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed);
+  NodeHeap heap(n);
+  int updates = gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed, heap);
   if (hanging.empty()) {
     cs.applyConstraints();
     return updates;
@@ -319,7 +321,7 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
       break;
     }
     std::sort(seeds.begin(), seeds.end());
-    updates += gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed);
+    updates += gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed, heap);
   }
   if (!settled) {
     std::vector<int> fstart, fnbr;
@@ -327,7 +329,7 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
     seeds.clear();
     for (int i = 0; i < n; ++i)
       if (cs.nodeIsFree(i)) seeds.push_back(i);
-    updates += gradationWorkSet(cs, fstart, fnbr, seeds, slope, tol, changed);
+    updates += gradationWorkSet(cs, fstart, fnbr, seeds, slope, tol, changed, heap);
   }
   cs.applyConstraints();
   return updates;

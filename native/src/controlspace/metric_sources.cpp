@@ -86,7 +86,7 @@ std::vector<SourcePiece> sourcePieces(const std::vector<MetricSource>& sources, 
     p.b = b;
     p.metric = m;
     p.radius = r;
-    p.targetSize = std::max(r, m.sizes().h1) * options.sizeFactor;
+    p.targetSize = std::max(r, m.smallestSize()) * options.sizeFactor;
     if (segmentBoxDistance(a, b, box) <= r) pieces.push_back(p);  // outside: no-op
   };
   for (const MetricSource& src : sources) {
@@ -108,7 +108,7 @@ std::vector<SourcePiece> sourcePieces(const std::vector<MetricSource>& sources, 
       require(s->t1 != s->t2, ErrorCode::ZeroLengthCurve, "curve source has an empty parameter range");
       // Adaptive sampling: split a parameter interval while the curve's midpoint is farther
       // than a quarter of the source size from the chord.
-      const double tol = 0.25 * std::max(s->radius, s->metric.sizes().h1);
+      const double tol = 0.25 * std::max(s->radius, s->metric.smallestSize());
       std::vector<Vec2> pts;
       auto eval = [&](double t) {
         Vec2 p = s->curve(t);

@@ -9,10 +9,12 @@
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/portable_math.h"
+#include "expression_ops.h"
 
 namespace anisomesh {
 
 using Op = Expression::Op;
+using expression_ops::isBinary;
 
 namespace {
 
@@ -47,22 +49,6 @@ const FunctionInfo* findFunction(const std::string& name) {
   for (const auto& f : kFunctions)
     if (name == f.name) return &f;
   return nullptr;
-}
-
-bool isBinary(Op op) {
-  switch (op) {
-    case Op::Add:
-    case Op::Sub:
-    case Op::Mul:
-    case Op::Div:
-    case Op::Pow:
-    case Op::Atan2:
-    case Op::Min:
-    case Op::Max:
-      return true;
-    default:
-      return false;
-  }
 }
 
 // Scalar semantics of every unary or binary opcode (shared by value() and constant folding).
@@ -120,9 +106,15 @@ double applyScalar(Op op, double a, double b) {
 
 // --- second-order dual arithmetic ------------------------------------------------
 
+// The evaluation stack's slots: Dual2 without default member initializers, so the
+// kMaxStack slots on the call stack are not zeroed on every call (most formulas use a few).
+struct D {
+  double f, fu, fv, fuu, fuv, fvv;
+};
+
 // g(a) with g' = g1, g'' = g2: gradient g1 grad a, Hessian g1 H_a + g2 grad a grad a^T.
-inline Dual2 chain1(const Dual2& a, double g, double g1, double g2) {
-  Dual2 r;
+inline D chain1(const D& a, double g, double g1, double g2) {
+  D r;
   r.f = g;
   r.fu = g1 * a.fu;
   r.fv = g1 * a.fv;
@@ -133,9 +125,8 @@ inline Dual2 chain1(const Dual2& a, double g, double g1, double g2) {
 }
 
 // g(a, b) from its partial derivatives up to second order.
-inline Dual2 chain2(const Dual2& a, const Dual2& b, double g, double ga, double gb, double gaa, double gab,
-                    double gbb) {
-  Dual2 r;
+inline D chain2(const D& a, const D& b, double g, double ga, double gb, double gaa, double gab, double gbb) {
+  D r;
   r.f = g;
   r.fu = ga * a.fu + gb * b.fu;
   r.fv = ga * a.fv + gb * b.fv;
@@ -145,12 +136,12 @@ inline Dual2 chain2(const Dual2& a, const Dual2& b, double g, double ga, double 
   return r;
 }
 
-inline bool isConstantDual(const Dual2& a) {
+inline bool isConstantDual(const D& a) {
   return a.fu == 0.0 && a.fv == 0.0 && a.fuu == 0.0 && a.fuv == 0.0 && a.fvv == 0.0;
 }
 
 // a^c for a constant exponent: defined for negative a when c is an integer.
-inline Dual2 powConst(const Dual2& a, double c) {
+inline D powConst(const D& a, double c) {
   if (c == 2.0) return chain1(a, a.f * a.f, 2.0 * a.f, 2.0);
   const double g1 = c == 0.0 ? 0.0 : c * pm::pow(a.f, c - 1.0);
   const double g2 = (c == 0.0 || c == 1.0) ? 0.0 : c * (c - 1.0) * pm::pow(a.f, c - 2.0);
@@ -158,10 +149,10 @@ inline Dual2 powConst(const Dual2& a, double c) {
 }
 
 // a^b in general: through exp(b log a), so it needs a > 0 unless b or a is constant.
-inline Dual2 powDual(const Dual2& a, const Dual2& b) {
+inline D powDual(const D& a, const D& b) {
   const double f = pm::pow(a.f, b.f);  // as value() computes '^' (powConst squares for 2)
   if (isConstantDual(b)) {
-    Dual2 r = powConst(a, b.f);
+    D r = powConst(a, b.f);
     r.f = f;
     return r;
   }
@@ -172,17 +163,19 @@ inline Dual2 powDual(const Dual2& a, const Dual2& b) {
                 f * la * la);
 }
 
-inline Dual2 unaryDual(Op op, const Dual2& a) {
+inline D unaryDual(Op op, const D& a) {
   const double x = a.f;
   switch (op) {
     case Op::Neg:
       return chain1(a, -x, -1.0, 0.0);
     case Op::Sin: {
-      const double s = pm::sin(x), c = pm::cos(x);
+      double s, c;
+      pm::sincos(x, s, c);
       return chain1(a, s, c, -s);
     }
     case Op::Cos: {
-      const double s = pm::sin(x), c = pm::cos(x);
+      double s, c;
+      pm::sincos(x, s, c);
       return chain1(a, c, -s, -c);
     }
     case Op::Tan: {
@@ -226,7 +219,7 @@ inline Dual2 unaryDual(Op op, const Dual2& a) {
   }
 }
 
-inline Dual2 binaryDual(Op op, const Dual2& a, const Dual2& b) {
+inline D binaryDual(Op op, const D& a, const D& b) {
   switch (op) {
     case Op::Add:
       return chain2(a, b, a.f + b.f, 1.0, 1.0, 0.0, 0.0, 0.0);
@@ -353,6 +346,7 @@ class ExpressionCompiler {
       emit(Op::PowConst, idx);
       return;
     }
+    if (op == Op::Pow) e_.hasPow_ = true;
     emit(op);
   }
 
@@ -582,6 +576,35 @@ double Expression::value(double u, double v) const {
         stack[top] = c == 2.0 ? stack[top] * stack[top] : pm::pow(stack[top], c);
         break;
       }
+      // The arithmetic and the common functions in line (applyScalar() is not inlined).
+      case Op::Add:
+        stack[top - 1] += stack[top];
+        --top;
+        break;
+      case Op::Sub:
+        stack[top - 1] -= stack[top];
+        --top;
+        break;
+      case Op::Mul:
+        stack[top - 1] *= stack[top];
+        --top;
+        break;
+      case Op::Div:
+        stack[top - 1] /= stack[top];
+        --top;
+        break;
+      case Op::Neg:
+        stack[top] = -stack[top];
+        break;
+      case Op::Sin:
+        stack[top] = pm::sin(stack[top]);
+        break;
+      case Op::Cos:
+        stack[top] = pm::cos(stack[top]);
+        break;
+      case Op::Exp:
+        stack[top] = pm::exp(stack[top]);
+        break;
       default:
         if (isBinary(in.op)) {
           stack[top - 1] = applyScalar(in.op, stack[top - 1], stack[top]);
@@ -595,21 +618,21 @@ double Expression::value(double u, double v) const {
 }
 
 Dual2 Expression::evaluate(double u, double v) const {
-  Dual2 stack[kMaxStack];
+  D stack[kMaxStack];
   int top = -1;
   for (const Instr& in : code_) {
     switch (in.op) {
       case Op::Const:
-        stack[++top] = Dual2{constants_[in.arg], 0, 0, 0, 0, 0};
+        stack[++top] = D{constants_[in.arg], 0, 0, 0, 0, 0};
         break;
       case Op::U:
-        stack[++top] = Dual2{u, 1, 0, 0, 0, 0};
+        stack[++top] = D{u, 1, 0, 0, 0, 0};
         break;
       case Op::V:
-        stack[++top] = Dual2{v, 0, 1, 0, 0, 0};
+        stack[++top] = D{v, 0, 1, 0, 0, 0};
         break;
       case Op::Param:
-        stack[++top] = Dual2{paramValues_[in.arg], 0, 0, 0, 0, 0};
+        stack[++top] = D{paramValues_[in.arg], 0, 0, 0, 0, 0};
         break;
       case Op::PowConst:
         stack[top] = powConst(stack[top], constants_[in.arg]);
@@ -623,7 +646,8 @@ Dual2 Expression::evaluate(double u, double v) const {
         }
     }
   }
-  return stack[0];
+  const D& r = stack[0];
+  return Dual2{r.f, r.fu, r.fv, r.fuu, r.fuv, r.fvv};
 }
 
 }  // namespace anisomesh

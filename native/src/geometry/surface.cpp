@@ -109,6 +109,16 @@ SurfaceDerivatives HeightFieldSurface::derivatives(const Vec2& uv) const {
   return d;
 }
 
+SurfaceDerivatives HeightFieldSurface::firstDerivatives(const Vec2& uv) const {
+  const Dual1 z = f_.evaluateFirst(uv.x(), uv.y());
+  SurfaceDerivatives d;
+  d.p = Vec3(uv.x(), uv.y(), z.f);
+  d.su = Vec3(1, 0, z.fu);
+  d.sv = Vec3(0, 1, z.fv);
+  checkFinite(d, uv);
+  return d;
+}
+
 // --- Cylinder ------------------------------------------------------------------------------
 
 CylinderSurface::CylinderSurface(double radius, const Vec3& center, const Box2& domain)
@@ -383,6 +393,20 @@ SurfaceDerivatives ExpressionSurface::derivatives(const Vec2& uv) const {
     d.suu[c] = r.fuu;
     d.suv[c] = r.fuv;
     d.svv[c] = r.fvv;
+  }
+  return d;
+}
+
+SurfaceDerivatives ExpressionSurface::firstDerivatives(const Vec2& uv) const {
+  SurfaceDerivatives d;
+  for (int c = 0; c < 3; ++c) {
+    const Dual1 r = f_[c].evaluateFirst(uv.x(), uv.y());
+    if (!(std::isfinite(r.f) && std::isfinite(r.fu) && std::isfinite(r.fv)))
+      throw Error(ErrorCode::InvalidSurface, std::string(1, "xyz"[c]) + "(u,v) = " + f_[c].text() +
+                                                 " or its derivatives are NaN or infinite on " + where(uv));
+    d.p[c] = r.f;
+    d.su[c] = r.fu;
+    d.sv[c] = r.fv;
   }
   return d;
 }

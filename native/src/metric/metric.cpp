@@ -23,6 +23,21 @@ SymEigen2 symEigen(const Mat2& m) {
   return {mean + r, mean - r, 0.5 * pm::atan2(2.0 * b, a - c)};
 }
 
+// The eigenvalues only (theta left 0): the same l1, l2 as symEigen() without its
+// atan2, which costs more than the rest (most callers compare eigenvalues only).
+SymEigen2 symEigenValues(const Mat2& m) {
+  const double a = m(0, 0), b = 0.5 * (m(0, 1) + m(1, 0)), c = m(1, 1);
+  const double mean = 0.5 * (a + c), half = 0.5 * (a - c);
+  const double r = pm::hypot(half, b);
+  return {mean + r, mean - r, 0.0};
+}
+
+// symEigen(m).theta.
+double symEigenAngle(const Mat2& m) {
+  const double a = m(0, 0), b = 0.5 * (m(0, 1) + m(1, 0)), c = m(1, 1);
+  return 0.5 * pm::atan2(2.0 * b, a - c);
+}
+
 Mat2 fromEigen(double l1, double l2, double theta) {
   const double c = pm::cos(theta), s = pm::sin(theta);
   Mat2 m;
@@ -46,7 +61,7 @@ void checkSpd(const Mat2& m, const char* what) {
   const double scale = m.cwiseAbs().maxCoeff();
   if (!(std::abs(m(0, 1) - m(1, 0)) <= 1e-12 * scale))
     throw Error(ErrorCode::InvalidMetric, std::string(what) + " is not symmetric: " + describe(m));
-  const SymEigen2 e = symEigen(m);
+  const SymEigen2 e = symEigenValues(m);
   if (!(e.l2 > 0.0 && std::isfinite(1.0 / std::sqrt(e.l2))))
     throw Error(ErrorCode::InvalidMetric, std::string(what) + " is not positive definite: " + describe(m));
 }
@@ -109,8 +124,10 @@ MetricSizes Metric::sizes() const {
   return {alpha, 1.0 / e.l1, 1.0 / e.l2};
 }
 
+double Metric::smallestSize() const { return 1.0 / symEigenValues(mt_).l1; }
+
 double Metric::aspectRatio() const {
-  const SymEigen2 e = symEigen(mt_);
+  const SymEigen2 e = symEigenValues(mt_);
   return e.l1 / e.l2;
 }
 
@@ -118,10 +135,10 @@ Metric intersect(const Metric& a, const Metric& b) {
   // N = Mt_a^-1 M_b Mt_a^-1 is symmetric; its eigenvectors give the common basis.
   const Mat2 ia = a.transform().inverse();
   const Mat2 n = ia * b.tensor() * ia;
-  const SymEigen2 e = symEigen(n);
+  const SymEigen2 e = symEigenValues(n);
   if (e.l2 >= 1.0) return b;  // b is at least as fine in every direction
   if (e.l1 <= 1.0) return a;  // a is at least as fine in every direction
-  const Mat2 q = fromEigen(std::max(e.l1, 1.0), std::max(e.l2, 1.0), e.theta);
+  const Mat2 q = fromEigen(std::max(e.l1, 1.0), std::max(e.l2, 1.0), symEigenAngle(n));
   const Mat2 m = a.transform() * q * a.transform();
   return Metric::fromTransformUnchecked(sqrtSpd(m));
 }
@@ -129,7 +146,7 @@ Metric intersect(const Metric& a, const Metric& b) {
 bool metricInside(const Metric& a, const Metric& b) {
   // Same test as intersect(b, a)'s first branch.
   const Mat2 ib = b.transform().inverse();
-  return symEigen(ib * a.tensor() * ib).l2 >= 1.0;
+  return symEigenValues(ib * a.tensor() * ib).l2 >= 1.0;
 }
 
 Metric interpolate(const Metric& a, const Metric& b, double t) {
@@ -149,7 +166,7 @@ Metric weightedAverage(const Metric* metrics, const double* weights, int n) {
 
 double difference(const Metric& a, const Metric& b) {
   const Mat2 ia = a.transform().inverse();
-  const SymEigen2 e = symEigen(ia * b.tensor() * ia);
+  const SymEigen2 e = symEigenValues(ia * b.tensor() * ia);
   return std::max(std::sqrt(e.l1), 1.0 / std::sqrt(e.l2)) - 1.0;
 }
 

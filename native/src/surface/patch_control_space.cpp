@@ -4,6 +4,7 @@
 #include "model_mesher.h"
 
 #include "anisomesh/pipeline/element_estimate.h"
+#include "curvature_stage_cache.h"
 
 namespace anisomesh {
 namespace surface_mesher {
@@ -60,15 +61,16 @@ std::vector<MetricSource> contourCurvatureSources(const SurfacePatch& patch, con
   return out;
 }
 
-}  // namespace
-
-std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& patch,
-                                                            const std::vector<Source3D>& sources3d,
-                                                            const SurfaceMeshOptions& o, Counters& counters) {
+// Section 3.1, curvature stage: the main-level grid from the surface's curvature (and the
+// 3D sources), extrapolated where the surface is degenerate, then leaves split while the
+// metric varies. counters.curvature grows by the evaluations made.
+std::unique_ptr<AdaptiveControlSpace> buildCurvatureStage(const SurfacePatch& patch,
+                                                          const std::vector<Source3D>& sources3d,
+                                                          const SurfaceMeshOptions& o,
+                                                          const SurfaceMetricOptions& sizing, const QuadtreeOptions& qo,
+                                                          const ControlSpaceLimits& limits, const Metric& fallback,
+                                                          Counters& counters) {
   const Surface& surf = *patch.surface;
-  SurfaceMetricOptions sizing = o.metric;
-  require(std::isfinite(o.chordSafety) && o.chordSafety > 0.0, ErrorCode::InvalidArgument, "chordSafety must be > 0");
-  sizing.chordTolerance /= o.chordSafety * o.chordSafety;
   SurfaceCurvatureControlSpace curv(patch.surface, sizing);
   if (!sources3d.empty()) {
     const double hmax = o.metric.hmax;
@@ -87,14 +89,7 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
     return m;
   };
 
-  QuadtreeOptions qo;
-  qo.initialLevel = o.initialLevel;
-  qo.maxLevel = o.maxLevel;
   auto cs = std::make_unique<QuadtreeControlSpace>(surf.domain(), qo);
-  // The same bounds as planar cases: a node budget from the element budget, cancellable.
-  ControlSpaceLimits limits;
-  limits.maxNodes = o.maxControlNodes > 0 ? o.maxControlNodes : controlSpaceNodeBudget(o.mesher.maxElements);
-  limits.progress = o.mesher.progress;
   cs->setLimits(limits);
   // Main-level grid: curvature where available, extrapolation elsewhere (section 3.1).
   for (int i = 0; i < cs->nodeCount(); ++i) {
@@ -104,7 +99,6 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
     else
       cs->clearNodeInitialized(i);
   }
-  const Metric fallback = Metric::isotropic(0.1 * surf.domain().size().norm());
   extrapolateMetric(*cs, fallback);
   cs->applyConstraints();
 
@@ -118,7 +112,7 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
         double hsmall = std::numeric_limits<double>::infinity();
         for (int k = 0; k < 4; ++k) {
           corners[k] = cs->nodeMetric(e.nodes[k]);
-          hsmall = std::min(hsmall, corners[k].sizes().h1);
+          hsmall = std::min(hsmall, corners[k].smallestSize());
         }
         if (e.size <= 0.5 * hsmall) return false;
         for (int a = 0; a < 4; ++a)
@@ -134,6 +128,40 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
             if (auto m = eval(cs->nodePosition(i))) cs->setNodeMetric(i, *m);
       });
   cs->applyConstraints();
+  return cs;
+}
+
+}  // namespace
+
+std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& patch,
+                                                            const std::vector<Source3D>& sources3d,
+                                                            const SurfaceMeshOptions& o, Counters& counters) {
+  const Surface& surf = *patch.surface;
+  SurfaceMetricOptions sizing = o.metric;
+  require(std::isfinite(o.chordSafety) && o.chordSafety > 0.0, ErrorCode::InvalidArgument, "chordSafety must be > 0");
+  sizing.chordTolerance /= o.chordSafety * o.chordSafety;
+  QuadtreeOptions qo;
+  qo.initialLevel = o.initialLevel;
+  qo.maxLevel = o.maxLevel;
+  // The same bounds as planar cases: a node budget from the element budget, cancellable.
+  ControlSpaceLimits limits;
+  limits.maxNodes = o.maxControlNodes > 0 ? o.maxControlNodes : controlSpaceNodeBudget(o.mesher.maxElements);
+  limits.progress = o.mesher.progress;
+  const Metric fallback = Metric::isotropic(0.1 * surf.domain().size().norm());
+  // The curvature stage (below) reads only the surface, the sizing and the 3D sources: a
+  // run with the same ones (a 2D source dragged) starts from a copy of its result.
+  const std::string stageKey = curvatureStageKey(surf, sizing, sources3d, qo, o.refineThreshold, limits.maxNodes);
+  CurvatureStage stage = findCurvatureStage(stageKey);
+  std::unique_ptr<AdaptiveControlSpace> cs;
+  if (stage.space) {
+    cs = std::move(stage.space);
+    cs->setLimits(limits);
+    counters.curvature += stage.evaluations;
+  } else {
+    const long long before = counters.curvature;
+    cs = buildCurvatureStage(patch, sources3d, o, sizing, qo, limits, fallback, counters);
+    storeCurvatureStage(stageKey, *cs, counters.curvature - before);
+  }
   std::vector<MetricSource> sources = patch.sources;
   if (o.contourCurvature) {
     const auto contour = contourCurvatureSources(patch, sizing);

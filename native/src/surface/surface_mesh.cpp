@@ -243,8 +243,9 @@ Mesh ModelMesher::meshPatches() {
       gid[i] = g;
       if (defined[size_t(g)] < 0) {
         const Vec3 x = surf.point(uv);
-        require(x.allFinite(), ErrorCode::InvalidSurface,
-                patchLabel(patch, int(p)) + ": S(u, v) is NaN or infinite at " + fmtUv(uv));
+        if (!x.allFinite())  // (not require(): the message would be formatted for every vertex)
+          throw Error(ErrorCode::InvalidSurface,
+                      patchLabel(patch, int(p)) + ": S(u, v) is NaN or infinite at " + fmtUv(uv));
         out.points[size_t(g)] = x;
         out.params[size_t(g)] = uv;
         defined[size_t(g)] = int(p);
@@ -278,8 +279,8 @@ Mesh ModelMesher::meshPatches() {
       }
     }
     auto uvOfLocal = [&](int i) { return pm.params[size_t(i)]; };
-    auto metric3 = [&](const Vec2& uv) {
-      const SurfaceDerivatives d = surf.derivatives(uv);
+    auto metric3 = [&](const Vec2& uv) {  // (needs Su, Sv only)
+      const SurfaceDerivatives d = surf.firstDerivatives(uv);
       return metric3DFromParameter(cs.metricAt(uv), d);
     };
     // Edge statistics once per merged edge.

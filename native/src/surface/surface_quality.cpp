@@ -26,7 +26,7 @@ double normalChordDeviation(const Surface& s, const Vec2& u0, const Vec2& u1, co
   double worst = 0.0;
   for (int i = 1; i <= 7; ++i) {
     const double t = i / 8.0;
-    const SurfaceDerivatives d = s.derivatives((1.0 - t) * u0 + t * u1);
+    const SurfaceDerivatives d = s.firstDerivatives((1.0 - t) * u0 + t * u1);
     const Vec3 n = d.su.cross(d.sv);
     if (!(n.norm() > 0)) continue;
     worst = std::max(worst, std::abs(n.normalized().dot(d.p - ((1.0 - t) * x0 + t * x1))));
@@ -42,7 +42,7 @@ double normalTriangleDeviation(const Surface& s, const Vec2 u[3], const Vec3 x[3
   for (int i = 1; i <= 4; ++i)
     for (int j = 1; i + j <= 5; ++j) {
       const double a = i / 6.0, b = j / 6.0, c = 1.0 - a - b;
-      const SurfaceDerivatives d = s.derivatives(a * u[0] + b * u[1] + c * u[2]);
+      const SurfaceDerivatives d = s.firstDerivatives(a * u[0] + b * u[1] + c * u[2]);
       const Vec3 n = d.su.cross(d.sv);
       if (!(n.norm() > 0)) continue;
       worst = std::max(worst, std::abs(n.normalized().dot(d.p - (a * x[0] + b * x[1] + c * x[2]))));

@@ -553,6 +553,37 @@ inline double cos(double x) {
   }
 }
 
+// sin(x) and cos(x) with one argument reduction: the same bits as pm::sin(x), pm::cos(x).
+inline void sincos(double x, double& s, double& c) {
+  if (!std::isfinite(x)) {
+    s = c = x - x;
+    return;
+  }
+  double rh, rl;
+  const int q = detail::trigReduce(std::fabs(x), rh, rl);
+  const double sk = detail::sinKernel(rh, rl), ck = detail::cosKernel(rh, rl);
+  double v;
+  switch (q) {
+    case 0:
+      v = sk;
+      c = ck;
+      break;
+    case 1:
+      v = ck;
+      c = -sk;
+      break;
+    case 2:
+      v = -sk;
+      c = -ck;
+      break;
+    default:
+      v = -ck;
+      c = sk;
+      break;
+  }
+  s = x < 0 ? -v : (x == 0 ? x : v);
+}
+
 inline double tan(double x) {
   if (!std::isfinite(x)) return x - x;
   if (x == 0.0) return x;

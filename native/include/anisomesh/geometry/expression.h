@@ -35,6 +35,12 @@ struct Dual2 {
   double fuu = 0.0, fuv = 0.0, fvv = 0.0;  // second derivatives
 };
 
+// Value and gradient only.
+struct Dual1 {
+  double f = 0.0;             // value
+  double fu = 0.0, fv = 0.0;  // first derivatives
+};
+
 struct ExpressionOptions {
   // Name used as the prefix of error messages, e.g. "x(u,v)" gives "x(u,v): unknown variable 'w'".
   std::string name = "expression";
@@ -59,6 +65,9 @@ class Expression {
   double value(double u, double v) const;
   // f(u, v) with exact first and second derivatives.
   Dual2 evaluate(double u, double v) const;
+  // f(u, v) with its first derivatives: the same bits as evaluate()'s f, fu, fv, at about
+  // half the cost (no second-order terms). Non-finite second derivatives go unnoticed.
+  Dual1 evaluateFirst(double u, double v) const;
 
   // Changes the value of a named parameter; throws InvalidArgument if the name was not declared.
   void setParameter(const std::string& name, double value);
@@ -71,6 +80,9 @@ class Expression {
   const std::string& name() const { return name_; }
   // True when the formula does not depend on u or v (after constant folding).
   bool isConstant() const;
+  // The compiled program, its constants and parameter values as exact bits, the text and
+  // the name: equal identities evaluate to the same bits (and the same messages).
+  std::string identity() const;
   // Number of bytecode instructions (for tests and diagnostics).
   size_t instructionCount() const { return code_.size(); }
 
@@ -120,6 +132,7 @@ class Expression {
   std::vector<double> constants_;
   std::vector<std::string> paramNames_;
   std::vector<double> paramValues_;
+  bool hasPow_ = false;  // a^b with b not a constant: evaluateFirst() goes through evaluate()
 };
 
 }  // namespace anisomesh

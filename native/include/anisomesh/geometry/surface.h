@@ -45,6 +45,14 @@ class Surface {
   virtual Vec3 point(const Vec2& uv) const = 0;
   // S and its derivatives up to second order; throws InvalidSurface on NaN/infinite values.
   virtual SurfaceDerivatives derivatives(const Vec2& uv) const = 0;
+  // S, Su and Sv with the bits derivatives() gives them, for measures that need no
+  // curvature; surfaces that can skip the second derivatives leave them zero and check
+  // only S, Su, Sv for NaN/infinite values (throws InvalidSurface).
+  virtual SurfaceDerivatives firstDerivatives(const Vec2& uv) const { return derivatives(uv); }
+  // A text naming the surface exactly (kind, name, domain and parameters as exact bits),
+  // or "" for a surface without one: equal non-empty identities mean surfaces that give
+  // the same bits everywhere (and the same messages), so results may be reused.
+  virtual std::string identity() const { return ""; }
 
   // Su.
   Vec3 du(const Vec2& uv) const { return derivatives(uv).su; }
@@ -82,6 +90,7 @@ class PlaneSurface : public Surface {
   PlaneSurface(const Vec3& origin, const Vec3& a1, const Vec3& a2, const Box2& domain = {{0, 0}, {1, 1}});
   Vec3 point(const Vec2& uv) const override;
   SurfaceDerivatives derivatives(const Vec2& uv) const override;
+  std::string identity() const override;
 
  private:
   Vec3 o_, a1_, a2_;
@@ -95,6 +104,8 @@ class HeightFieldSurface : public Surface {
   HeightFieldSurface(const std::string& f, const Box2& domain, std::string name = "height field");
   Vec3 point(const Vec2& uv) const override;
   SurfaceDerivatives derivatives(const Vec2& uv) const override;
+  std::string identity() const override;
+  SurfaceDerivatives firstDerivatives(const Vec2& uv) const override;
 
  private:
   Expression f_;
@@ -108,6 +119,7 @@ class CylinderSurface : public Surface {
                            const Box2& domain = {{0.0, 0.0}, {6.283185307179586, 1.0}});
   Vec3 point(const Vec2& uv) const override;
   SurfaceDerivatives derivatives(const Vec2& uv) const override;
+  std::string identity() const override;
   double radius() const { return r_; }
 
  private:
@@ -124,6 +136,7 @@ class SphereSurface : public Surface {
                          const Box2& domain = {{0.0, -1.4}, {6.283185307179586, 1.4}});
   Vec3 point(const Vec2& uv) const override;
   SurfaceDerivatives derivatives(const Vec2& uv) const override;
+  std::string identity() const override;
   double radius() const { return r_; }
 
  private:
@@ -140,6 +153,7 @@ class TorusSurface : public Surface {
                const Box2& domain = {{0.0, 0.0}, {6.283185307179586, 6.283185307179586}});
   Vec3 point(const Vec2& uv) const override;
   SurfaceDerivatives derivatives(const Vec2& uv) const override;
+  std::string identity() const override;
 
  private:
   double R_, r_;
@@ -153,6 +167,7 @@ class BezierPatchSurface : public Surface {
                               std::string name = "bezier patch");
   Vec3 point(const Vec2& uv) const override;
   SurfaceDerivatives derivatives(const Vec2& uv) const override;
+  std::string identity() const override;
 
  private:
   std::array<std::array<Vec3, 4>, 4> cp_;
@@ -167,6 +182,7 @@ class BSplinePatchSurface : public Surface {
                       std::string name = "b-spline patch");
   Vec3 point(const Vec2& uv) const override;
   SurfaceDerivatives derivatives(const Vec2& uv) const override;
+  std::string identity() const override;
 
  private:
   std::vector<std::vector<Vec3>> cp_;
@@ -184,6 +200,8 @@ class ExpressionSurface : public Surface {
                     std::string name = "expression surface");
   Vec3 point(const Vec2& uv) const override;
   SurfaceDerivatives derivatives(const Vec2& uv) const override;
+  std::string identity() const override;
+  SurfaceDerivatives firstDerivatives(const Vec2& uv) const override;
 
  private:
   std::array<Expression, 3> f_;

@@ -44,6 +44,8 @@ class Metric {
   double sizeAlong(const Vec2& dir) const { return dir.norm() / length(dir); }
   // Decomposition into (alpha, h1, h2) with h1 <= h2 and alpha in (-pi/2, pi/2].
   MetricSizes sizes() const;
+  // sizes().h1 (the smallest requested size) without computing the direction.
+  double smallestSize() const;
   // Ratio of the larger to the smaller requested size (>= 1).
   double aspectRatio() const;
   // The metric whose requested sizes are s times this one's (tensor M / s^2): "sM" of eqs. 8-9.

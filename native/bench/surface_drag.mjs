@@ -1,0 +1,58 @@
+#!/usr/bin/env node
+// Surface drag benchmark: the page worker's meshCase call (measures, stats, patch
+// parameters) on "Surface p2 with holes" with a radial source, as is (~5.8k triangles)
+// and refined (chord tolerance 0.0025, hmax 0.3: ~53k), and on every surface example,
+// in one wasm instance: the first run, then runs with the source moved as a drag moves
+// it (the core keeps each patch's curvature stage between them). Prints process CPU and
+// wall ms per run kind (best of the drag runs), so a loaded machine still gives usable
+// figures. A different build (e.g. a saved wasm/dist) can be named for a before/after.
+//
+// Usage: node native/bench/surface_drag.mjs [--dist DIR] [--runs N]
+import { readFileSync, readdirSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { wrapCore } from '../../wasm/api.js';
+
+const root = fileURLToPath(new URL('../..', import.meta.url));
+const args = process.argv.slice(2);
+const opt = (name, fallback) => (args.includes(name) ? args[args.indexOf(name) + 1] : fallback);
+const dist = opt('--dist', join(root, 'wasm/dist'));
+const runs = Number(opt('--runs', 4));
+const { default: create } = await import(join(dist, 'anisomesh-core.js'));
+const am = wrapCore(await create({ wasmBinary: readFileSync(join(dist, 'anisomesh-core.wasm')) }));
+
+const surfaceDir = join(root, 'examples/surface');
+const p2 = JSON.parse(readFileSync(join(surfaceDir, 'surface_p2_holes.json'), 'utf8'));
+const withSource = (c, x) => {
+  const out = structuredClone(c);
+  out.patches[0].sources = [{ type: 'radial', center: [x, 0], metric: { alpha: 0, h1: 0.15, h2: 0.15 }, radius: 1.5 }];
+  return out;
+};
+const refined = structuredClone(p2);
+Object.assign(refined.metric, { chordTolerance: 0.0025, hmax: 0.3 });
+const cases = [
+  ['p2 with holes + radial source', (k) => withSource(p2, 0.1 * k)],
+  ['p2 refined + radial source', (k) => withSource(refined, 0.1 * k)],
+  ...readdirSync(surfaceDir).filter((f) => f.endsWith('.json')).sort().map((f) => {
+    const c = JSON.parse(readFileSync(join(surfaceDir, f), 'utf8'));
+    return [f, () => c];
+  }),
+];
+
+const cpuMs = (c0) => { const d = process.cpuUsage(c0); return (d.user + d.system) / 1000; };
+console.log(`wasm: ${dist}`);
+console.log('case'.padEnd(34), 'triangles', 'first run CPU (wall) ms', 'later runs best CPU (wall) ms');
+for (const [name, make] of cases) {
+  let first = null, best = null, tris = 0;
+  for (let k = 0; k < runs; k++) {
+    const c = make(k);
+    const c0 = process.cpuUsage(), t0 = performance.now();
+    const r = am.meshCase(c, { measures: true, stats: true, patchParams: true });
+    const sample = { cpu: cpuMs(c0), wall: performance.now() - t0 };
+    tris = r.mesh.triangles.length / 3;
+    if (k === 0) first = sample;
+    else if (!best || sample.cpu < best.cpu) best = sample;
+  }
+  const f = (s) => (s ? `${s.cpu.toFixed(0)} (${s.wall.toFixed(0)})` : '-');
+  console.log(name.padEnd(34), String(tris).padStart(9), f(first).padStart(23), f(best).padStart(29));
+}

@@ -1,0 +1,105 @@
+// Surface meshing: the cache of patch control spaces after their curvature stage (see
+// curvature_stage_cache.h). A few entries (a drag touches one patch; two-patch cases
+// have two), least recently used out first, behind a mutex (patches may be built on
+// several threads).
+#include "curvature_stage_cache.h"
+
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+
+namespace anisomesh {
+namespace surface_mesher {
+
+namespace {
+
+void appendBits(std::string& out, double x) {
+  std::uint64_t u;
+  std::memcpy(&u, &x, sizeof u);
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016" PRIx64 " ", u);
+  out += buf;
+}
+
+struct Entry {
+  std::string key;
+  std::unique_ptr<AdaptiveControlSpace> space;
+  long long evaluations = 0;
+  std::uint64_t used = 0;
+};
+
+constexpr size_t kEntries = 4;
+
+struct Cache {
+  std::mutex mutex;
+  std::vector<Entry> entries;
+  std::uint64_t clock = 0;
+};
+
+Cache& cache() {
+  static Cache c;
+  return c;
+}
+
+}  // namespace
+
+std::string curvatureStageKey(const Surface& surface, const SurfaceMetricOptions& sizing,
+                              const std::vector<Source3D>& sources3d, const QuadtreeOptions& quadtree,
+                              double refineThreshold, std::int64_t maxNodes) {
+  const std::string id = surface.identity();
+  if (id.empty() || quadtree.initialMetric) return "";
+  std::string key = id + "|";
+  for (double x :
+       {sizing.chordTolerance, sizing.angleTolerance, sizing.hmin, sizing.hmax, sizing.maxAspectRatio, refineThreshold})
+    appendBits(key, x);
+  key += std::to_string(quadtree.initialLevel) + ' ' + std::to_string(quadtree.maxLevel) + ' ' +
+         std::to_string(int(quadtree.interpolation)) + ' ' + std::to_string(maxNodes) + '|';
+  for (const Source3D& s : sources3d) {
+    for (int k = 0; k < 3; ++k) appendBits(key, s.center[k]);
+    appendBits(key, s.h);
+    appendBits(key, s.radius);
+  }
+  return key;
+}
+
+CurvatureStage findCurvatureStage(const std::string& key) {
+  CurvatureStage out;
+  if (key.empty()) return out;
+  Cache& c = cache();
+  const std::lock_guard<std::mutex> lock(c.mutex);
+  for (Entry& e : c.entries)
+    if (e.key == key) {
+      e.used = ++c.clock;
+      out.space = e.space->clone();
+      out.evaluations = e.evaluations;
+      break;
+    }
+  return out;
+}
+
+void storeCurvatureStage(const std::string& key, const AdaptiveControlSpace& cs, long long evaluations) {
+  if (key.empty()) return;
+  std::unique_ptr<AdaptiveControlSpace> copy = cs.clone();
+  ControlSpaceLimits limits;
+  limits.maxNodes = cs.limits().maxNodes;
+  copy->setLimits(limits);  // the run's progress callback must not outlive it
+  Cache& c = cache();
+  const std::lock_guard<std::mutex> lock(c.mutex);
+  Entry* slot = nullptr;
+  for (Entry& e : c.entries)
+    if (e.key == key) slot = &e;
+  if (!slot && c.entries.size() < kEntries) slot = &c.entries.emplace_back();
+  if (!slot) {
+    slot = &c.entries.front();
+    for (Entry& e : c.entries)
+      if (e.used < slot->used) slot = &e;
+  }
+  slot->key = key;
+  slot->space = std::move(copy);
+  slot->evaluations = evaluations;
+  slot->used = ++c.clock;
+}
+
+}  // namespace surface_mesher
+}  // namespace anisomesh

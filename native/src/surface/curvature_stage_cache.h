@@ -1,0 +1,36 @@
+#pragma once
+// Surface meshing (internal): the control space of a patch after its curvature stage
+// (main-level grid and refinement on the surface's curvature and the 3D sources, before
+// the 2D sources, contour curvature and gradation) kept from earlier runs. While a 2D
+// source is dragged on a patch, the surface and its sizing stay the same, so every run
+// after the first starts from a copy instead of evaluating the curvature again. The key
+// holds everything the stage reads, as exact bits: a hit gives the same bits as a build.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "anisomesh/controlspace/adaptive_control_space.h"
+#include "anisomesh/controlspace/quadtree_control_space.h"
+#include "anisomesh/geometry/surface_metric.h"
+#include "anisomesh/surface/surface_mesh.h"
+
+namespace anisomesh {
+namespace surface_mesher {
+
+struct CurvatureStage {
+  std::unique_ptr<AdaptiveControlSpace> space;  // null: not stored
+  long long evaluations = 0;                    // curvature evaluations the stage made (for the report)
+};
+
+// The key of the stage, or "" when the surface has no identity (then nothing is kept).
+std::string curvatureStageKey(const Surface& surface, const SurfaceMetricOptions& sizing,
+                              const std::vector<Source3D>& sources3d, const QuadtreeOptions& quadtree,
+                              double refineThreshold, std::int64_t maxNodes);
+// A copy of the stage stored under key (limits cleared: the caller sets its own), if any.
+CurvatureStage findCurvatureStage(const std::string& key);
+// Keeps a copy of cs (without its limits' progress callback) under key; the last few keys only.
+void storeCurvatureStage(const std::string& key, const AdaptiveControlSpace& cs, long long evaluations);
+
+}  // namespace surface_mesher
+}  // namespace anisomesh
