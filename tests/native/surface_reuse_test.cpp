@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "anisomesh/geometry/surface.h"
-#include "anisomesh/surface/surface_case_json.h"
+#include "anisomesh/io/case_json.h"
+#include "anisomesh/io/run_case.h"
+#include "anisomesh/pipeline/pipeline.h"
 #include "anisomesh/surface/surface_mesh.h"
 
 namespace {
