@@ -142,10 +142,14 @@ int runRemesh(Args& args) {
   log.start("read");
   Mesh in;  // .mesh, .msh, .vtk or .obj by extension; the .sol read beside it
   SolData solData;
-  parallelInvoke([&] { in = readMeshFile(input); },
-                 [&] {
-                   if (!sol.empty()) solData = readSolFile(sol);
-                 });
+  // One file after the other (each parsed in parallel chunks): the two texts are never
+  // held at once (the read stage's memory peak).
+  in = readMeshFile(input);
+  // remesh reads the input's points, elements, edges and edge references only.
+  std::vector<int>().swap(in.pointRefs);
+  std::vector<int>().swap(in.triangleRefs);
+  std::vector<int>().swap(in.quadRefs);
+  if (!sol.empty()) solData = readSolFile(sol);
   const std::vector<Metric> metrics = !sol.empty() ? solToMetrics(solData, in.vertexCount())
                                       : hsiz > 0   ? uniformMetrics(in, hsiz)
                                                    : edgeLengthMetrics(in);

@@ -88,14 +88,18 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) ++cellStart_[cellIndex(x, y) + 1];
   }
+  // cellStart_[c + 1] = the end of cell c; filled backwards from the ends (triangles in
+  // decreasing order), each ends at its start with the triangles in increasing order.
   for (size_t c = 1; c < cellStart_.size(); ++c) cellStart_[c] += cellStart_[c - 1];
   cellTris_.resize(size_t(cellStart_.back()));
-  std::vector<int> fill(cellStart_.begin(), cellStart_.end() - 1);
-  for (int i = 0; i < int(triCount_); ++i) {
+  for (int i = int(triCount_) - 1; i >= 0; --i) {
     range(tris_[i], &x0, &x1, &y0, &y1);
     for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) cellTris_[size_t(fill[cellIndex(x, y)]++)] = i;
+      for (int x = x0; x <= x1; ++x) cellTris_[size_t(--cellStart_[cellIndex(x, y) + 1])] = i;
   }
+  // Now cellStart_[c + 1] is the start of cell c: shifted down by one cell.
+  for (size_t c = 0; c + 1 < cellStart_.size(); ++c) cellStart_[c] = cellStart_[c + 1];
+  cellStart_.back() = int(cellTris_.size());
   coveredSum_.assign(size_t(nx_ + 1) * (ny_ + 1), 0);
   for (int y = 0; y < ny_; ++y)
     for (int x = 0; x < nx_; ++x) {
