@@ -110,9 +110,17 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace,
   double lsum = 0.0;
   int in1 = 0, in2 = 0;
   r.edgeLengthMin = edges.empty() ? 0.0 : std::numeric_limits<double>::infinity();
+  // The per-edge and per-triangle measures in parallel chunks, their sums, counts and
+  // extremes in element order on this thread: the same bits for any thread count.
+  std::vector<double> lengths(edges.size());
+  parallelChunks(edges.size(), 16384, [&](size_t, size_t b, size_t e) {
+    for (size_t k = b; k < e; ++k) {
+      const int p = edges[k][0], q = edges[k][1];
+      lengths[k] = SymMt::average2(mt[p], mt[q]).length(uv[q] - uv[p]);
+    }
+  });
   for (size_t e = 0; e < edges.size(); ++e) {
-    const int a = edges[e][0], b = edges[e][1];
-    const double l = SymMt::average2(mt[a], mt[b]).length(uv[b] - uv[a]);
+    const double l = lengths[e];
     if (perItem) perItem->edgeLength[e] = l;
     lsum += l;
     r.edgeLengthMin = std::min(r.edgeLengthMin, l);
@@ -128,13 +136,23 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace,
 
   double qsum = 0.0, tsum = 0.0, qdsum = 0.0;
   r.qualityMin = r.triangleQualityMin = r.quadQualityMin = std::numeric_limits<double>::infinity();
-  for (const auto& t : mesh.triangles) {
-    const SymMt m = SymMt::average3(mt[t[0]], mt[t[1]], mt[t[2]]);
-    const double q = metricTriangleQuality(m, uv[t[0]], uv[t[1]], uv[t[2]]);
-    const double o = orient2d(uv[t[0]], uv[t[1]], uv[t[2]]);
-    if (o < 0.0)
+  std::vector<double> quality(mesh.triangles.size());
+  std::vector<std::int8_t> orientation(mesh.triangles.size());  // sign of orient2d
+  parallelChunks(mesh.triangles.size(), 16384, [&](size_t, size_t b, size_t e) {
+    for (size_t k = b; k < e; ++k) {
+      const auto& t = mesh.triangles[k];
+      const SymMt m = SymMt::average3(mt[t[0]], mt[t[1]], mt[t[2]]);
+      quality[k] = metricTriangleQuality(m, uv[t[0]], uv[t[1]], uv[t[2]]);
+      const double o = orient2d(uv[t[0]], uv[t[1]], uv[t[2]]);
+      orientation[k] = static_cast<std::int8_t>(o < 0.0 ? -1 : (o == 0.0 ? 0 : 1));  // NaN: 1, as before
+    }
+  });
+  for (size_t k = 0; k < mesh.triangles.size(); ++k) {
+    const double q = quality[k];
+    const int o = orientation[k];
+    if (o < 0)
       ++r.inverted;
-    else if (o == 0.0 || q < 1e-3)
+    else if (o == 0 || q < 1e-3)
       ++r.degenerate;
     r.triangleQualityMin = std::min(r.triangleQualityMin, q);
     if (perItem) perItem->quality.push_back(q);
