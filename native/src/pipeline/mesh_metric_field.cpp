@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/parallel.h"
 
 namespace anisomesh {
 namespace {
@@ -82,21 +84,36 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
     *y1 = clampedCell((hi.y() - box_.lo.y()) / cell_.y(), ny_);
   };
   cellStart_.assign(size_t(nx_) * ny_ + 1, 0);
-  int x0, x1, y0, y1;
-  for (const std::array<int, 3>* t = tris_; t != trisEnd; ++t) {
-    range(*t, &x0, &x1, &y0, &y1);
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) ++cellStart_[cellIndex(x, y) + 1];
-  }
+  // Each thread owns a band of cell rows and scans every triangle for its rows: the lists
+  // (each cell's triangles in increasing order) do not depend on the bands.
+  const int bands = std::max(1, std::min(threadCount(), ny_));
+  auto perBand = [&](auto&& f) {
+    parallelChunks(size_t(bands), 1, [&](size_t band, size_t, size_t) {
+      const int r0 = int(std::int64_t(ny_) * std::int64_t(band) / bands);
+      const int r1 = int(std::int64_t(ny_) * std::int64_t(band + 1) / bands);
+      f(r0, r1);
+    });
+  };
+  perBand([&](int r0, int r1) {
+    int x0, x1, y0, y1;
+    for (const std::array<int, 3>* t = tris_; t != trisEnd; ++t) {
+      range(*t, &x0, &x1, &y0, &y1);
+      for (int y = std::max(y0, r0); y <= std::min(y1, r1 - 1); ++y)
+        for (int x = x0; x <= x1; ++x) ++cellStart_[cellIndex(x, y) + 1];
+    }
+  });
   // cellStart_[c + 1] = the end of cell c; filled backwards from the ends (triangles in
   // decreasing order), each ends at its start with the triangles in increasing order.
   for (size_t c = 1; c < cellStart_.size(); ++c) cellStart_[c] += cellStart_[c - 1];
   cellTris_.resize(size_t(cellStart_.back()));
-  for (int i = int(triCount_) - 1; i >= 0; --i) {
-    range(tris_[i], &x0, &x1, &y0, &y1);
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) cellTris_[size_t(--cellStart_[cellIndex(x, y) + 1])] = i;
-  }
+  perBand([&](int r0, int r1) {
+    int x0, x1, y0, y1;
+    for (int i = int(triCount_) - 1; i >= 0; --i) {
+      range(tris_[i], &x0, &x1, &y0, &y1);
+      for (int y = std::max(y0, r0); y <= std::min(y1, r1 - 1); ++y)
+        for (int x = x0; x <= x1; ++x) cellTris_[size_t(--cellStart_[cellIndex(x, y) + 1])] = i;
+    }
+  });
   // Now cellStart_[c + 1] is the start of cell c: shifted down by one cell.
   for (size_t c = 0; c + 1 < cellStart_.size(); ++c) cellStart_[c] = cellStart_[c + 1];
   cellStart_.back() = int(cellTris_.size());
