@@ -54,7 +54,7 @@ std::vector<std::array<int, 2>> distinctElementEdges(const Mesh& mesh) {
   std::vector<int> start(n + 1, 0);
   forEachEdge([&](int a, int b) { ++start[size_t(std::min(a, b)) + 1]; });
   for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<int> other(size_t(start[n]));
+  std::vector<int> other(static_cast<size_t>(start[n]));
   {
     std::vector<int> fill(start.begin(), start.end() - 1);
     forEachEdge([&](int a, int b) { other[size_t(fill[size_t(std::min(a, b))]++)] = std::max(a, b); });
@@ -137,22 +137,22 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace,
   double qsum = 0.0, tsum = 0.0, qdsum = 0.0;
   r.qualityMin = r.triangleQualityMin = r.quadQualityMin = std::numeric_limits<double>::infinity();
   std::vector<double> quality(mesh.triangles.size());
-  std::vector<std::int8_t> orientation(mesh.triangles.size());  // sign of orient2d
+  std::vector<std::uint8_t> orientation(mesh.triangles.size());  // orient2d: 0 negative, 1 zero, 2 positive
   parallelChunks(mesh.triangles.size(), 16384, [&](size_t, size_t b, size_t e) {
     for (size_t k = b; k < e; ++k) {
       const auto& t = mesh.triangles[k];
       const SymMt m = SymMt::average3(mt[t[0]], mt[t[1]], mt[t[2]]);
       quality[k] = metricTriangleQuality(m, uv[t[0]], uv[t[1]], uv[t[2]]);
       const double o = orient2d(uv[t[0]], uv[t[1]], uv[t[2]]);
-      orientation[k] = static_cast<std::int8_t>(o < 0.0 ? -1 : (o == 0.0 ? 0 : 1));  // NaN: 1, as before
+      orientation[k] = static_cast<std::uint8_t>(o < 0.0 ? 0 : (o == 0.0 ? 1 : 2));  // NaN: 2, as before
     }
   });
   for (size_t k = 0; k < mesh.triangles.size(); ++k) {
     const double q = quality[k];
-    const int o = orientation[k];
-    if (o < 0)
+    const std::uint8_t o = orientation[k];
+    if (o == 0)
       ++r.inverted;
-    else if (o == 0 || q < 1e-3)
+    else if (o == 1 || q < 1e-3)
       ++r.degenerate;
     r.triangleQualityMin = std::min(r.triangleQualityMin, q);
     if (perItem) perItem->quality.push_back(q);

@@ -56,7 +56,7 @@ double largestNeighbourSizeRatio(const Mesh& mesh) {
   std::vector<int> start(n + 1, 0);
   forEachEdge([&](int a, int b, int) { ++start[size_t(std::min(a, b)) + 1]; });
   for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<Owner> owners(size_t(start[n]));
+  std::vector<Owner> owners(static_cast<size_t>(start[n]));
   {
     std::vector<int> fill(start.begin(), start.end() - 1);
     forEachEdge([&](int a, int b, int e) { owners[size_t(fill[size_t(std::min(a, b))]++)] = {std::max(a, b), e}; });
