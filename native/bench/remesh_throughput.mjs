@@ -5,7 +5,8 @@
 // a straight shear layer rotated by 30 degrees (the domain is the rotated square) and a
 // curved (sinusoidal) front. Prints one table: wall and CPU seconds per stage (from the
 // CLI's -v lines), triangles per second, peak RSS, for 1 and 2 threads; and the quality of
-// every output against the analytic metric (edges in [1/sqrt2, sqrt2], min and mean Q).
+// every output against the analytic metric (edges in [1/sqrt2, sqrt2], min and mean Q);
+// then the peak RSS at the end of each stage (CLIs whose -v lines give it).
 //
 // Usage: node native/bench/remesh_throughput.mjs [--size 1e5,1e6,3e6] [--case boundary,rotated,front]
 //          [--threads 1,2] [--no-bamg] [--bamg-max 1e6] [--keep DIR [--generate-only]]
@@ -212,8 +213,8 @@ function timed(cmd, args, dir) {
   const [wall, user, sys, rssKb] = line.split(' ').slice(1).map(Number);
   const stages = {};
   for (const l of r.stderr.split('\n')) {
-    const m = /^anisomesh: stage (.+?)\s+wall ([\d.]+) s cpu ([\d.]+) s/.exec(l);
-    if (m) stages[m[1]] = { wall: Number(m[2]), cpu: Number(m[3]) };
+    const m = /^anisomesh: stage (.+?)\s+wall ([\d.]+) s cpu ([\d.]+) s(?: rss ([\d.]+) MiB peak ([\d.]+) MiB)?/.exec(l);
+    if (m) stages[m[1]] = { wall: Number(m[2]), cpu: Number(m[3]), ...(m[5] ? { rss: Number(m[4]), peak: Number(m[5]) } : {}) };
   }
   // A CLI without -v: the wall seconds of its --stats report (no CPU split).
   const json = (r.stdout || '').trim().split('\n').filter((l) => l.startsWith('{')).pop();
@@ -308,6 +309,18 @@ const fmt = (cells) => '| ' + cells.map((s, i) => s.padEnd(widths[i])).join(' | 
 console.log(fmt(header));
 console.log('|' + widths.map((w) => '-'.repeat(w + 2)).join('|') + '|');
 for (const l of lines) console.log(fmt(l));
+// Peak RSS so far at the end of each stage (CLIs whose -v lines carry it)
+const rssRows = rows.filter((r) => r.stages && Object.values(r.stages).some((x) => x.peak !== undefined));
+if (rssRows.length) {
+  console.log('');
+  const h2 = ['case', 'tool', ...stageNames.map((x) => `${x} peak MiB`)];
+  const l2 = rssRows.map((r) => [r.label, r.tool, ...stageNames.map((x) => (r.stages[x]?.peak === undefined ? '' : f(r.stages[x].peak, 0)))]);
+  const w2 = h2.map((h, i) => Math.max(h.length, ...l2.map((l) => l[i].length)));
+  const fmt2 = (cells) => '| ' + cells.map((c, i) => c.padEnd(w2[i])).join(' | ') + ' |';
+  console.log(fmt2(h2));
+  console.log('|' + w2.map((w) => '-'.repeat(w + 2)).join('|') + '|');
+  for (const l of l2) console.log(fmt2(l));
+}
 // ffbamg / anisomesh time ratios per case and size
 for (const label of [...new Set(rows.map((r) => r.label))]) {
   const b = rows.find((r) => r.label === label && r.tool === 'ffbamg' && !r.note);

@@ -1,6 +1,7 @@
 // anisomesh remesh IN.mesh [-sol IN.sol] -o OUT ...: remeshes a mesh's domain under a
 // metric (MMG's flags where MMG has them).
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -39,15 +40,28 @@ class StageLog {
     if (!on_ || name_.empty()) return;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
     const double cpu = double(std::clock() - cpu0_) / CLOCKS_PER_SEC;
-    std::fprintf(stderr, "anisomesh: stage %-14s wall %.3f s cpu %.3f s\n", name_.c_str(), wall, cpu);
+    std::fprintf(stderr, "anisomesh: stage %-14s wall %.3f s cpu %.3f s rss %.1f MiB peak %.1f MiB\n", name_.c_str(),
+                 wall, cpu, currentRssMiB(), peakRssMiB());
     name_.clear();
   }
   void end() {
     if (!on_) return;
     finish();
+    std::fprintf(stderr, "anisomesh: peak RSS %.1f MiB\n", peakRssMiB());
+  }
+  static double peakRssMiB() {
     struct rusage ru {};
     getrusage(RUSAGE_SELF, &ru);
-    std::fprintf(stderr, "anisomesh: peak RSS %.1f MiB\n", double(ru.ru_maxrss) / 1024.0);
+    return double(ru.ru_maxrss) / 1024.0;
+  }
+  // The resident set now (Linux /proc/self/statm; 0 where it is missing).
+  static double currentRssMiB() {
+    std::FILE* f = std::fopen("/proc/self/statm", "r");
+    if (!f) return 0.0;
+    long long pages = 0, resident = 0;
+    const bool ok = std::fscanf(f, "%lld %lld", &pages, &resident) == 2;
+    std::fclose(f);
+    return ok ? double(resident) * double(sysconf(_SC_PAGESIZE)) / 1048576.0 : 0.0;
   }
 
  private:
@@ -129,10 +143,14 @@ int runRemesh(Args& args) {
   log.start("read");
   Mesh in;  // .mesh, .msh, .vtk or .obj by extension; the .sol read beside it
   SolData solData;
-  parallelInvoke([&] { in = readMeshFile(input); },
-                 [&] {
-                   if (!sol.empty()) solData = readSolFile(sol);
-                 });
+  // One file after the other (each parsed in parallel chunks): the two texts are never
+  // held at once (the read stage's memory peak).
+  in = readMeshFile(input);
+  // remesh reads the input's points, elements, edges and edge references only.
+  std::vector<int>().swap(in.pointRefs);
+  std::vector<int>().swap(in.triangleRefs);
+  std::vector<int>().swap(in.quadRefs);
+  if (!sol.empty()) solData = readSolFile(sol);
   const std::vector<Metric> metrics = !sol.empty() ? solToMetrics(solData, in.vertexCount())
                                       : hsiz > 0   ? uniformMetrics(in, hsiz)
                                                    : edgeLengthMetrics(in);

@@ -81,7 +81,7 @@ function run(cli, args, folder) {
 }
 
 // Timings in text lines ("(0.03 s)", "wall 0.000 s cpu 0.000 s", "peak RSS 12.5 MiB"): masked.
-const untimedText = (text) => text.replace(/\d+(\.\d+)?(e-?\d+)? s\b/g, 'T s').replace(/peak RSS [\d.]+ MiB/g, 'peak RSS M MiB');
+const untimedText = (text) => text.replace(/\d+(\.\d+)?(e-?\d+)? s\b/g, 'T s').replace(/\b(RSS|rss|peak) [\d.]+ MiB/g, '$1 M MiB');
 // stdout as a value, without the timings (wall clock, different on every run).
 const untimed = (v) => {
   if (Array.isArray(v)) return v.map(untimed);

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/parallel.h"
 
 namespace anisomesh {
 
@@ -297,17 +298,49 @@ ControlElement BackgroundMeshControlSpace::elementOf(int t) const {
 }
 
 void BackgroundMeshControlSpace::refine(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) {
+  refineImpl(pred, onNewNodes, false);
+}
+
+void BackgroundMeshControlSpace::refineConcurrently(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) {
+  refineImpl(pred, onNewNodes, threadCount() > 1);
+}
+
+void BackgroundMeshControlSpace::refineImpl(const ElementPredicate& pred, const NewNodesCallback& onNewNodes,
+                                            bool concurrent) {
   std::vector<int> work(tri_.size());
   for (size_t t = 0; t < work.size(); ++t) work[t] = static_cast<int>(t);
   std::vector<int> split;
+  std::vector<std::uint8_t> verdict;
   const double min2 = minSize_ * minSize_;
+  auto wanted = [&](int t) {
+    const auto& v = tri_[t];
+    const double l2 = std::max({edgeKey(v[0], v[1]), edgeKey(v[1], v[2]), edgeKey(v[2], v[0])});
+    return l2 > min2 && pred(elementOf(t));
+  };
   while (!work.empty()) {
     split.clear();
-    for (int t : work) {
-      const auto& v = tri_[t];
-      const double l2 = std::max({edgeKey(v[0], v[1]), edgeKey(v[1], v[2]), edgeKey(v[2], v[0])});
-      refinementTick();
-      if (l2 > min2 && pred(elementOf(t))) split.push_back(t);
+    if (concurrent) {
+      // The queries of pred must not rebuild the locator under each other's feet.
+      if (locatorStale_) rebuildLocator();
+      // Slices of the work list judged in parallel chunks (verdicts stored per element),
+      // the progress ticks and the split list in element order on this thread.
+      constexpr size_t kSlice = 16384, kGrain = 512;
+      verdict.resize(std::min(work.size(), kSlice));
+      for (size_t s0 = 0; s0 < work.size(); s0 += kSlice) {
+        const size_t n = std::min(kSlice, work.size() - s0);
+        parallelChunks(n, kGrain, [&](size_t, size_t b, size_t e) {
+          for (size_t k = b; k < e; ++k) verdict[k] = wanted(work[s0 + k]) ? 1 : 0;
+        });
+        for (size_t k = 0; k < n; ++k) {
+          refinementTick();
+          if (verdict[k]) split.push_back(work[s0 + k]);
+        }
+      }
+    } else {
+      for (int t : work) {
+        refinementTick();
+        if (wanted(t)) split.push_back(t);
+      }
     }
     if (split.empty()) break;
     // A bisection adds one node on the longest edge, about two with its conforming neighbour.

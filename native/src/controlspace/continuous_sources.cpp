@@ -78,17 +78,21 @@ void insertMetricFunction(AdaptiveControlSpace& cs, const MetricFunction& f,
   };
   setFromFunction(0, cs.nodeCount());
   cs.applyConstraints();
-  cs.refine(
-      [&](const ControlElement& e) {
-        if (options.domain && !options.domain(e.box)) return false;
-        if (options.minMetricSize > 0.0 && e.size < options.minMetricSize * smallestNodeSize(e)) return false;
-        if (elementNodesDiffer(cs, e, options.threshold)) return true;
-        if (!options.checkSamples) return false;
-        for (int k = 0; k < e.sampleCount; ++k)
-          if (difference(cs.metricAt(e.samples[k]), target(e.samples[k])) > sampleThreshold) return true;
-        return false;
-      },
-      setFromFunction);
+  const ElementPredicate split = [&](const ControlElement& e) {
+    if (options.domain && !options.domain(e.box)) return false;
+    if (options.minMetricSize > 0.0 && e.size < options.minMetricSize * smallestNodeSize(e)) return false;
+    if (elementNodesDiffer(cs, e, options.threshold)) return true;
+    if (!options.checkSamples) return false;
+    for (int k = 0; k < e.sampleCount; ++k)
+      if (difference(cs.metricAt(e.samples[k]), target(e.samples[k])) > sampleThreshold) return true;
+    return false;
+  };
+  // A concurrent f on a fresh structure: the predicate only reads (f, cs's queries, the
+  // domain test), so elements may be judged in parallel (the same splits).
+  if (options.concurrent && fresh)
+    cs.refineConcurrently(split, setFromFunction);
+  else
+    cs.refine(split, setFromFunction);
 }
 
 }  // namespace anisomesh

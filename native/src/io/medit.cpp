@@ -1,5 +1,7 @@
 #include "anisomesh/io/medit.h"
 
+#include <algorithm>
+#include <climits>
 #include <map>
 
 #include "anisomesh/core/error.h"
@@ -38,7 +40,25 @@ template <size_t N>
 void readElements(TokenStream& ts, const char* name, int vertexCount, std::vector<std::array<int, N>>* elems,
                   std::vector<int>* refs) {
   const long long n = ts.count(std::string("the number of ") + name, int(N) + 1);
-  elems->reserve(elems->size() + size_t(n));
+  // Fast path: one record per line, in parallel chunks (the same values).
+  const size_t base = elems->size();
+  elems->resize(base + size_t(n));
+  refs->resize(base + size_t(n));
+  const bool fast = ts.lineRecords(n, [&](size_t i, TokenStream::LineCursor& c) {
+    std::array<int, N>& e = (*elems)[base + i];
+    long long v = 0;
+    for (size_t k = 0; k < N; ++k) {
+      if (!c.integer(&v) || v < 1 || v > vertexCount) return false;
+      e[k] = int(v - 1);
+    }
+    if (!c.integer(&v) || v < INT_MIN || v > INT_MAX) return false;
+    (*refs)[base + i] = int(v);
+    return true;
+  });
+  if (fast) return;
+  elems->resize(base);
+  refs->resize(base);
+  elems->reserve(base + size_t(n));
   for (long long i = 0; i < n; ++i) {
     std::array<int, N> e;
     for (size_t k = 0; k < N; ++k) {
@@ -161,7 +181,26 @@ Mesh parseMedit(const std::string& text) {
       if (dimension == 0) ts.failAt(line, "expected Dimension before Vertices");
       const long long n = ts.count("the number of vertices", dimension + 1);
       mesh.dimension = dimension;
-      mesh.points.reserve(size_t(n));
+      // Fast path: one vertex per line, in parallel chunks (the same values).
+      const size_t base = mesh.points.size(), refBase = mesh.pointRefs.size();
+      mesh.points.resize(base + size_t(n), Vec3::Zero());
+      mesh.pointRefs.resize(refBase + size_t(n));
+      const bool fast = ts.lineRecords(n, [&](size_t i, TokenStream::LineCursor& c) {
+        Vec3& p = mesh.points[base + i];
+        for (int k = 0; k < dimension; ++k)
+          if (!c.number(&p[k])) return false;
+        long long ref = 0;
+        if (!c.integer(&ref) || ref < INT_MIN || ref > INT_MAX) return false;
+        mesh.pointRefs[refBase + i] = int(ref);
+        return true;
+      });
+      if (fast) {
+        haveVertices = true;
+        continue;
+      }
+      mesh.points.resize(base);
+      mesh.pointRefs.resize(refBase);
+      mesh.points.reserve(base + size_t(n));
       for (long long i = 0; i < n; ++i) {
         Vec3 p = Vec3::Zero();
         for (int k = 0; k < dimension; ++k)
@@ -245,6 +284,18 @@ SolData parseSol(const std::string& text) {
       sol.type = int(type);
       const int per = sol.valuesPerVertex();
       if (n > 0 && ts.atEnd()) ts.fail("the values of vertex 1");
+      // Fast path: one vertex's values per line, in parallel chunks (the same values).
+      sol.values.resize(size_t(n) * size_t(per));
+      const bool fast = ts.lineRecords(n, [&](size_t i, TokenStream::LineCursor& c) {
+        for (int k = 0; k < per; ++k)
+          if (!c.number(&sol.values[i * size_t(per) + size_t(k)])) return false;
+        return true;
+      });
+      if (fast) {
+        haveField = true;
+        continue;
+      }
+      sol.values.clear();
       sol.values.reserve(size_t(n) * size_t(per));
       for (long long i = 0; i < n; ++i)
         for (int k = 0; k < per; ++k)
@@ -275,17 +326,20 @@ std::vector<Metric> solToMetrics(const SolData& sol, int vertexCount) {
   require(sol.type != 2, ErrorCode::InvalidArgument, "vector solutions (type 2) cannot drive a metric");
   require(sol.dimension == 2 || sol.type == 1, ErrorCode::InvalidArgument,
           "3D tensor solutions cannot drive a planar metric");
-  std::vector<Metric> metrics;
-  metrics.reserve(size_t(vertexCount));
+  std::vector<Metric> metrics(size_t(std::max(vertexCount, 0)));
   const int per = sol.valuesPerVertex();
-  for (int i = 0; i < vertexCount; ++i) {
-    const double* v = &sol.values[size_t(i) * per];
-    try {
-      metrics.push_back(sol.type == 1 ? Metric::isotropic(v[0]) : Metric::fromTensor(v[0], v[1], v[2]));
-    } catch (const Error& e) {
-      throw Error(e.code(), "solution value of vertex " + std::to_string(i + 1) + ": " + e.what());
+  // In parallel chunks (an eigen decomposition per vertex); the lowest chunk's error is
+  // rethrown, so the message names the first invalid vertex for any thread count.
+  parallelChunks(metrics.size(), 8192, [&](size_t, size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      const double* v = &sol.values[i * size_t(per)];
+      try {
+        metrics[i] = sol.type == 1 ? Metric::isotropic(v[0]) : Metric::fromTensor(v[0], v[1], v[2]);
+      } catch (const Error& err) {
+        throw Error(err.code(), "solution value of vertex " + std::to_string(i + 1) + ": " + err.what());
+      }
     }
-  }
+  });
   return metrics;
 }
 

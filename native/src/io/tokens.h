@@ -1,18 +1,21 @@
 #pragma once
 // Private: whitespace tokenizer with line numbers for the text mesh formats, so every
 // parse error can name the line and what was expected.
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <system_error>
 #include <utility>
 #include <vector>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/parallel.h"
 #include "anisomesh/core/types.h"
 
 namespace anisomesh {
@@ -125,6 +128,91 @@ class TokenStream {
     return n;
   }
   const std::string& format() const { return format_; }
+
+  // Reads the tokens of one line (LineRecords below); every read is false when the token
+  // is missing, would end the line early or is refused by the token-by-token reading.
+  class LineCursor {
+   public:
+    LineCursor(const char* p, const char* end, char comment) : p_(p), end_(end), comment_(comment) {}
+    bool number(double* v) {
+      if (!startToken()) return false;
+      bool overflow = false;
+      const char* stop = parseDouble(p_, end_, v, &overflow);
+      if (stop == p_ || !endsHere(stop) || overflow) return false;
+      p_ = stop;
+      return true;
+    }
+    bool integer(long long* v) {
+      if (!startToken()) return false;
+      const char* b = p_;
+      if (b < end_ && *b == '+' && b + 1 < end_ && b[1] != '-') ++b;  // as TokenStream::integer
+      const std::from_chars_result r = std::from_chars(b, end_, *v);
+      if (r.ptr == b || !endsHere(r.ptr) || r.ec == std::errc::result_out_of_range) return false;
+      p_ = r.ptr;
+      return true;
+    }
+    // Only blanks up to the end of the line: consumes it, true.
+    bool endLine() {
+      while (p_ < end_ && isBlank(*p_)) ++p_;
+      if (p_ >= end_) return true;
+      if (*p_ != '\n') return false;
+      ++p_;
+      return true;
+    }
+
+   private:
+    static bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+    bool startToken() {
+      while (p_ < end_ && isBlank(*p_)) ++p_;
+      return p_ < end_ && *p_ != '\n' && *p_ != comment_;
+    }
+    bool endsHere(const char* q) const { return q >= end_ || isSpace(*q); }
+    const char* p_;
+    const char* end_;
+    char comment_;
+  };
+
+  // n records, one per line (what every writer produces), read in parallel chunks of lines
+  // (parallel.h): record(i, cursor) reads record i from its line and returns false when it
+  // refuses a value. The values are the ones the token-by-token reading gives, for any
+  // thread count. Returns false, consuming nothing, when a line holds anything else (a
+  // record split over lines, two on one line, a comment, a refused value): the caller
+  // then reads the section token by token, with its messages. Small sections: false.
+  template <class Record>
+  bool lineRecords(long long n, const Record& record) {
+    constexpr long long kMinRecords = 1 << 14;
+    constexpr size_t kChunkLines = 1 << 14;
+    if (n < kMinRecords || atEnd()) return false;
+    const size_t records = size_t(n);
+    const size_t chunks = chunkCount(records, kChunkLines);
+    std::vector<const char*> start(chunks + 1);
+    const char* q = p_;
+    for (size_t c = 0; c < chunks; ++c) {
+      start[c] = q;
+      const size_t lines = std::min(kChunkLines, records - c * kChunkLines);
+      for (size_t l = 0; l < lines; ++l) {
+        if (q >= end_) return false;  // fewer lines than records
+        const void* nl = std::memchr(q, '\n', size_t(end_ - q));
+        q = nl ? static_cast<const char*>(nl) + 1 : end_;
+      }
+    }
+    start[chunks] = q;
+    std::vector<char> ok(chunks, 0);
+    parallelChunks(chunks, 1, [&](size_t c, size_t, size_t) {
+      LineCursor cursor(start[c], end_, comment_);
+      const size_t last = std::min(records, (c + 1) * kChunkLines);
+      for (size_t i = c * kChunkLines; i < last; ++i)
+        if (!record(i, cursor) || !cursor.endLine()) return;
+      ok[c] = 1;
+    });
+    for (const char k : ok)
+      if (!k) return false;
+    lastLine_ = line_ + int(n - 1);
+    line_ += int(q > p_ && q[-1] == '\n' ? n : n - 1);
+    p_ = q;
+    skipSpace();
+    return true;
+  }
 
  private:
   static bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }

@@ -22,22 +22,56 @@ void addToHistogram(QualityReport& r, double q) {
 }  // namespace
 
 std::vector<std::array<int, 2>> distinctElementEdges(const Mesh& mesh) {
-  // Packed (a, b) keys sort as the pairs do.
-  std::vector<std::uint64_t> keys;
-  keys.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
-  auto addEdge = [&](int a, int b) {
-    if (a > b) std::swap(a, b);
-    keys.push_back((static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b));
+  auto forEachEdge = [&](auto&& f) {
+    for (const auto& t : mesh.triangles)
+      for (int i = 0; i < 3; ++i) f(t[i], t[(i + 1) % 3]);
+    for (const auto& q : mesh.quads)
+      for (int i = 0; i < 4; ++i) f(q[i], q[(i + 1) % 4]);
   };
-  for (const auto& t : mesh.triangles)
-    for (int i = 0; i < 3; ++i) addEdge(t[i], t[(i + 1) % 3]);
-  for (const auto& q : mesh.quads)
-    for (int i = 0; i < 4; ++i) addEdge(q[i], q[(i + 1) % 4]);
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  std::vector<std::array<int, 2>> edges(keys.size());
-  for (size_t i = 0; i < keys.size(); ++i)
-    edges[i] = {static_cast<int>(keys[i] >> 32), static_cast<int>(keys[i] & 0xffffffffu)};
+  int lo = 0, hi = -1;
+  forEachEdge([&](int a, int b) {
+    lo = std::min({lo, a, b});
+    hi = std::max({hi, a, b});
+  });
+  std::vector<std::array<int, 2>> edges;
+  if (lo < 0) {  // not a valid mesh: packed (a, b) keys, which sort as the pairs do
+    std::vector<std::uint64_t> keys;
+    keys.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
+    forEachEdge([&](int a, int b) {
+      if (a > b) std::swap(a, b);
+      keys.push_back((static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b));
+    });
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    edges.resize(keys.size());
+    for (size_t i = 0; i < keys.size(); ++i)
+      edges[i] = {static_cast<int>(keys[i] >> 32), static_cast<int>(keys[i] & 0xffffffffu)};
+    return edges;
+  }
+  // Bucketed by the smaller end (a counting sort), each bucket's few larger ends sorted and
+  // deduplicated: the same (a, b)-sorted list as a full sort, in linear time.
+  const size_t n = size_t(hi) + 1;
+  std::vector<int> start(n + 1, 0);
+  forEachEdge([&](int a, int b) { ++start[size_t(std::min(a, b)) + 1]; });
+  for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<int> other(static_cast<size_t>(start[n]));
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    forEachEdge([&](int a, int b) { other[size_t(fill[size_t(std::min(a, b))]++)] = std::max(a, b); });
+  }
+  edges.reserve(other.size() / 2 + 16);
+  for (size_t v = 0; v < n; ++v) {
+    int* const b = other.data() + start[v];
+    int* const e = other.data() + start[v + 1];
+    for (int* k = b + 1; k < e; ++k) {  // insertion sort (about six ends per vertex)
+      const int x = *k;
+      int* m = k;
+      for (; m > b && m[-1] > x; --m) *m = m[-1];
+      *m = x;
+    }
+    for (int* k = b; k < e; ++k)
+      if (k == b || *k != k[-1]) edges.push_back({int(v), *k});
+  }
   return edges;
 }
 
@@ -76,9 +110,17 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace,
   double lsum = 0.0;
   int in1 = 0, in2 = 0;
   r.edgeLengthMin = edges.empty() ? 0.0 : std::numeric_limits<double>::infinity();
+  // The per-edge and per-triangle measures in parallel chunks, their sums, counts and
+  // extremes in element order on this thread: the same bits for any thread count.
+  std::vector<double> lengths(edges.size());
+  parallelChunks(edges.size(), 16384, [&](size_t, size_t b, size_t e) {
+    for (size_t k = b; k < e; ++k) {
+      const int p = edges[k][0], q = edges[k][1];
+      lengths[k] = SymMt::average2(mt[p], mt[q]).length(uv[q] - uv[p]);
+    }
+  });
   for (size_t e = 0; e < edges.size(); ++e) {
-    const int a = edges[e][0], b = edges[e][1];
-    const double l = SymMt::average2(mt[a], mt[b]).length(uv[b] - uv[a]);
+    const double l = lengths[e];
     if (perItem) perItem->edgeLength[e] = l;
     lsum += l;
     r.edgeLengthMin = std::min(r.edgeLengthMin, l);
@@ -94,13 +136,23 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace,
 
   double qsum = 0.0, tsum = 0.0, qdsum = 0.0;
   r.qualityMin = r.triangleQualityMin = r.quadQualityMin = std::numeric_limits<double>::infinity();
-  for (const auto& t : mesh.triangles) {
-    const SymMt m = SymMt::average3(mt[t[0]], mt[t[1]], mt[t[2]]);
-    const double q = metricTriangleQuality(m, uv[t[0]], uv[t[1]], uv[t[2]]);
-    const double o = orient2d(uv[t[0]], uv[t[1]], uv[t[2]]);
-    if (o < 0.0)
+  std::vector<double> quality(mesh.triangles.size());
+  std::vector<std::uint8_t> orientation(mesh.triangles.size());  // orient2d: 0 negative, 1 zero, 2 positive
+  parallelChunks(mesh.triangles.size(), 16384, [&](size_t, size_t b, size_t e) {
+    for (size_t k = b; k < e; ++k) {
+      const auto& t = mesh.triangles[k];
+      const SymMt m = SymMt::average3(mt[t[0]], mt[t[1]], mt[t[2]]);
+      quality[k] = metricTriangleQuality(m, uv[t[0]], uv[t[1]], uv[t[2]]);
+      const double o = orient2d(uv[t[0]], uv[t[1]], uv[t[2]]);
+      orientation[k] = static_cast<std::uint8_t>(o < 0.0 ? 0 : (o == 0.0 ? 1 : 2));  // NaN: 2, as before
+    }
+  });
+  for (size_t k = 0; k < mesh.triangles.size(); ++k) {
+    const double q = quality[k];
+    const std::uint8_t o = orientation[k];
+    if (o == 0)
       ++r.inverted;
-    else if (o == 0.0 || q < 1e-3)
+    else if (o == 1 || q < 1e-3)
       ++r.degenerate;
     r.triangleQualityMin = std::min(r.triangleQualityMin, q);
     if (perItem) perItem->quality.push_back(q);

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/parallel.h"
 
 namespace anisomesh {
 namespace {
@@ -18,27 +20,47 @@ int clampedCell(double t, int n) {
 
 }  // namespace
 
-TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<Metric> metrics)
-    : metrics_(std::move(metrics)) {
-  require(int(metrics_.size()) == mesh.vertexCount(), ErrorCode::InvalidArgument,
-          "metric field: " + std::to_string(metrics_.size()) + " metrics for " + std::to_string(mesh.vertexCount()) +
+TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, const std::vector<Metric>& metrics)
+    : metrics_(metrics.data()) {
+  require(int(metrics.size()) == mesh.vertexCount(), ErrorCode::InvalidArgument,
+          "metric field: " + std::to_string(metrics.size()) + " metrics for " + std::to_string(mesh.vertexCount()) +
               " vertices");
-  for (const Vec3& p : mesh.points) {
-    require(p.head<2>().allFinite(), ErrorCode::InvalidDomain,
-            "metric field: vertex " + std::to_string(pts_.size() + 1) + " has a non-finite coordinate");
-    pts_.push_back(p.head<2>());
+  build(mesh);
+}
+
+TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<Metric>&& metrics)
+    : ownedMetrics_(std::move(metrics)) {
+  require(int(ownedMetrics_.size()) == mesh.vertexCount(), ErrorCode::InvalidArgument,
+          "metric field: " + std::to_string(ownedMetrics_.size()) + " metrics for " +
+              std::to_string(mesh.vertexCount()) + " vertices");
+  metrics_ = ownedMetrics_.data();
+  build(mesh);
+}
+
+void TriangleMeshMetricField::build(const Mesh& mesh) {
+  for (size_t i = 0; i < mesh.points.size(); ++i)
+    require(mesh.points[i].head<2>().allFinite(), ErrorCode::InvalidDomain,
+            "metric field: vertex " + std::to_string(i + 1) + " has a non-finite coordinate");
+  pts_ = mesh.points.data();
+  if (mesh.quads.empty()) {
+    tris_ = mesh.triangles.data();
+    triCount_ = mesh.triangles.size();
+  } else {
+    splitTris_ = mesh.triangles;
+    for (const auto& q : mesh.quads) {
+      splitTris_.push_back({q[0], q[1], q[2]});
+      splitTris_.push_back({q[0], q[2], q[3]});
+    }
+    tris_ = splitTris_.data();
+    triCount_ = splitTris_.size();
   }
-  tris_ = mesh.triangles;
-  for (const auto& q : mesh.quads) {
-    tris_.push_back({q[0], q[1], q[2]});
-    tris_.push_back({q[0], q[2], q[3]});
-  }
-  require(!tris_.empty(), ErrorCode::InvalidArgument, "metric field: the mesh has no triangles or quadrilaterals");
-  box_.lo = box_.hi = pts_[tris_[0][0]];
-  for (const auto& t : tris_)
-    for (int v : t) {
-      box_.lo = box_.lo.cwiseMin(pts_[v]);
-      box_.hi = box_.hi.cwiseMax(pts_[v]);
+  require(triCount_ > 0, ErrorCode::InvalidArgument, "metric field: the mesh has no triangles or quadrilaterals");
+  const std::array<int, 3>* const trisEnd = tris_ + triCount_;
+  box_.lo = box_.hi = point(tris_[0][0]);
+  for (const std::array<int, 3>* t = tris_; t != trisEnd; ++t)
+    for (int v : *t) {
+      box_.lo = box_.lo.cwiseMin(point(v));
+      box_.hi = box_.hi.cwiseMax(point(v));
     }
   // Barycentric determinants are products of two spans: they must stay finite.
   const Vec2 span = box_.size();
@@ -46,15 +68,15 @@ TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<M
           "metric field: the mesh's coordinates span more than the double range allows");
   // About one triangle per cell on square-ish cells.
   const Vec2 size = box_.size().cwiseMax(Vec2::Constant(1e-300));
-  const double side = std::sqrt(size.x() * size.y() / double(tris_.size()));
+  const double side = std::sqrt(size.x() * size.y() / double(triCount_));
   nx_ = side > 0 ? std::max(1, clampedCell(size.x() / side, 2049)) : 1;
   ny_ = side > 0 ? std::max(1, clampedCell(size.y() / side, 2049)) : 1;
   cell_ = Vec2(size.x() / nx_, size.y() / ny_);
   auto range = [&](const std::array<int, 3>& t, int* x0, int* x1, int* y0, int* y1) {
-    Vec2 lo = pts_[t[0]], hi = pts_[t[0]];
+    Vec2 lo = point(t[0]), hi = point(t[0]);
     for (int v : t) {
-      lo = lo.cwiseMin(pts_[v]);
-      hi = hi.cwiseMax(pts_[v]);
+      lo = lo.cwiseMin(point(v));
+      hi = hi.cwiseMax(point(v));
     }
     *x0 = clampedCell((lo.x() - box_.lo.x()) / cell_.x(), nx_);
     *x1 = clampedCell((hi.x() - box_.lo.x()) / cell_.x(), nx_);
@@ -62,20 +84,39 @@ TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<M
     *y1 = clampedCell((hi.y() - box_.lo.y()) / cell_.y(), ny_);
   };
   cellStart_.assign(size_t(nx_) * ny_ + 1, 0);
-  int x0, x1, y0, y1;
-  for (const auto& t : tris_) {
-    range(t, &x0, &x1, &y0, &y1);
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) ++cellStart_[cellIndex(x, y) + 1];
-  }
+  // Each thread owns a band of cell rows and scans every triangle for its rows: the lists
+  // (each cell's triangles in increasing order) do not depend on the bands.
+  const int bands = std::max(1, std::min(threadCount(), ny_));
+  auto perBand = [&](auto&& f) {
+    parallelChunks(size_t(bands), 1, [&](size_t band, size_t, size_t) {
+      const int r0 = int(std::int64_t(ny_) * std::int64_t(band) / bands);
+      const int r1 = int(std::int64_t(ny_) * std::int64_t(band + 1) / bands);
+      f(r0, r1);
+    });
+  };
+  perBand([&](int r0, int r1) {
+    int x0, x1, y0, y1;
+    for (const std::array<int, 3>* t = tris_; t != trisEnd; ++t) {
+      range(*t, &x0, &x1, &y0, &y1);
+      for (int y = std::max(y0, r0); y <= std::min(y1, r1 - 1); ++y)
+        for (int x = x0; x <= x1; ++x) ++cellStart_[cellIndex(x, y) + 1];
+    }
+  });
+  // cellStart_[c + 1] = the end of cell c; filled backwards from the ends (triangles in
+  // decreasing order), each ends at its start with the triangles in increasing order.
   for (size_t c = 1; c < cellStart_.size(); ++c) cellStart_[c] += cellStart_[c - 1];
   cellTris_.resize(size_t(cellStart_.back()));
-  std::vector<int> fill(cellStart_.begin(), cellStart_.end() - 1);
-  for (int i = 0; i < int(tris_.size()); ++i) {
-    range(tris_[i], &x0, &x1, &y0, &y1);
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) cellTris_[size_t(fill[cellIndex(x, y)]++)] = i;
-  }
+  perBand([&](int r0, int r1) {
+    int x0, x1, y0, y1;
+    for (int i = int(triCount_) - 1; i >= 0; --i) {
+      range(tris_[i], &x0, &x1, &y0, &y1);
+      for (int y = std::max(y0, r0); y <= std::min(y1, r1 - 1); ++y)
+        for (int x = x0; x <= x1; ++x) cellTris_[size_t(--cellStart_[cellIndex(x, y) + 1])] = i;
+    }
+  });
+  // Now cellStart_[c + 1] is the start of cell c: shifted down by one cell.
+  for (size_t c = 0; c + 1 < cellStart_.size(); ++c) cellStart_[c] = cellStart_[c + 1];
+  cellStart_.back() = int(cellTris_.size());
   coveredSum_.assign(size_t(nx_ + 1) * (ny_ + 1), 0);
   for (int y = 0; y < ny_; ++y)
     for (int x = 0; x < nx_; ++x) {
@@ -86,15 +127,15 @@ TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<M
     }
   // Chebyshev distance (in cells) from each cell to the nearest cell holding a triangle:
   // two chamfer passes with unit weights over the 8 neighbours are exact for it.
-  const int far = nx_ + ny_;
+  const int far = nx_ + ny_;  // <= 4098: fits the 16-bit entries
   emptyRings_.assign(size_t(nx_) * ny_, far);
   for (int c = 0; c < nx_ * ny_; ++c)
     if (cellStart_[c + 1] > cellStart_[c]) emptyRings_[size_t(c)] = 0;
   auto relax = [&](int x, int y, int dx, int dy) {
     const int nxp = x + dx, nyp = y + dy;
     if (nxp < 0 || nyp < 0 || nxp >= nx_ || nyp >= ny_) return;
-    int& d = emptyRings_[size_t(cellIndex(x, y))];
-    d = std::min(d, emptyRings_[size_t(cellIndex(nxp, nyp))] + 1);
+    std::uint16_t& d = emptyRings_[size_t(cellIndex(x, y))];
+    d = std::min<std::uint16_t>(d, std::uint16_t(emptyRings_[size_t(cellIndex(nxp, nyp))] + 1));
   };
   for (int y = 0; y < ny_; ++y)
     for (int x = 0; x < nx_; ++x) {
@@ -124,7 +165,7 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
   // Interpolates Mt at q, given in triangle t.
   auto interpolateAt = [this](int t, const Vec2& q) {
     const auto& tri = tris_[size_t(t)];
-    const Vec2 &a = pts_[tri[0]], &b = pts_[tri[1]], &c = pts_[tri[2]];
+    const Vec2 a = point(tri[0]), b = point(tri[1]), c = point(tri[2]);
     const double det = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
     double l1 = ((q.x() - a.x()) * (c.y() - a.y()) - (q.y() - a.y()) * (c.x() - a.x())) / det;
     double l2 = ((b.x() - a.x()) * (q.y() - a.y()) - (b.y() - a.y()) * (q.x() - a.x())) / det;
@@ -145,13 +186,15 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
   int best = -1, foundRing = -1;
   double bestDist = INFINITY;
   Vec2 bestPoint = p;
-  // Cell c's triangles: a containing one ends the search (true), otherwise the nearest
-  // point of each is a candidate (the first of equal distances wins).
-  auto visitCell = [&](int c) {
+  // Cell c's triangles, in two passes per ring of cells: a containing one ends the search
+  // (true); only when the ring holds none, the nearest point of each is a candidate (the
+  // first of equal distances wins). The same answer as one interleaved pass, without the
+  // distances to the triangles before the containing one.
+  auto containsIn = [&](int c) {
     for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
       const int t = cellTris_[size_t(k)];
       const auto& tri = tris_[size_t(t)];
-      const Vec2 &a = pts_[tri[0]], &b = pts_[tri[1]], &d = pts_[tri[2]];
+      const Vec2 a = point(tri[0]), b = point(tri[1]), d = point(tri[2]);
       const double det = (b.x() - a.x()) * (d.y() - a.y()) - (b.y() - a.y()) * (d.x() - a.x());
       if (det == 0) continue;
       const double l1 = ((p.x() - a.x()) * (d.y() - a.y()) - (p.y() - a.y()) * (d.x() - a.x())) / det;
@@ -160,28 +203,44 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
         best = t;
         return true;
       }
+    }
+    return false;
+  };
+  auto nearestIn = [&](int c) {
+    for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
+      const int t = cellTris_[size_t(k)];
+      const auto& tri = tris_[size_t(t)];
+      const Vec2 a = point(tri[0]), b = point(tri[1]), d = point(tri[2]);
+      const double det = (b.x() - a.x()) * (d.y() - a.y()) - (b.y() - a.y()) * (d.x() - a.x());
+      if (det == 0) continue;
       for (int e = 0; e < 3; ++e) {
-        const Vec2 q = closestOnSegment(p, pts_[tri[e]], pts_[tri[(e + 1) % 3]]);
+        const Vec2 q = closestOnSegment(p, point(tri[e]), point(tri[(e + 1) % 3]));
         const double dist = (q - p).squaredNorm();
         if (dist < bestDist || best < 0) bestDist = dist, best = t, bestPoint = q;  // inf when p is far
       }
     }
     return false;
   };
-  auto visit = [&](int x, int y) { return x >= 0 && y >= 0 && x < nx_ && y < ny_ && visitCell(cellIndex(x, y)); };
-  // Rings of cells around p's cell, each in row order: a containing triangle ends the
-  // search; otherwise the nearest triangle seen up to one ring past the first ring with
-  // candidates. Rings closer than the nearest nonempty cell hold nothing: skipped.
-  for (int r = emptyRings_[size_t(cellIndex(cx, cy))]; r <= std::max(nx_, ny_); ++r) {
+  // Calls f on the cells of ring r around p's cell in row order; true when f ends the search.
+  auto ring = [&](int r, auto&& f) {
+    auto visit = [&](int x, int y) { return x >= 0 && y >= 0 && x < nx_ && y < ny_ && f(cellIndex(x, y)); };
     for (int y = cy - r; y <= cy + r; ++y) {
       if (y == cy - r || y == cy + r) {
         for (int x = cx - r; x <= cx + r; ++x)
-          if (visit(x, y)) return interpolateAt(best, p);
+          if (visit(x, y)) return true;
       } else {
-        if (visit(cx - r, y)) return interpolateAt(best, p);
-        if (r > 0 && visit(cx + r, y)) return interpolateAt(best, p);
+        if (visit(cx - r, y)) return true;
+        if (r > 0 && visit(cx + r, y)) return true;
       }
     }
+    return false;
+  };
+  // Rings of cells around p's cell: a containing triangle ends the search; otherwise the
+  // nearest triangle seen up to one ring past the first ring with candidates. Rings closer
+  // than the nearest nonempty cell hold nothing: skipped.
+  for (int r = emptyRings_[size_t(cellIndex(cx, cy))]; r <= std::max(nx_, ny_); ++r) {
+    if (ring(r, containsIn)) return interpolateAt(best, p);
+    ring(r, nearestIn);
     if (best >= 0 && foundRing < 0) foundRing = r;
     if (foundRing >= 0 && r >= foundRing + 1) break;
   }

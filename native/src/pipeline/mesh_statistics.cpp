@@ -33,35 +33,53 @@ double largestNeighbourSizeRatio(const Mesh& mesh) {
   for (const auto& q : mesh.quads)
     size.push_back(std::sqrt(std::abs(signedArea(xy(mesh, q[0]), xy(mesh, q[1]), xy(mesh, q[2])) +
                                       signedArea(xy(mesh, q[0]), xy(mesh, q[2]), xy(mesh, q[3])))));
-  // (edge, element) pairs sorted by edge then element: each later owner of an edge is
-  // compared with its first (lowest-numbered) owner. A sorted array instead of a map:
-  // several times faster for 100k+ edges.
+  // (edge, element) pairs by edge then element: each later owner of an edge is compared
+  // with its first (lowest-numbered) owner. Bucketed by the edge's smaller vertex (a
+  // counting sort), each bucket sorted by the larger one (stable: elements stay in order).
+  auto forEachEdge = [&](auto&& f) {
+    for (size_t i = 0; i < mesh.triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k) f(mesh.triangles[i][k], mesh.triangles[i][(k + 1) % 3], int(i));
+    for (size_t i = 0; i < mesh.quads.size(); ++i)
+      for (int k = 0; k < 4; ++k) f(mesh.quads[i][k], mesh.quads[i][(k + 1) % 4], int(mesh.triangles.size() + i));
+  };
+  int lo = 0, hi = -1;
+  forEachEdge([&](int a, int b, int) {
+    lo = std::min({lo, a, b});
+    hi = std::max({hi, a, b});
+  });
+  if (lo < 0) return 1.0;  // not a valid mesh (negative vertex index): nothing to compare
   struct Owner {
-    std::uint64_t edge;
-    std::uint32_t element;
+    int other;
+    int element;
   };
-  std::vector<Owner> owners;
-  owners.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
-  auto visit = [&](int element, const int* v, int n) {
-    for (int k = 0; k < n; ++k) {
-      const auto a = static_cast<std::uint32_t>(std::min(v[k], v[(k + 1) % n]));
-      const auto b = static_cast<std::uint32_t>(std::max(v[k], v[(k + 1) % n]));
-      owners.push_back({(std::uint64_t(a) << 32) | b, static_cast<std::uint32_t>(element)});
-    }
-  };
-  for (size_t i = 0; i < mesh.triangles.size(); ++i) visit(int(i), mesh.triangles[i].data(), 3);
-  for (size_t i = 0; i < mesh.quads.size(); ++i) visit(int(mesh.triangles.size() + i), mesh.quads[i].data(), 4);
-  std::sort(owners.begin(), owners.end(),
-            [](const Owner& x, const Owner& y) { return x.edge != y.edge ? x.edge < y.edge : x.element < y.element; });
+  const size_t n = size_t(hi) + 1;
+  std::vector<int> start(n + 1, 0);
+  forEachEdge([&](int a, int b, int) { ++start[size_t(std::min(a, b)) + 1]; });
+  for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<Owner> owners(static_cast<size_t>(start[n]));
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    forEachEdge([&](int a, int b, int e) { owners[size_t(fill[size_t(std::min(a, b))]++)] = {std::max(a, b), e}; });
+  }
   double worst = 1.0;
-  for (size_t i = 0; i < owners.size();) {
-    size_t j = i + 1;
-    const double a = size[owners[i].element];
-    for (; j < owners.size() && owners[j].edge == owners[i].edge; ++j) {
-      const double b = size[owners[j].element];
-      if (a > 0 && b > 0) worst = std::max(worst, std::max(a, b) / std::min(a, b));
+  for (size_t v = 0; v < n; ++v) {
+    Owner* const b = owners.data() + start[v];
+    Owner* const e = owners.data() + start[v + 1];
+    for (Owner* k = b + 1; k < e; ++k) {  // stable insertion sort on the larger vertex
+      const Owner x = *k;
+      Owner* m = k;
+      for (; m > b && m[-1].other > x.other; --m) *m = m[-1];
+      *m = x;
     }
-    i = j;
+    for (Owner* i = b; i < e;) {
+      Owner* j = i + 1;
+      const double a = size[size_t(i->element)];
+      for (; j < e && j->other == i->other; ++j) {
+        const double c = size[size_t(j->element)];
+        if (a > 0 && c > 0) worst = std::max(worst, std::max(a, c) / std::min(a, c));
+      }
+      i = j;
+    }
   }
   return worst;
 }

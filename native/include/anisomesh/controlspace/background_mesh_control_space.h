@@ -51,6 +51,7 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
   int elementCount() const override { return static_cast<int>(tri_.size()); }
   std::vector<std::vector<int>> elementNodes() const override;
   void refine(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) override;
+  void refineConcurrently(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) override;
   std::vector<double> nodeElementSizes() const override;
   double minElementSize() const override { return minSize_; }
   const char* kindName() const override { return "background"; }
@@ -74,6 +75,7 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
   void splitPair(int t, int i);
   void bisectImpl(int t);
   void rebuildLocator();
+  void refineImpl(const ElementPredicate& pred, const NewNodesCallback& onNewNodes, bool concurrent);
   ControlElement elementOf(int t) const;
   double orient(int a, int b, const Vec2& p) const;
 

@@ -43,7 +43,9 @@ struct ContinuousInsertionOptions {
   // > 0: elements whose longest side is below minMetricSize times the smallest size at
   // their nodes are not split (the mesher cannot see variation below its edge length).
   double minMetricSize = 0.0;
-  bool concurrent = false;  // f may be called from several threads: new nodes are evaluated in parallel
+  // f (and domain) may be called from several threads: new nodes are evaluated and, on a
+  // fresh structure, elements judged for splitting in parallel (the same result).
+  bool concurrent = false;
   // When set: elements whose bounding box it rejects (outside the region the mesher will
   // query, e.g. the carrier of a remesh) are not split.
   std::function<bool(const Box2&)> domain;

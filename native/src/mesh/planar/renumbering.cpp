@@ -30,6 +30,13 @@ std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
 // vertex, dropping free slots: the frontal insertion creates them in order of size, not
 // of position, and the later passes walk around vertices (cache misses dominate otherwise).
 void Mesher::renumberSpatially() {
+  // The insertion's per-triangle state is not needed any more: freed before the copies
+  // below (the stage's memory peak), reallocated for the live triangles at the end.
+  cache_.clear();
+  cache_.shrink_to_fit();
+  std::vector<std::uint32_t>().swap(forbid_);
+  std::vector<std::uint32_t>().swap(stamp_);
+  std::vector<std::uint32_t>().swap(queued_);
   const int nv = static_cast<int>(vx_.size());
   const int first = kSuper + nBoundary_;
   Vec2 lo = vx_[kSuper].p, hi = lo;
@@ -91,12 +98,12 @@ void Mesher::renumberSpatially() {
     for (int i = 0; i < 3; ++i) tris[k].n[i] = tri_[t].n[i] >= 0 ? tmap[tri_[t].n[i]] : -1;
   }
   tri_.swap(tris);
+  std::vector<Tri>().swap(tris);
+  std::vector<int>().swap(tmap);
   freeTris_.clear();
   forbid_.assign(live, 0);
   stamp_.assign(live, 0);
   queued_.assign(live, 0);
-  cache_.clear();
-  cache_.shrink_to_fit();
   vtri_.assign(nv, -1);
   for (int t = 0; t < live; ++t)
     for (int i = 0; i < 3; ++i) vtri_[tri_[t].v[i]] = t;
