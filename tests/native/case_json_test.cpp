@@ -257,6 +257,7 @@ TEST(CaseJson, PlanarAndSurfaceReadersCheckFieldsAlike) {
   // A surface case lists only the source types it supports.
   const auto st = errorOf(surface, R"({"patches": [{"surface": {"type": "plane"},
       "sources": [{"type": "nodes", "points": [[0.5, 0.5]], "metrics": [{"h1": 0.1}]}]}]})");
-  EXPECT_NE(st.second.find("unknown source type 'nodes' (expected radial, segment, polyline or curve)"), std::string::npos)
+  EXPECT_NE(st.second.find("unknown source type 'nodes' (expected radial, segment, polyline or curve)"),
+            std::string::npos)
       << st.second;
 }
