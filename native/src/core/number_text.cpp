@@ -1,9 +1,12 @@
 // Shortest round-trip number text for messages (see number_text.h).
 #include "anisomesh/core/number_text.h"
 
+#include <cinttypes>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 namespace anisomesh {
 
@@ -16,6 +19,14 @@ std::string numberText(double v) {
     if (std::strtod(buf, nullptr) == v) break;
   }
   return buf;
+}
+
+void appendDoubleBits(std::string& out, double x) {
+  std::uint64_t u;
+  std::memcpy(&u, &x, sizeof u);
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016" PRIx64 " ", u);
+  out += buf;
 }
 
 }  // namespace anisomesh

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <string>
 
+#include "anisomesh/core/number_text.h"
 #include "anisomesh/geometry/expression.h"
 #include "anisomesh/geometry/surface.h"
 
@@ -13,17 +14,8 @@ namespace anisomesh {
 
 namespace {
 
-// The 64 bits of x in hex: distinct for distinct doubles (and for +0 / -0).
-void appendBits(std::string& out, double x) {
-  std::uint64_t u;
-  std::memcpy(&u, &x, sizeof u);
-  char buf[20];
-  std::snprintf(buf, sizeof buf, "%016" PRIx64 " ", u);
-  out += buf;
-}
-
 void appendVec(std::string& out, const Vec3& v) {
-  for (int k = 0; k < 3; ++k) appendBits(out, v[k]);
+  for (int k = 0; k < 3; ++k) appendDoubleBits(out, v[k]);
 }
 
 // Length-prefixed, so that no text can imitate a field boundary.
@@ -38,10 +30,10 @@ std::string head(const char* kind, const Surface& s) {
   std::string out = kind;
   out += ' ';
   appendText(out, s.name());
-  appendBits(out, s.domain().lo.x());
-  appendBits(out, s.domain().lo.y());
-  appendBits(out, s.domain().hi.x());
-  appendBits(out, s.domain().hi.y());
+  appendDoubleBits(out, s.domain().lo.x());
+  appendDoubleBits(out, s.domain().lo.y());
+  appendDoubleBits(out, s.domain().hi.x());
+  appendDoubleBits(out, s.domain().hi.y());
   return out;
 }
 
@@ -54,11 +46,11 @@ std::string Expression::identity() const {
   out += std::to_string(code_.size()) + ' ';
   for (const Instr& in : code_) out += std::to_string(int(in.op)) + ',' + std::to_string(in.arg) + ' ';
   out += std::to_string(constants_.size()) + ' ';
-  for (double c : constants_) appendBits(out, c);
+  for (double c : constants_) appendDoubleBits(out, c);
   out += std::to_string(paramValues_.size()) + ' ';
   for (size_t i = 0; i < paramValues_.size(); ++i) {
     appendText(out, paramNames_[i]);
-    appendBits(out, paramValues_[i]);
+    appendDoubleBits(out, paramValues_[i]);
   }
   return out;
 }
@@ -79,22 +71,22 @@ std::string HeightFieldSurface::identity() const {
 
 std::string CylinderSurface::identity() const {
   std::string out = head("cylinder", *this);
-  appendBits(out, r_);
+  appendDoubleBits(out, r_);
   appendVec(out, c_);
   return out;
 }
 
 std::string SphereSurface::identity() const {
   std::string out = head("sphere", *this);
-  appendBits(out, r_);
+  appendDoubleBits(out, r_);
   appendVec(out, c_);
   return out;
 }
 
 std::string TorusSurface::identity() const {
   std::string out = head("torus", *this);
-  appendBits(out, R_);
-  appendBits(out, r_);
+  appendDoubleBits(out, R_);
+  appendDoubleBits(out, r_);
   appendVec(out, c_);
   return out;
 }

@@ -8,19 +8,12 @@
 #include <cstdio>
 #include <cstring>
 #include <mutex>
+#include "anisomesh/core/number_text.h"
 
 namespace anisomesh {
 namespace surface_mesher {
 
 namespace {
-
-void appendBits(std::string& out, double x) {
-  std::uint64_t u;
-  std::memcpy(&u, &x, sizeof u);
-  char buf[20];
-  std::snprintf(buf, sizeof buf, "%016" PRIx64 " ", u);
-  out += buf;
-}
 
 struct Entry {
   std::string key;
@@ -52,13 +45,13 @@ std::string curvatureStageKey(const Surface& surface, const SurfaceMetricOptions
   std::string key = id + "|";
   for (double x :
        {sizing.chordTolerance, sizing.angleTolerance, sizing.hmin, sizing.hmax, sizing.maxAspectRatio, refineThreshold})
-    appendBits(key, x);
+    appendDoubleBits(key, x);
   key += std::to_string(quadtree.initialLevel) + ' ' + std::to_string(quadtree.maxLevel) + ' ' +
          std::to_string(int(quadtree.interpolation)) + ' ' + std::to_string(maxNodes) + '|';
   for (const Source3D& s : sources3d) {
-    for (int k = 0; k < 3; ++k) appendBits(key, s.center[k]);
-    appendBits(key, s.h);
-    appendBits(key, s.radius);
+    for (int k = 0; k < 3; ++k) appendDoubleBits(key, s.center[k]);
+    appendDoubleBits(key, s.h);
+    appendDoubleBits(key, s.radius);
   }
   return key;
 }

@@ -8,4 +8,8 @@ namespace anisomesh {
 // The shortest %g text (1 to 17 significant digits) that parses back to v; "nan", "inf", "-inf".
 std::string numberText(double v);
 
+// Appends the 64 bits of x in hex and a space: distinct for distinct doubles (and for +0 / -0),
+// for exact cache keys.
+void appendDoubleBits(std::string& out, double x);
+
 }  // namespace anisomesh
