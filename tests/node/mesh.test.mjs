@@ -145,10 +145,15 @@ test('minimumControlSpace: the exact intersection of the inputs at random points
       const t = (k * Math.PI) / 16;
       for (const m of [ma, mb, mc]) assert.ok(size(mm, i, t) <= size(m, i, t) * (1 + 1e-9), `point ${i}, angle ${t}`);
     }
-    // And it is the intersection computed pairwise by the metric helper.
+    // And it is the core's minimum of all three at once (intersection is not associative):
+    // an input inside both others where there is one, else the intersection folded pairwise.
     const pick = (m) => ({ m11: m[3 * i], m12: m[3 * i + 1], m22: m[3 * i + 2] });
     const exact = am.intersectMetrics(am.intersectMetrics(pick(ma), pick(mb)), pick(mc));
-    assert.ok(Math.abs(exact.m11 - mm[3 * i]) <= 1e-9 * exact.m11 && Math.abs(exact.m22 - mm[3 * i + 2]) <= 1e-9 * exact.m22, `point ${i}`);
+    const isInput = (m) => m[3 * i] === mm[3 * i] && m[3 * i + 1] === mm[3 * i + 1] && m[3 * i + 2] === mm[3 * i + 2];
+    const insideOthers = (m) => [ma, mb, mc].every((o) => Array.from({ length: 16 }, (_, k) => (k * Math.PI) / 16)
+      .every((t) => size(m, i, t) <= size(o, i, t) * (1 + 1e-9)));
+    const folded = Math.abs(exact.m11 - mm[3 * i]) <= 1e-9 * exact.m11 && Math.abs(exact.m22 - mm[3 * i + 2]) <= 1e-9 * exact.m22;
+    assert.ok(folded || [ma, mb, mc].some((m) => isInput(m) && insideOthers(m)), `point ${i}`);
     if ([ma, mb, mc].some((m) => m[3 * i] === mm[3 * i] && m[3 * i + 1] === mm[3 * i + 1] && m[3 * i + 2] === mm[3 * i + 2])) equalToAnInput++;
   }
   assert.ok(equalToAnInput > 0, 'where one input is the smallest, the minimum is that input');
