@@ -106,6 +106,7 @@ TEST(PaperRulesSurfaceBoundary, BoundarySectionIsCheckedLikeThePlanarOne) {
   EXPECT_THROW(planeCase(kTinyHole, 0.2, R"({"lengthMax": 0.9})"), Error);
   EXPECT_THROW(planeCase(kTinyHole, 0.2, R"({"chordTolerance": 0.1})"), Error);  // planar only
   EXPECT_THROW(planeCase(kTinyHole, 0.2, R"({"eps1": -1})"), Error);
+  EXPECT_THROW(planeCase(kTinyHole, 0.2, R"({"eps1": 1.5})"), Error);  // unit segments would be short
   const SurfaceCaseSpec s = planeCase(kTinyHole, 0.2, R"({"eps1": 0.7, "eps2": 0.3, "dMax": 3})");
   EXPECT_EQ(s.options.boundary.eps1, 0.7);
   EXPECT_EQ(s.options.boundary.eps2, 0.3);

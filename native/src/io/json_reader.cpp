@@ -267,6 +267,9 @@ BoundaryUpdateOptions parseBoundaryRules(const json& v, const std::string& path,
     checkKeys(v, path, {"eps1", "lengthMin", "lengthMax", "eps2", "dMax"});
   BoundaryUpdateOptions o;
   o.eps1 = positiveOr(v, path, "eps1", o.eps1);
+  // Above 1 a unit segment counts as short, so every round would update the control space again.
+  require(o.eps1 <= 1.0, ErrorCode::InvalidArgument,
+          child(path, "eps1") + ": must be in (0, 1], got " + numberText(o.eps1));
   o.lengthMin = positiveOr(v, path, "lengthMin", o.lengthMin);
   o.lengthMax = positiveOr(v, path, "lengthMax", o.lengthMax);
   require(o.lengthMin <= 1.0 && o.lengthMax >= 1.0, ErrorCode::InvalidArgument,
