@@ -153,8 +153,33 @@ function checkSvgOption(svg) {
   return out;
 }
 
-// Frees control spaces the user forgot to dispose(), once they are garbage collected.
+// Frees core handles (control spaces, kept runs) the user forgot to dispose(), once garbage collected.
 const registry = typeof FinalizationRegistry === 'function' ? new FinalizationRegistry((handle) => handle.delete()) : null;
+
+// The kept run of a planar meshCase made with { stats: false } (a handle of the core):
+// report() makes its quality report once and frees it, dispose() frees it unreported;
+// forgotten, it is freed when the result is garbage collected.
+function deferredReport(handle, owner) {
+  let live = handle;
+  registry?.register(owner, handle, owner);
+  const free = () => {
+    if (!live) return;
+    registry?.unregister(owner);
+    live.delete();
+    live = null;
+  };
+  return {
+    report() {
+      if (!live) throw new AnisomeshError('INVALID_ARGUMENT', 'report(): this run\'s report was already made or disposed');
+      try {
+        return JSON.parse(unwrap(live.stats()).stats);
+      } finally {
+        free();
+      }
+    },
+    dispose: free,
+  };
+}
 
 /** A control space being inspected or edited; free it with dispose(). */
 class ControlSpace {
@@ -260,7 +285,7 @@ export function wrapCore(core) {
       }
       const svg = checkSvgOption(options.svg);
       const r = unwrap(core.meshCase(caseText(c), { ...options, svg }));
-      return {
+      const result = {
         mesh: r.mesh,
         ...(svg !== undefined ? { svg: r.svg } : {}),
         ...(options.vtu ? { vtu: r.vtu } : {}),
@@ -274,14 +299,8 @@ export function wrapCore(core) {
         ...(r.glyphs ? { glyphs: r.glyphs } : {}),
         ...(r.elementPatch ? { elementPatch: r.elementPatch, cornerParams: r.cornerParams } : {}),
       };
-    },
-    /**
-     * The quality report of the last planar meshCase run made with { stats: false }: the
-     * same object its stats would have been. Lets a caller show the mesh first and the
-     * report after. Throws INVALID_ARGUMENT when there is no such run.
-     */
-    caseStats() {
-      return JSON.parse(unwrap(core.caseStats()).stats);
+      if (r.report) Object.assign(result, deferredReport(r.report, result));
+      return result;
     },
     /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22). */
     remesh(mesh, metrics, options = {}) {

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <exception>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -304,12 +305,29 @@ val glyphsToJs(const std::vector<ControlSpaceGlyph>& glyphs) {
   return out;
 }
 
-// The last planar run made with stats: false, kept for caseStats() (one at a time: the
-// web worker asks for the report right after it has sent the mesh on).
-CaseRun& lastRun() {
-  static CaseRun run;
-  return run;
-}
+// A planar run made with stats: false, kept for its quality report, which the caller asks
+// for after it has drawn the mesh. meshCase returns one per such run; the JS wrapper owns
+// it (report() or dispose() deletes it), so runs are independent of each other.
+class CaseReportHandle {
+ public:
+  explicit CaseReportHandle(CaseRun run) : run_(std::move(run)) {}
+  // The quality report (stats JSON text) of the kept run; the run is freed after it.
+  val stats() {
+    return guarded([&] {
+      require(run_.finalSpace != nullptr, ErrorCode::InvalidArgument, "report: this run's report was already made");
+      const double t0 = emscripten_get_now();
+      nlohmann::json stats = caseRunStats(run_);
+      val out = val::object();
+      out.set("stats", stats.dump());
+      out.set("statsMs", emscripten_get_now() - t0);
+      run_ = CaseRun();
+      return out;
+    });
+  }
+
+ private:
+  CaseRun run_;
+};
 
 // A whole JSON case (planar or surface): { mesh, stats (JSON text, or null with stats:
 // false), controlSpace (JSON text or null), vertexMetrics, measures, timings }.
@@ -333,7 +351,6 @@ CaseSvgOptions svgOptions(const val& options) {
 val meshCaseJson(std::string jsonText, val options) {
   return guarded([&] {
     const double t0 = emscripten_get_now();
-    lastRun() = CaseRun();  // frees the previous run's mesh and control space
     RunCaseOptions o;
     o.inspectControlSpace = options["inspectControlSpace"].isTrue();
     o.vertexMetrics = options["vertexMetrics"].isTrue();
@@ -402,24 +419,8 @@ val meshCaseJson(std::string jsonText, val options) {
     if (run.stats.is_null()) {
       run.controlSpace = nullptr;
       run.vertexMetrics.clear();
-      lastRun() = std::move(run);
+      out.set("report", val(std::make_shared<CaseReportHandle>(std::move(run))));
     }
-    return out;
-  });
-}
-
-// The quality report (stats JSON text) of the last meshCase run made with stats: false.
-val caseStats() {
-  return guarded([&] {
-    CaseRun& run = lastRun();
-    require(run.finalSpace != nullptr, ErrorCode::InvalidArgument,
-            "caseStats: no meshCase run with stats: false to report on");
-    const double t0 = emscripten_get_now();
-    nlohmann::json stats = caseRunStats(run);
-    val out = val::object();
-    out.set("stats", stats.dump());
-    out.set("statsMs", emscripten_get_now() - t0);
-    run = CaseRun();
     return out;
   });
 }
@@ -766,7 +767,6 @@ EMSCRIPTEN_BINDINGS(anisomesh) {
   emscripten::function("metricEllipse", &metricEllipseJs);
   emscripten::function("memoryStats", &memoryStats);
   emscripten::function("meshCase", &meshCaseJson);
-  emscripten::function("caseStats", &caseStats);
   emscripten::function("remesh", &remeshJs);
   emscripten::function("metricFromField", &metricFromFieldJs);
   emscripten::function("adapt", &adaptJs);
@@ -776,6 +776,9 @@ EMSCRIPTEN_BINDINGS(anisomesh) {
   emscripten::function("writeSol", &writeSolText);
   emscripten::function("checkExpression", &checkExpression);
   emscripten::function("domainFromSvg", &domainFromSvg);
+  emscripten::class_<CaseReportHandle>("CaseReportHandle")
+      .smart_ptr<std::shared_ptr<CaseReportHandle>>("CaseReportHandlePtr")
+      .function("stats", &CaseReportHandle::stats);
   emscripten::class_<ControlSpaceHandle>("ControlSpaceHandle")
       .constructor<>()
       .function("build", &ControlSpaceHandle::build)

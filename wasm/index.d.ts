@@ -287,8 +287,15 @@ export interface ControlSpaceGlyphs {
 
 export interface CaseResult<S extends MeshStats = MeshStats> {
   mesh: MeshArrays;
-  /** The quality report; null for a planar run with stats: false (see caseStats()). */
+  /** The quality report; null for a planar run with stats: false (see report()). */
   stats: S | null;
+  /**
+   * Planar runs with stats: false: the quality report of this run, made now (once; the kept
+   * run is freed after it). Lets a caller draw the mesh first and show the report after.
+   */
+  report?(): PlanarMeshStats;
+  /** Planar runs with stats: false: frees the kept run without a report (report() then throws). */
+  dispose?(): void;
   /** With options.svg: the .svg picture (as the CLI draws it). */
   svg?: string;
   /** With options.vtu: the .vtu text (VTK XML, as the CLI writes it). */
@@ -383,7 +390,7 @@ export interface MeshCaseOptions {
   vertexMetrics?: boolean;
   /** Also return per-edge lengths and per-element qualities (CaseResult.measures). */
   measures?: boolean;
-  /** Planar cases: false skips the quality report (stats is null); caseStats() computes it after. */
+  /** Planar cases: false skips the quality report (stats is null); the result's report() makes it after. */
   stats?: boolean;
   /** Override the case's options.quads / options.allQuads. */
   quads?: boolean;
@@ -460,8 +467,6 @@ export interface Anisomesh {
   meshCase(c: PlanarCase, options?: MeshCaseOptions): CaseResult<PlanarMeshStats>;
   meshCase(c: SurfaceCase, options?: MeshCaseOptions): CaseResult<SurfaceMeshStats>;
   meshCase(c: Case | string, options?: MeshCaseOptions): CaseResult;
-  /** The quality report of the last planar meshCase run made with { stats: false }. */
-  caseStats(): PlanarMeshStats;
   /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22 each). */
   remesh(
     mesh: MeshArrays,

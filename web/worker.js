@@ -84,6 +84,7 @@ function sampledVtk(cs) {
 
 const wallNow = () => performance.timeOrigin + performance.now();
 let lastMeshJob = null;  // id of the planar mesh job whose run the core keeps for its report
+let keptRun = null;  // that job's meshCase result, whose report() makes the report
 
 // The planar mesher reports a fraction: 0 while the control space and its section 3.2
 // rounds run, then boundary (to 0.1), point insertion (to 0.8), improvement (to 0.95).
@@ -121,6 +122,8 @@ const ops = {
     });
     marks.coreEnd = wallNow();
     const { mesh, measures, timings } = run;
+    keptRun?.dispose();  // the previous planar run's report was not asked for
+    keptRun = surface ? null : run;
     lastMeshJob = surface ? null : id;
     return {
       mesh,
@@ -148,6 +151,8 @@ const ops = {
     marks.coreStart = wallNow();
     const r = am.adapt(mesh, expression, { ...options, iterations: 1, measures: true });
     marks.coreEnd = wallNow();
+    keptRun?.dispose();
+    keptRun = null;
     lastMeshJob = null;
     return { mesh: r.mesh, field: r.fields[0], iteration: r.iterations[0], measures: r.measures };
   },
@@ -156,7 +161,8 @@ const ops = {
     if (of !== lastMeshJob) throw Object.assign(new Error(`report: job ${of} is not the last mesh job (${lastMeshJob})`), { code: 'INVALID_ARGUMENT' });
     progress('quality report', null);
     const t0 = performance.now();
-    const stats = am.caseStats();
+    const stats = keptRun.report();
+    keptRun = null;
     lastMeshJob = null;
     return { stats, reportMs: performance.now() - t0 };
   },

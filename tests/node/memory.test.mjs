@@ -20,8 +20,8 @@ const square = {
 test('1,000 mesh-and-dispose cycles leave the heap flat', { timeout: 300000 }, () => {
   const cycle = (i) => {
     const { mesh } = am.meshCase(square);
-    am.meshCase(square, { stats: false, measures: true });  // the run kept for its report...
-    am.caseStats();                                          // ...and freed by it
+    am.meshCase(square, { stats: false, measures: true }).report();  // the run kept for its report, freed by it
+    am.meshCase(square, { stats: false }).dispose();                 // or freed unreported
     const cs = am.createControlSpace(square);
     cs.metricsAt(new Float64Array([0.5, 0.5]));
     const other = am.createControlSpace(square);

@@ -27,7 +27,7 @@ test('meshCase returns typed arrays that describe a valid planar mesh', () => {
   assert.ok(mesh.edges.length > 0 && mesh.edgeRefs.length === mesh.edges.length / 2);
 });
 
-test('meshCase with stats: false and measures: the mesh at once, the same report from caseStats() after', () => {
+test('meshCase with stats: false and measures: the mesh at once, the same report from the result's report() after', () => {
   for (const [name, options] of [['fig7_rect_holes_dr2', {}], ['boundary_layer', { quads: true }]]) {
     const c = example(name);
     const full = am.meshCase(c, options);
@@ -54,14 +54,23 @@ test('meshCase with stats: false and measures: the mesh at once, the same report
       assert.ok(edges[e] < edges[e + 1], name);
       if (e) assert.ok(edges[e - 2] < edges[e] || (edges[e - 2] === edges[e] && edges[e - 1] < edges[e + 1]), name);
     }
-    const later = am.caseStats();
+    const later = quick.report();
     const strip = ({ pipelineSeconds, timings, ...rest }) => rest;  // times differ between runs
     assert.deepEqual(strip(later), strip(full.stats), name);
     assert.deepEqual(Object.keys(later.pipelineSeconds), Object.keys(full.stats.pipelineSeconds), name);
     assert.ok(quick.timings.runMs > 0 && quick.timings.measuresMs >= 0, name);
     // The kept run is used up by its report.
-    assert.throws(() => am.caseStats(), { code: 'INVALID_ARGUMENT', message: /stats: false/ });
+    assert.throws(() => quick.report(), { code: 'INVALID_ARGUMENT', message: /already made/ });
   }
+  // Each run keeps its own: two runs with stats: false report in any order (no "last run").
+  const a = am.meshCase(example('fig7_rect_holes_dr2'), { stats: false });
+  const b = am.meshCase(example('point_source'), { stats: false });
+  assert.equal(b.report().triangles, b.mesh.triangles.length / 3);
+  assert.equal(a.report().triangles, a.mesh.triangles.length / 3);
+  const d = am.meshCase(example('point_source'), { stats: false });
+  d.dispose();
+  assert.throws(() => d.report(), { code: 'INVALID_ARGUMENT', message: /disposed/ });
+  assert.equal(am.meshCase(example('point_source')).report, undefined, 'a run with its stats keeps nothing');
   assert.throws(() => am.meshCase(example('point_source'), { stats: 'no' }), { code: 'INVALID_ARGUMENT', message: /options\.stats/ });
   assert.throws(() => am.meshCase(example('point_source'), { measures: 1 }), { code: 'INVALID_ARGUMENT', message: /options\.measures/ });
 });

@@ -67,6 +67,12 @@ compare('planar.boundaryUpdates', planarStats.boundaryUpdates, boundaryUpdateKey
 const edgesCount: number = planarStats.edges;
 if (!(edgesCount > 0)) problems.push('planar.edges not positive');
 
+// A deferred report: the result's report() gives the planar stats, once.
+const quick = am.meshCase(square, { stats: false });
+if (quick.stats !== null || !quick.report) throw new Error('stats: false gives no stats and a report()');
+const later: PlanarMeshStats = quick.report();
+compare('planar (deferred)', later, planarKeys);
+
 const surface = am.meshCase(plane);
 const surfaceStats: SurfaceMeshStats | null = surface.stats;
 if (!surfaceStats) throw new Error('no surface stats');

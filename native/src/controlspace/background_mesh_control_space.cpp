@@ -257,6 +257,34 @@ SymMt BackgroundMeshControlSpace::mtAt(const Vec2& p) const {
   return r;
 }
 
+InterpolationStencil BackgroundMeshControlSpace::stencilAt(const Vec2& p) const {
+  const Vec2 q = p.allFinite() ? Vec2(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) : box_.lo;
+  const auto& v = tri_[locateTriangle(q)];
+  InterpolationStencil s;
+  s.count = 3;
+  for (int k = 0; k < 3; ++k) s.nodes[size_t(k)] = v[k];
+  double sum = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    double w;
+    if (options_.interpolation == BackgroundInterpolation::Linear) {
+      w = std::max(orient(v[(k + 1) % 3], v[(k + 2) % 3], q), 0.0);
+    } else {
+      const double d2 = (q - pos_[v[k]]).squaredNorm();
+      if (d2 <= eps2_) {  // at a vertex: its value (eq. 11's epsilon shortcut)
+        s.count = 1;
+        s.nodes[0] = v[k];
+        s.weights[0] = 1.0;
+        return s;
+      }
+      w = 1.0 / d2;
+    }
+    s.weights[size_t(k)] = w;
+    sum += w;
+  }
+  for (int k = 0; k < 3; ++k) s.weights[size_t(k)] = sum > 0.0 ? s.weights[size_t(k)] / sum : 1.0 / 3.0;
+  return s;
+}
+
 Metric BackgroundMeshControlSpace::metricAt(const Vec2& p) const { return toMetric(mtAt(p)); }
 
 std::vector<std::array<int, 2>> BackgroundMeshControlSpace::rawEdges(bool /*structure*/) const {

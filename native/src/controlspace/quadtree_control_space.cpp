@@ -211,7 +211,9 @@ SymMt QuadtreeControlSpace::interpolateInCell(int cell, double e, double x) cons
   return r;
 }
 
-SymMt QuadtreeControlSpace::mtAt(const Vec2& p) const {
+// The leaf holding p (clamped onto the box; NaN goes to the lo corner) and p's local
+// coordinates (eta, xi) in it: the descent every query shares.
+inline int QuadtreeControlSpace::locateInLeaf(const Vec2& p, double& e, double& x) const {
   // Lattice coordinates, clamped (NaN goes to 0).
   double ux = (p.x() - box_.lo.x()) * scale_.x();
   double uy = (p.y() - box_.lo.y()) * scale_.y();
@@ -233,9 +235,31 @@ SymMt QuadtreeControlSpace::mtAt(const Vec2& p) const {
   }
   const int sh = bits_ - lvl;
   const double inv = 1.0 / static_cast<double>(1 << sh);
-  const double e = (ux - static_cast<double>((qx >> sh) << sh)) * inv;
-  const double x = (uy - static_cast<double>((qy >> sh) << sh)) * inv;
+  e = (ux - static_cast<double>((qx >> sh) << sh)) * inv;
+  x = (uy - static_cast<double>((qy >> sh) << sh)) * inv;
+  return c;
+}
+
+SymMt QuadtreeControlSpace::mtAt(const Vec2& p) const {
+  double e, x;
+  const int c = locateInLeaf(p, e, x);
   return interpolateInCell(c, e, x);
+}
+
+InterpolationStencil QuadtreeControlSpace::stencilAt(const Vec2& p) const {
+  double e, x;
+  const int c = locateInLeaf(p, e, x);
+  const int* nd = leafNodes(c);
+  InterpolationStencil s;
+  s.count = nodesPerLeaf_;
+  if (nodesPerLeaf_ == 4) {
+    const double w[4] = {(1 - e) * (1 - x), e * (1 - x), e * x, (1 - e) * x};
+    for (int k = 0; k < 4; ++k) s.weights[size_t(k)] = w[k];
+  } else {
+    serendipityWeights(e, x, s.weights.data());
+  }
+  for (int k = 0; k < s.count; ++k) s.nodes[size_t(k)] = nd[k];
+  return s;
 }
 
 Metric QuadtreeControlSpace::metricAt(const Vec2& p) const { return toMetric(mtAt(p)); }

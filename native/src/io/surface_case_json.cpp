@@ -140,7 +140,18 @@ SurfaceCaseSpec parseSurfaceCaseJsonTree(const json& root) {
   if (root.contains("options")) {
     const json& v = root["options"];
     expectObject(v, "options");
-    checkKeys(v, "options", {"maxElements", "maxRounds", "improvementPasses", "quads", "allQuads"});
+    checkKeys(v, "options", {"maxElements", "maxRounds", "improvementPasses", "quads", "allQuads", "parameterization"});
+    if (v.contains("parameterization")) {
+      const std::string s = string(v["parameterization"], "options.parameterization");
+      if (s == "folded")
+        o.parameterization = ParameterizationStorage::Folded;
+      else if (s == "stored")
+        o.parameterization = ParameterizationStorage::Stored;
+      else if (s == "computed")
+        o.parameterization = ParameterizationStorage::Computed;
+      else
+        fail("options.parameterization", "expected \"folded\", \"stored\" or \"computed\", got \"" + s + "\"");
+    }
     if (v.contains("quads")) o.quads = boolean(v["quads"], "options.quads");
     if (v.contains("allQuads")) o.allQuads = boolean(v["allQuads"], "options.allQuads");
     if (v.contains("maxElements")) {

@@ -55,10 +55,11 @@ struct Counters {
 };
 
 // Counts (and times) the queries the discretization and the mesher make; Mp comes from
-// the surface itself (section 4.3 allows either).
+// the inner space when it keeps one (section 4.3 view), else from the surface itself.
 class CountingControlSpace : public ControlSpace {
  public:
-  CountingControlSpace(const ControlSpace& inner, const Surface& s, Counters& c) : inner_(inner), s_(s), c_(c) {}
+  CountingControlSpace(const ControlSpace& inner, const Surface& s, Counters& c, bool innerHasMp)
+      : inner_(inner), s_(s), c_(c), innerHasMp_(innerHasMp) {}
   // The time is sampled: one query in 32 is timed and counted 32 times (reading the clock
   // at every query cost 7% of a surface run, as much as a cheap query itself).
   Metric metricAt(const Vec2& p) const override {
@@ -68,13 +69,16 @@ class CountingControlSpace : public ControlSpace {
     c_.querySeconds += 32.0 * since(t0);
     return m;
   }
-  Mat2 parameterizationAt(const Vec2& p) const override { return parameterizationMatrix(s_, p); }
+  Mat2 parameterizationAt(const Vec2& p) const override {
+    return innerHasMp_ ? inner_.parameterizationAt(p) : parameterizationMatrix(s_, p);
+  }
   Box2 bounds() const override { return inner_.bounds(); }
 
  private:
   const ControlSpace& inner_;
   const Surface& s_;
   Counters& c_;
+  bool innerHasMp_;
 };
 
 inline const Contour& contourOf(const SurfacePatch& p, int k) {
@@ -109,6 +113,7 @@ inline Vec3 slotPoint(const SurfaceModel& m, const Slot& s, double t) {
 // Everything one run keeps per patch.
 struct PatchState {
   std::unique_ptr<AdaptiveControlSpace> cs;
+  std::unique_ptr<ParameterizedControlSpace> parameterized;  // section 4.3 view (Stored, Computed)
   std::unique_ptr<CountingControlSpace> counted;
   std::vector<std::vector<int>> slots;  // per contour, per curve: slot index
   bool invalid = true;
@@ -146,6 +151,8 @@ class ModelMesher final : public Algorithm1Steps {
     pending_[size_t(patch)].emplace_back(std::in_place_type<S>, s);
   }
   void flushSources();
+  // After patch's control space changed: its section 4.3 view and the counting wrapper.
+  void refreshQueries(size_t patch);
   std::vector<ControlSpaceGlyph> glyphs() const;
   const ControlSpace& space(int patch) const { return *ps_[size_t(patch)].counted; }
   Vec2 uvOf(const Slot& s, size_t i) const { return s.c->point(s.t[i]); }

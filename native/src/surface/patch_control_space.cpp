@@ -194,6 +194,7 @@ void ModelMesher::flushSources() {
     }
     pending_[p].clear();
     ps_[p].modified = true;
+    refreshQueries(p);
   }
 }
 

@@ -94,8 +94,25 @@ void ModelMesher::buildControlSpaces() {
     } catch (const Error& e) {
       throw Error(e.code(), patchLabel(m_.patches[p], int(p)) + ": " + e.what());
     }
-    ps_[p].counted = std::make_unique<CountingControlSpace>(*ps_[p].cs, *m_.patches[p].surface, counters_);
+    refreshQueries(p);
   }
+}
+
+void ModelMesher::refreshQueries(size_t p) {
+  PatchState& st = ps_[p];
+  const ControlSpace* inner = st.cs.get();
+  st.parameterized.reset();
+  if (o_.parameterization != ParameterizationStorage::Folded) {
+    const std::shared_ptr<const Surface> surf = m_.patches[p].surface;
+    const Box2 dom = surf->domain();
+    st.parameterized = std::make_unique<ParameterizedControlSpace>(
+        *st.cs,
+        [surf, dom](const Vec2& uv) { return parameterizationMatrix(*surf, uv.cwiseMax(dom.lo).cwiseMin(dom.hi)); },
+        o_.parameterization);
+    inner = st.parameterized.get();
+  }
+  st.counted =
+      std::make_unique<CountingControlSpace>(*inner, *m_.patches[p].surface, counters_, st.parameterized != nullptr);
 }
 
 // 4: the invalid contours discretized (shared ones once, for both patches); after the

@@ -35,6 +35,14 @@ struct ControlElement {
   std::array<Vec2, 5> samples{};
 };
 
+// The nodes and weights a structure interpolates from at one point (at most 8: a
+// serendipity leaf), so that any per-node field is interpolated exactly as Mt is.
+struct InterpolationStencil {
+  int count = 0;
+  std::array<int, 8> nodes{};
+  std::array<double, 8> weights{};  // sum to 1
+};
+
 // Decides whether an element must be split.
 using ElementPredicate = std::function<bool(const ControlElement&)>;
 // Called after each batch of splits with the range [first, last) of the nodes it created.
@@ -116,6 +124,9 @@ class AdaptiveControlSpace : public ControlSpace {
   }
   // Size of the smallest element touching each node.
   virtual std::vector<double> nodeElementSizes() const = 0;
+  // The nodes and weights metricAt(p) interpolates Mt from (section 4.3 interpolates the
+  // parameterization matrix Mp "in precisely the same way").
+  virtual InterpolationStencil stencilAt(const Vec2& p) const = 0;
   // Smallest element size the structure may reach (its maximum depth).
   virtual double minElementSize() const = 0;
   // "quadtree" or "background".

@@ -42,6 +42,7 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
   Metric metricAt(const Vec2& p) const override;
   // Interpolated Mt entries at p (the allocation-free core of metricAt).
   SymMt mtAt(const Vec2& p) const;
+  InterpolationStencil stencilAt(const Vec2& p) const override;
   // Triangle containing p (clamped onto the box), by walking.
   int locateTriangle(const Vec2& p) const;
   // True when p lies in the closed triangle t.

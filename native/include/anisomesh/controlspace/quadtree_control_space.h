@@ -47,6 +47,7 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   SymMt mtAt(const Vec2& p) const;
   // Index of the leaf cell containing p (clamped onto the box).
   int locateLeaf(const Vec2& p) const;
+  InterpolationStencil stencilAt(const Vec2& p) const override;
 
   void applyConstraints() override;
   std::vector<std::array<int, 2>> rawEdges(bool structure) const override;
@@ -102,6 +103,8 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   // Node at lattice point (x, y), or -1.
   int findNode(int x, int y) const;
   int findOrCreateNode(int x, int y, int parentCell, bool& created);
+  // Leaf holding p and p's local coordinates (eta, xi) in it.
+  int locateInLeaf(const Vec2& p, double& e, double& x) const;
   // Interpolation inside a cell at local coordinates (eta, xi) in [0, 1].
   SymMt interpolateInCell(int cell, double eta, double xi) const;
   void growMap();

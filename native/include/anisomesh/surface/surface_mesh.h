@@ -16,6 +16,7 @@
 
 #include "anisomesh/boundary/boundary_updates.h"
 #include "anisomesh/controlspace/adaptive_control_space.h"
+#include "anisomesh/controlspace/parameterized_control_space.h"
 #include "anisomesh/controlspace/metric_sources.h"
 #include "anisomesh/geometry/domain.h"
 #include "anisomesh/geometry/surface.h"
@@ -94,6 +95,10 @@ struct SurfaceMeshOptions {
   PlanarMesherOptions mesher;     // inner nodes and improvement (its quads / allQuads are ignored)
   // Node budget of each patch's control space; 0: controlSpaceNodeBudget(mesher.maxElements).
   std::int64_t maxControlNodes = 0;
+  // Section 4.3: what the mesher's queries read. Folded: each node's (u, v) metric; Stored:
+  // each node's tangent-plane Mt and Mp, both interpolated; Computed: Mt interpolated, Mp
+  // from the surface at every query (see controlspace/parameterized_control_space.h).
+  ParameterizationStorage parameterization = ParameterizationStorage::Folded;
   // Quad-dominant: triangle pairs merged in each patch's (u, v) (metric quality >= mesher.minQuadQuality);
   // shared contour edges are never merged across, so the patches stay conforming.
   bool quads = false;
