@@ -27,7 +27,7 @@ test('meshCase returns typed arrays that describe a valid planar mesh', () => {
   assert.ok(mesh.edges.length > 0 && mesh.edgeRefs.length === mesh.edges.length / 2);
 });
 
-test('meshCase with stats: false and measures: the mesh at once, the same report from the result's report() after', () => {
+test('meshCase with stats: false and measures: the mesh at once, the same report from result.report() after', () => {
   for (const [name, options] of [['fig7_rect_holes_dr2', {}], ['boundary_layer', { quads: true }]]) {
     const c = example(name);
     const full = am.meshCase(c, options);
