@@ -44,18 +44,6 @@ bool splitNode(const Mat2& m, const Mat2& mp, SymMt& tangent) {
 
 }  // namespace
 
-const char* parameterizationStorageName(ParameterizationStorage s) {
-  switch (s) {
-    case ParameterizationStorage::Folded:
-      return "folded";
-    case ParameterizationStorage::Stored:
-      return "stored";
-    case ParameterizationStorage::Computed:
-      return "computed";
-  }
-  return "folded";
-}
-
 ParameterizedControlSpace::ParameterizedControlSpace(const AdaptiveControlSpace& space, ParameterizationFunction mp,
                                                      ParameterizationStorage storage)
     : space_(space), mp_(std::move(mp)), storage_(storage) {
@@ -95,10 +83,6 @@ ParameterizedControlSpace::ParameterizedControlSpace(const AdaptiveControlSpace&
     tangent_[size_t(h.node)] = t;
     param_[size_t(h.node)] = q;
   }
-}
-
-Metric ParameterizedControlSpace::tangentMetricAt(const Vec2& p) const {
-  return toMetric(interpolate(tangent_, space_.stencilAt(p)));
 }
 
 Mat2 ParameterizedControlSpace::parameterizationAt(const Vec2& p) const {

@@ -22,9 +22,6 @@ enum class ParameterizationStorage {
 // Mp at a point of the parameter plane (symmetric positive definite; may throw).
 using ParameterizationFunction = std::function<Mat2(const Vec2&)>;
 
-// "folded", "stored" or "computed".
-const char* parameterizationStorageName(ParameterizationStorage s);
-
 class ParameterizedControlSpace : public ControlSpace {
  public:
   // The view of space (which must outlive it and not change while it is used): Mp at every
@@ -38,14 +35,11 @@ class ParameterizedControlSpace : public ControlSpace {
   Metric metricAt(const Vec2& p) const override;
   // Mp at p: interpolated from the nodes (Stored) or computed (Computed).
   Mat2 parameterizationAt(const Vec2& p) const override;
-  // Mt at p (the metric in the tangent plane's frame J Mp^-1), interpolated.
-  Metric tangentMetricAt(const Vec2& p) const;
   Box2 bounds() const override { return space_.bounds(); }
 
   ParameterizationStorage storage() const { return storage_; }
-  // Mt and Mp of node i.
+  // Mt of node i (in the tangent plane's frame J Mp^-1).
   const SymMt& nodeTangentMt(int i) const { return tangent_[size_t(i)]; }
-  const SymMt& nodeParameterization(int i) const { return param_[size_t(i)]; }
 
  private:
   const AdaptiveControlSpace& space_;
