@@ -16,8 +16,8 @@
 
 #include "anisomesh/boundary/boundary_updates.h"
 #include "anisomesh/controlspace/adaptive_control_space.h"
-#include "anisomesh/controlspace/parameterized_control_space.h"
 #include "anisomesh/controlspace/metric_sources.h"
+#include "anisomesh/controlspace/parameterized_control_space.h"
 #include "anisomesh/geometry/domain.h"
 #include "anisomesh/geometry/surface.h"
 #include "anisomesh/geometry/surface_metric.h"
