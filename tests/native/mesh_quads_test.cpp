@@ -3,7 +3,9 @@
 #include <cmath>
 #include <iostream>
 
+#include "anisomesh/io/case_json.h"
 #include "anisomesh/io/report_json.h"
+#include "anisomesh/pipeline/pipeline.h"
 #include "mesh_test_util.h"
 
 using namespace anisomesh;
@@ -82,4 +84,31 @@ TEST(MeshQuads, AllQuads) {
   EXPECT_EQ(r.inverted, 0);
   EXPECT_EQ(r.triangles, 0);
   std::cout << "all quads: " << qualityReportToJson(r).dump() << "\n";
+}
+
+// The all-quad split puts a curved contour's new points on the curve (the curve's point at
+// the segment's middle parameter), for planar cases as for surface patches: every boundary
+// vertex of a hole's circle lies on it, and the straight sides keep their straight midpoints.
+TEST(MeshQuads, AllQuadBoundaryPointsLieOnTheirCurves) {
+  const CaseSpec spec = parseCaseJson(R"({
+    "domain": {"outer": [{"type": "polyline", "points": [[0,0],[2,0],[2,1],[0,1],[0,0]]}],
+               "holes": [[{"type": "circle", "center": [1, 0.5], "radius": 0.25, "ref": 5}]]},
+    "controlSpace": {"hmax": 0.1}, "options": {"allQuads": true}})");
+  const Mesh m = meshCase(spec);
+  ASSERT_FALSE(m.quads.empty());
+  int onCircle = 0;
+  for (size_t e = 0; e < m.edges.size(); ++e) {
+    if (m.edgeRefs[e] != 5) continue;
+    for (int v : m.edges[e]) {
+      EXPECT_NEAR((m.params[size_t(v)] - Vec2(1, 0.5)).norm(), 0.25, 1e-12) << "vertex " << v;
+      ++onCircle;
+    }
+  }
+  EXPECT_GT(onCircle, 40);
+  for (size_t e = 0; e < m.edges.size(); ++e)
+    if (m.edgeRefs[e] != 5)
+      for (int v : m.edges[e]) {
+        const Vec2 p = m.params[size_t(v)];
+        EXPECT_TRUE(p.x() == 0 || p.x() == 2 || p.y() == 0 || p.y() == 1) << p.transpose();
+      }
 }

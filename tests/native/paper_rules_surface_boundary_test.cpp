@@ -101,6 +101,35 @@ TEST(PaperRulesSurfaceBoundary, ChordCheckInvalidatesCurvedContours) {
   EXPECT_GT(r.rounds, 1);
 }
 
+// dMax (h2 = dMax h1 across a contour): the chord sources of a circular hole in a plane patch
+// (contourCurvature off, so only they size the boundary; hmax far above them) are dMax times
+// longer across the circle than along it. With dMax = 1 they are round, so the ring of
+// triangles along the hole is finer across it: more triangles there than with the default 4.
+TEST(PaperRulesSurfaceBoundary, DMaxScalesTheSizeAcrossTheContour) {
+  auto ringCase = [](const std::string& dMax) {
+    return parseSurfaceCaseJson(
+        R"({"metric": {"chordTolerance": 0.0005, "hmin": 0.0005, "hmax": 0.3, "gradation": 2.0,
+                       "contourCurvature": false}, "boundary": {"dMax": )" +
+        dMax + R"(}, "patches": [{"name": "plate", "surface": {"type": "plane"},
+                  "holes": [[{"type": "circle", "center": [0.5, 0.5], "radius": 0.2}]]}]})");
+  };
+  Mesh round, stretched;
+  const SurfaceMeshReport r1 = run(ringCase("1"), &round);
+  const SurfaceMeshReport r4 = run(ringCase("4"), &stretched);
+  EXPECT_GT(r1.chordSources, 0);
+  EXPECT_GT(r4.chordSources, 0);
+  auto ring = [](const Mesh& m) {  // triangles with their centroid within 0.04 of the circle
+    int n = 0;
+    for (const auto& t : m.triangles) {
+      const Vec3 g = (m.points[size_t(t[0])] + m.points[size_t(t[1])] + m.points[size_t(t[2])]) / 3.0;
+      const double r = (g.head<2>() - Vec2(0.5, 0.5)).norm();
+      if (r > 0.2 && r < 0.24) ++n;
+    }
+    return n;
+  };
+  EXPECT_GT(ring(round), 1.5 * ring(stretched));
+}
+
 // The surface format's "boundary" section is read by the planar reader's rules.
 TEST(PaperRulesSurfaceBoundary, BoundarySectionIsCheckedLikeThePlanarOne) {
   EXPECT_THROW(planeCase(kTinyHole, 0.2, R"({"lengthMax": 0.9})"), Error);

@@ -123,6 +123,16 @@ std::vector<double> discretizeCurve(const Curve& c, const ControlSpace& cs, int 
   return ts;
 }
 
+namespace {
+// Straight between its discretization points (a line, a polyline keeping its vertices): the
+// segment's midpoint is then the straight one, bit for bit.
+bool isStraightBetweenPoints(const Curve& c) {
+  if (dynamic_cast<const LineCurve*>(&c)) return true;
+  const auto* poly = dynamic_cast<const PolylineCurve*>(&c);
+  return poly && poly->breakpoints().size() + 2 == poly->points().size();
+}
+}  // namespace
+
 std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const Domain*>& faces,
                                                          const ControlSpace& cs, const DiscretizeOptions& options) {
   // Minimum segment count per curve: a closed contour must have at least 3 segments.
@@ -147,11 +157,17 @@ std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const
       }
     }
 
-  std::map<const Curve*, std::vector<Vec2>> points;  // discretized once, shared by every use
+  std::map<const Curve*, std::vector<Vec2>> points;     // discretized once, shared by every use
+  std::map<const Curve*, std::vector<Vec2>> midpoints;  // of each segment, on the curve
   auto discretizeOne = [&](const Curve* c) {
-    std::vector<Vec2> pts;
-    for (double t : discretizeCurve(*c, cs, minimum[c], options)) pts.push_back(c->point(t));
+    const std::vector<double> ts = discretizeCurve(*c, cs, minimum[c], options);
+    std::vector<Vec2> pts, mids;
+    for (double t : ts) pts.push_back(c->point(t));
+    for (size_t j = 0; j + 1 < ts.size(); ++j)
+      mids.push_back(isStraightBetweenPoints(*c) ? Vec2(0.5 * (pts[j] + pts[j + 1]))
+                                                 : c->point(0.5 * (ts[j] + ts[j + 1])));
     points[c] = std::move(pts);
+    midpoints[c] = std::move(mids);
   };
   auto checkBudget = [&] {
     std::int64_t total = 0;
@@ -176,9 +192,11 @@ std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const
   auto assemble = [&](const Contour& contour, BoundaryLoop* loop, std::vector<const Curve*>* owner) {
     for (const CurveUse& u : contour.curves) {
       std::vector<Vec2> pts = points.at(u.curve.get());
-      if (u.reversed) std::reverse(pts.begin(), pts.end());
+      std::vector<Vec2> mids = midpoints.at(u.curve.get());
+      if (u.reversed) std::reverse(pts.begin(), pts.end()), std::reverse(mids.begin(), mids.end());
       // The last point is the next curve's first point.
       loop->points.insert(loop->points.end(), pts.begin(), pts.end() - 1);
+      loop->edgeMidpoints.insert(loop->edgeMidpoints.end(), mids.begin(), mids.end());
       loop->edgeRefs.insert(loop->edgeRefs.end(), pts.size() - 1, u.curve->ref());
       if (owner) owner->insert(owner->end(), pts.size() - 1, u.curve.get());
     }
@@ -229,7 +247,9 @@ std::vector<std::vector<BoundaryLoop>> discretizeDomains(const std::vector<const
         BoundaryLoop rev;
         for (int i = 0; i < n; ++i) {
           rev.points.push_back(loop.points[size_t(n - 1 - i)]);
-          rev.edgeRefs.push_back(loop.edgeRefs[size_t(((n - 2 - i) % n + n) % n)]);
+          const size_t e = size_t(((n - 2 - i) % n + n) % n);
+          rev.edgeRefs.push_back(loop.edgeRefs[e]);
+          rev.edgeMidpoints.push_back(loop.edgeMidpoints[e]);
         }
         loop = std::move(rev);
       }

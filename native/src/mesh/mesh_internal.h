@@ -35,8 +35,7 @@ inline double metricQuadQuality(const SymMt& m, const Vec2* p) {
 }
 
 // Quad-dominant conversion (greedy merge of triangle pairs by metric quad quality, pairs
-// below minQuadQuality kept as triangles) and,
-// with allQuads, the split of every element into quads. vertexMt holds Mt per vertex.
-void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, bool allQuads, double minQuadQuality);
+// below minQuadQuality kept as triangles). vertexMt holds Mt per vertex.
+void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, double minQuadQuality);
 
 }  // namespace anisomesh

@@ -2,6 +2,8 @@
 // under mesh/planar/, are described in mesh/planar/mesher_impl.h).
 #include "anisomesh/mesh/planar_mesher.h"
 
+#include "anisomesh/mesh/all_quad_split.h"
+
 #include "planar/mesher_impl.h"
 
 namespace anisomesh {
@@ -57,7 +59,8 @@ Mesh Mesher::run() {
       vm.reserve(vx_.size() - kSuper);
       for (size_t v = kSuper; v < vx_.size(); ++v)
         if (vbnd_[v] != 2) vm.push_back(vx_[v].m);
-      convertToQuads(mesh, vm, opt_.allQuads, opt_.minQuadQuality);
+      convertToQuads(mesh, vm, opt_.minQuadQuality);
+      if (opt_.allQuads) splitIntoAllQuads(mesh, loopEdgeMidpoints(loops_));
       timings_.quads = secondsSince(t0);
     }
   }

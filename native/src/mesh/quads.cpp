@@ -1,9 +1,7 @@
 // Quad conversion: greedy merging of adjacent triangles into the best quads in the metric
-// (Blossom-free), then optionally the all-quad split (each triangle into 3, each quad
-// into 4, mid-edge points shared between neighbours).
+// (Blossom-free); the all-quad split that may follow is mesh/all_quad_split.
 #include <algorithm>
 #include <cstdint>
-#include <map>
 #include <tuple>
 #include <vector>
 
@@ -80,62 +78,10 @@ void mergeTriangles(Mesh& mesh, const std::vector<SymMt>& vmt, double minQuality
   mesh.quadRefs.assign(mesh.quads.size(), 0);
 }
 
-// Every element into quads; boundary edges are split at the midpoint of the straight
-// segment (not projected onto the underlying curve, which the mesher does not know).
-void splitIntoQuads(Mesh& mesh) {
-  std::map<std::uint64_t, int> mids;
-  auto addPoint = [&](const Vec2& p) {
-    mesh.points.emplace_back(p.x(), p.y(), 0.0);
-    mesh.params.push_back(p);
-    mesh.pointRefs.push_back(0);
-    return static_cast<int>(mesh.params.size()) - 1;
-  };
-  auto mid = [&](int a, int b) {
-    const auto key = edgeKey(a, b);
-    const auto it = mids.find(key);
-    if (it != mids.end()) return it->second;
-    const int v = addPoint(0.5 * (mesh.params[a] + mesh.params[b]));
-    mids.emplace(key, v);
-    return v;
-  };
-  std::vector<std::array<int, 4>> quads;
-  quads.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
-  // Boundary edges first so that their midpoints come in boundary order.
-  std::vector<std::array<int, 2>> edges;
-  std::vector<int> refs;
-  for (size_t e = 0; e < mesh.edges.size(); ++e) {
-    const int a = mesh.edges[e][0], b = mesh.edges[e][1], m = mid(a, b);
-    edges.push_back({a, m});
-    edges.push_back({m, b});
-    refs.push_back(mesh.edgeRefs[e]);
-    refs.push_back(mesh.edgeRefs[e]);
-  }
-  for (const auto& t : mesh.triangles) {
-    const int mab = mid(t[0], t[1]), mbc = mid(t[1], t[2]), mca = mid(t[2], t[0]);
-    const int g = addPoint((mesh.params[t[0]] + mesh.params[t[1]] + mesh.params[t[2]]) / 3.0);
-    quads.push_back({t[0], mab, g, mca});
-    quads.push_back({t[1], mbc, g, mab});
-    quads.push_back({t[2], mca, g, mbc});
-  }
-  for (const auto& q : mesh.quads) {
-    int m[4];
-    for (int k = 0; k < 4; ++k) m[k] = mid(q[k], q[(k + 1) % 4]);
-    const int o = addPoint(0.25 * (mesh.params[q[0]] + mesh.params[q[1]] + mesh.params[q[2]] + mesh.params[q[3]]));
-    for (int k = 0; k < 4; ++k) quads.push_back({q[k], m[k], o, m[(k + 3) % 4]});
-  }
-  mesh.quads.swap(quads);
-  mesh.quadRefs.assign(mesh.quads.size(), 0);
-  mesh.triangles.clear();
-  mesh.triangleRefs.clear();
-  mesh.edges.swap(edges);
-  mesh.edgeRefs.swap(refs);
-}
-
 }  // namespace
 
-void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, bool allQuads, double minQuadQuality) {
+void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, double minQuadQuality) {
   mergeTriangles(mesh, vertexMt, minQuadQuality);
-  if (allQuads) splitIntoQuads(mesh);
 }
 
 }  // namespace anisomesh

@@ -57,50 +57,6 @@ void orientPatches(Mesh& out, const std::vector<int>& patchTriangles, const std:
     if (flip[size_t(quadPatch[t])] == 1) std::swap(out.quads[t][1], out.quads[t][3]);
 }
 
-// All-quad split of one patch's mesh in its (u, v): each triangle into 3 quads, each quad
-// into 4, one midpoint per edge. Boundary points are the first nb; the loop edge from
-// boundary point i to next[i] gets its point at curveMid[i] (on the contour curve). Returns,
-// for every new point, the boundary edge (i, next[i]) it splits or {-1, -1}.
-std::vector<std::array<int, 2>> splitPatchIntoQuads(Mesh& pm, size_t nb, const std::vector<int>& next,
-                                                    const std::vector<Vec2>& curveMid) {
-  std::map<std::array<int, 2>, int> mids;
-  std::vector<std::array<int, 2>> origin;
-  auto addPoint = [&](const Vec2& p, std::array<int, 2> from) {
-    pm.points.emplace_back(p.x(), p.y(), 0.0);
-    pm.params.push_back(p);
-    origin.push_back(from);
-    return int(pm.params.size()) - 1;
-  };
-  for (size_t i = 0; i < nb; ++i)
-    mids[{std::min(int(i), next[i]), std::max(int(i), next[i])}] = addPoint(curveMid[i], {int(i), next[i]});
-  auto mid = [&](int a, int b) {
-    const std::array<int, 2> k{std::min(a, b), std::max(a, b)};
-    const auto it = mids.find(k);
-    if (it != mids.end()) return it->second;
-    return mids[k] = addPoint(0.5 * (pm.params[size_t(a)] + pm.params[size_t(b)]), {-1, -1});
-  };
-  std::vector<std::array<int, 4>> quads;
-  for (const auto& t : pm.triangles) {
-    const int mab = mid(t[0], t[1]), mbc = mid(t[1], t[2]), mca = mid(t[2], t[0]);
-    const int g =
-        addPoint((pm.params[size_t(t[0])] + pm.params[size_t(t[1])] + pm.params[size_t(t[2])]) / 3.0, {-1, -1});
-    quads.push_back({t[0], mab, g, mca});
-    quads.push_back({t[1], mbc, g, mab});
-    quads.push_back({t[2], mca, g, mbc});
-  }
-  for (const auto& q : pm.quads) {
-    int m[4];
-    for (int k = 0; k < 4; ++k) m[k] = mid(q[size_t(k)], q[size_t((k + 1) % 4)]);
-    Vec2 c = Vec2::Zero();
-    for (int v : q) c += 0.25 * pm.params[size_t(v)];
-    const int o = addPoint(c, {-1, -1});
-    for (int k = 0; k < 4; ++k) quads.push_back({q[size_t(k)], m[k], o, m[(k + 3) % 4]});
-  }
-  pm.triangles.clear();
-  pm.quads = std::move(quads);
-  return origin;
-}
-
 }  // namespace surface_mesher
 
 std::vector<std::array<int, 2>> openEdges(const Mesh& mesh) {

@@ -140,9 +140,9 @@ class ModelMesher final : public Algorithm1Steps {
   void discretize(int slot);
   std::vector<double> discretizeShared(const Slot& a, const Slot& b, std::vector<double>* tb);
   // Boundary loops of a patch with the merged-mesh id of every point and whether each edge lies on a shared curve.
-  // curveMid (optional): per loop edge, the (u, v) of the curve at the middle parameter of the edge.
+  // With edgeMidpoints: each loop's edgeMidpoints, the (u, v) of the curve at the middle parameter of the edge.
   std::vector<BoundaryLoop> loopsOf(int patch, std::vector<int>* ids, std::vector<char>* sharedEdge,
-                                    std::vector<Vec2>* curveMid = nullptr) const;
+                                    bool edgeMidpoints = false) const;
   void adaptAcrossShared();
   void checkPatchBoundary(int patch);
   // Queues a source for the patch's control space (inserted by flushSources()).
@@ -197,13 +197,6 @@ double quadQuality3D(const Vec3 x[4], const Mat3& m3);
 // patchTriangles / patchQuads: element counts per patch, in the order of out's lists.
 void orientPatches(Mesh& out, const std::vector<int>& patchTriangles, const std::vector<int>& patchQuads,
                    const std::set<std::array<int, 2>>& shared);
-
-// All-quad split of one patch's mesh in its (u, v): each triangle into 3 quads, each quad
-// into 4, one midpoint per edge. Boundary points are the first nb; the loop edge from
-// boundary point i to next[i] gets its point at curveMid[i] (on the contour curve). Returns,
-// for every new point, the boundary edge (i, next[i]) it splits or {-1, -1}.
-std::vector<std::array<int, 2>> splitPatchIntoQuads(Mesh& pm, size_t nb, const std::vector<int>& next,
-                                                    const std::vector<Vec2>& curveMid);
 
 }  // namespace surface_mesher
 }  // namespace anisomesh

@@ -262,7 +262,7 @@ void ModelMesher::discretize(int si) {
 }
 
 std::vector<BoundaryLoop> ModelMesher::loopsOf(int p, std::vector<int>* ids, std::vector<char>* sharedEdge,
-                                               std::vector<Vec2>* curveMid) const {
+                                               bool edgeMidpoints) const {
   const SurfacePatch& patch = m_.patches[size_t(p)];
   std::vector<BoundaryLoop> loops;
   for (int k = 0; k < contourCount(patch); ++k) {
@@ -270,7 +270,6 @@ std::vector<BoundaryLoop> ModelMesher::loopsOf(int p, std::vector<int>* ids, std
     BoundaryLoop loop;
     std::vector<int> lid;
     std::vector<char> lsh;
-    std::vector<Vec2> lmid;
     for (size_t j = 0; j < c.curves.size(); ++j) {
       const Slot& s = slots_[size_t(ps_[size_t(p)].slots[size_t(k)][j])];
       const bool rev = c.curves[j].reversed;
@@ -281,7 +280,7 @@ std::vector<BoundaryLoop> ModelMesher::loopsOf(int p, std::vector<int>* ids, std
         lid.push_back(s.gid[q]);
         loop.edgeRefs.push_back(s.c->ref());
         lsh.push_back(s.master >= 0 || s.follower >= 0);
-        lmid.push_back(s.c->point(0.5 * (s.t[q] + s.t[rev ? q - 1 : q + 1])));
+        if (edgeMidpoints) loop.edgeMidpoints.push_back(s.c->point(0.5 * (s.t[q] + s.t[rev ? q - 1 : q + 1])));
       }
     }
     const bool ccw = signedArea(loop.points) > 0;
@@ -290,23 +289,20 @@ std::vector<BoundaryLoop> ModelMesher::loopsOf(int p, std::vector<int>* ids, std
       BoundaryLoop rev;
       std::vector<int> rid;
       std::vector<char> rsh;
-      std::vector<Vec2> rmid;
       for (size_t i = 0; i < n; ++i) {
         rev.points.push_back(loop.points[n - 1 - i]);
         rid.push_back(lid[n - 1 - i]);
         const size_t e = (2 * n - 2 - i) % n;
         rev.edgeRefs.push_back(loop.edgeRefs[e]);
         rsh.push_back(lsh[e]);
-        rmid.push_back(lmid[e]);
+        if (edgeMidpoints) rev.edgeMidpoints.push_back(loop.edgeMidpoints[e]);
       }
       loop = std::move(rev);
       lid = std::move(rid);
       lsh = std::move(rsh);
-      lmid = std::move(rmid);
     }
     if (ids) ids->insert(ids->end(), lid.begin(), lid.end());
     if (sharedEdge) sharedEdge->insert(sharedEdge->end(), lsh.begin(), lsh.end());
-    if (curveMid) curveMid->insert(curveMid->end(), lmid.begin(), lmid.end());
     loops.push_back(std::move(loop));
   }
   return loops;

@@ -4,6 +4,7 @@
 // control spaces across shared contours, inner meshing and merging.
 #include "anisomesh/surface/surface_mesh.h"
 
+#include "anisomesh/mesh/all_quad_split.h"
 #include "model_mesher.h"
 
 namespace anisomesh {
@@ -179,8 +180,7 @@ Mesh ModelMesher::meshPatches() {
     const ControlSpace& cs = space(int(p));
     std::vector<int> ids;
     std::vector<char> shared;
-    std::vector<Vec2> curveMid;
-    const auto loops = loopsOf(int(p), &ids, &shared, &curveMid);
+    const auto loops = loopsOf(int(p), &ids, &shared, o_.allQuads);
     PlanarMesherOptions mo = o_.mesher;
     mo.boundaryOnly = false;
     // Quads are merged in the patch's (u, v) (never across its contour edges); the all-quad
@@ -235,7 +235,7 @@ Mesh ModelMesher::meshPatches() {
     }
     const size_t nBefore = pm.params.size();
     std::vector<std::array<int, 2>> splits;
-    if (o_.allQuads) splits = splitPatchIntoQuads(pm, nb, next, curveMid);
+    if (o_.allQuads) splits = splitIntoAllQuads(pm, loopEdgeMidpoints(loops));
     std::vector<int> gid(pm.params.size());
     for (size_t i = 0; i < pm.params.size(); ++i) {
       const Vec2 uv = pm.params[i];

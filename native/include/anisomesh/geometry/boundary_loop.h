@@ -11,6 +11,9 @@ namespace anisomesh {
 struct BoundaryLoop {
   std::vector<Vec2> points;
   std::vector<int> edgeRefs;
+  // The contour curve's point halfway (in its parameter) along edge i, where the all-quad
+  // split puts the edge's new point; empty: the straight midpoints (no curve behind the loop).
+  std::vector<Vec2> edgeMidpoints;
 };
 
 }  // namespace anisomesh

@@ -18,9 +18,9 @@
 // Output: boundary points first (loop by loop, input order, unchanged), then inner
 // nodes; boundary edges in input order with their refs; triangles counter-clockwise,
 // refs 0. With quads: greedy merge of triangle pairs (quad metric quality >= 0.3).
-// With allQuads: every element split into quads; boundary edges are split at the
-// midpoint of the straight segment (not projected onto the underlying curve) and the
-// result has edges of about half the requested metric length (discretize the contours
+// With allQuads: every element split into quads (mesh/all_quad_split.h); boundary edges
+// are split at the loops' edgeMidpoints (on the contour curve) or, without them, at the
+// straight midpoint, and the result has edges of about half the requested metric length (discretize the contours
 // at twice the size to get unit quads).
 #include <cstdint>
 #include <functional>

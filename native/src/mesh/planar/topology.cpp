@@ -15,6 +15,12 @@ void Mesher::validate() const {
     require(lp.edgeRefs.size() == lp.points.size(), ErrorCode::InvalidArgument,
             "meshPlanarBoundary: " + name + " has " + std::to_string(lp.points.size()) + " points but " +
                 std::to_string(lp.edgeRefs.size()) + " edge refs (one per edge expected)");
+    require(lp.edgeMidpoints.empty() || lp.edgeMidpoints.size() == lp.points.size(), ErrorCode::InvalidArgument,
+            "meshPlanarBoundary: " + name + " has " + std::to_string(lp.points.size()) + " points but " +
+                std::to_string(lp.edgeMidpoints.size()) + " edge midpoints (none or one per edge expected)");
+    for (const Vec2& m : lp.edgeMidpoints)
+      require(m.allFinite(), ErrorCode::InvalidArgument,
+              "meshPlanarBoundary: " + name + " has a non-finite edge midpoint");
     for (size_t i = 0; i < lp.points.size(); ++i)
       require(lp.points[i].allFinite(), ErrorCode::InvalidArgument,
               "meshPlanarBoundary: " + name + " point " + std::to_string(i) + " is not finite");
