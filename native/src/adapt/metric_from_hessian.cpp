@@ -6,6 +6,7 @@
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/portable_math.h"
+#include "anisomesh/metric/sym_eigen.h"
 
 namespace anisomesh {
 namespace {
@@ -17,30 +18,10 @@ constexpr double kVerticesPerComplexity = 1.1547005383792515;  // 2 / sqrt(3)
 // still meet err.
 constexpr double kLongestEdgeSquared = 2.0;
 
-// Eigenvalues l1 >= l2 and the angle of l1's eigenvector of a symmetric 2x2 matrix.
-struct Eigen2 {
-  double l1, l2, theta;
-};
-
-Eigen2 eigen2(const Mat2& m) {
-  const double a = m(0, 0), b = 0.5 * (m(0, 1) + m(1, 0)), c = m(1, 1);
-  const double mean = 0.5 * (a + c), r = pm::hypot(0.5 * (a - c), b);
-  return {mean + r, mean - r, 0.5 * pm::atan2(2.0 * b, a - c)};
-}
-
-Mat2 fromEigen(double l1, double l2, double theta) {
-  const double c = pm::cos(theta), s = pm::sin(theta);
-  Mat2 m;
-  m(0, 0) = l1 * c * c + l2 * s * s;
-  m(1, 1) = l1 * s * s + l2 * c * c;
-  m(0, 1) = m(1, 0) = (l1 - l2) * c * s;
-  return m;
-}
-
 // The metric s * m (m symmetric positive semi-definite) with sizes clamped to [hmin, hmax]
 // and the larger size at most anisomax times the smaller.
 Metric clampedMetric(const Mat2& m, double s, double hmin, double hmax, double anisomax) {
-  const Eigen2 e = eigen2(m);
+  const SymEigen2 e = symEigen(m);
   auto size = [&](double l) {
     const double v = s * l;
     const double h = v > 0 ? 1.0 / std::sqrt(v) : hmax;
@@ -51,7 +32,7 @@ Metric clampedMetric(const Mat2& m, double s, double hmin, double hmax, double a
 }
 
 // sqrt(det) of clampedMetric(m, s, ...) without building it: 1 / (h1 h2).
-double clampedDensity(const Eigen2& e, double s, double hmin, double hmax, double anisomax) {
+double clampedDensity(const SymEigen2& e, double s, double hmin, double hmax, double anisomax) {
   auto size = [&](double l) {
     const double v = s * l;
     const double h = v > 0 ? 1.0 / std::sqrt(v) : hmax;
@@ -81,7 +62,7 @@ double boxDiagonal(const Mesh& mesh) {
 }  // namespace
 
 Mat2 absoluteHessian(const Mat2& h, double noise) {
-  const Eigen2 e = eigen2(h);
+  const SymEigen2 e = symEigen(h);
   auto a = [&](double l) { return std::abs(l) > noise ? std::abs(l) : 0.0; };
   return fromEigen(a(e.l1), a(e.l2), e.theta);
 }
@@ -144,7 +125,7 @@ FieldMetric metricFromHessians(const Mesh& mesh, const std::vector<std::vector<M
     std::vector<Mat2> m(static_cast<size_t>(n));
     double integral = 0;
     for (int i = 0; i < n; ++i) {
-      Eigen2 e = eigen2(absoluteHessian(hessians[f][size_t(i)], std::max(noise[f][size_t(i)], floorRange)));
+      SymEigen2 e = symEigen(absoluteHessian(hessians[f][size_t(i)], std::max(noise[f][size_t(i)], floorRange)));
       if (o.shape != MetricShape::Anisotropic) e.l2 = e.l1;
       e.l2 = std::max(e.l2, e.l1 / (o.anisomax * o.anisomax));
       const double det = e.l1 * e.l2;
@@ -165,7 +146,7 @@ FieldMetric metricFromHessians(const Mesh& mesh, const std::vector<std::vector<M
         continue;
       }
       // Intersection of semi-definite tensors through metrics with a tiny floor.
-      const Eigen2 a = eigen2(combined[size_t(i)]), b = eigen2(mi);
+      const SymEigen2 a = symEigen(combined[size_t(i)]), b = symEigen(mi);
       if (b.l1 <= 0) continue;
       if (a.l1 <= 0) {
         combined[size_t(i)] = mi;
@@ -178,9 +159,10 @@ FieldMetric metricFromHessians(const Mesh& mesh, const std::vector<std::vector<M
     }
   }
 
-  std::vector<Eigen2> eig(static_cast<size_t>(n));
+  std::vector<SymEigen2> eig(static_cast<size_t>(n));
   double maxL1 = 0;
-  for (int i = 0; i < n; ++i) eig[size_t(i)] = eigen2(combined[size_t(i)]), maxL1 = std::max(maxL1, eig[size_t(i)].l1);
+  for (int i = 0; i < n; ++i)
+    eig[size_t(i)] = symEigen(combined[size_t(i)]), maxL1 = std::max(maxL1, eig[size_t(i)].l1);
   auto densityAt = [&](double s) {
     double c = 0;
     for (int i = 0; i < n; ++i) c += area[size_t(i)] * clampedDensity(eig[size_t(i)], s, hmin, hmax, o.anisomax);
@@ -210,7 +192,7 @@ FieldMetric metricFromHessians(const Mesh& mesh, const std::vector<std::vector<M
   out.scale = s;
   out.metrics.reserve(size_t(n));
   for (int i = 0; i < n; ++i) {
-    const Eigen2& e = eig[size_t(i)];
+    const SymEigen2& e = eig[size_t(i)];
     out.metrics.push_back(clampedMetric(fromEigen(e.l1, std::max(e.l2, 0.0), e.theta), s, hmin, hmax, o.anisomax));
   }
   out.complexity = 0;
