@@ -453,12 +453,19 @@ val readMeshText(std::string text, std::string format) {
 // A .sol as per-vertex tensors (m11, m12, m22 each), validated as metrics.
 val readSolText(std::string text, int vertexCount) {
   return guarded([&] {
-    const std::vector<Metric> metrics = solToMetrics(parseSol(text), vertexCount);
+    const SolData sol = parseSol(text);
+    const std::vector<Metric> metrics = solToMetrics(sol, vertexCount);  // checks every value
+    // Tensors as written (not Metric::tensor(), whose square root round trip moves the last
+    // bits): remesh(mesh, readSol(...)) then builds the very metrics the CLI builds from the file.
     std::vector<double> m;
-    m.reserve(3 * metrics.size());
-    for (const Metric& x : metrics) {
-      const Mat2 t = x.tensor();
-      m.insert(m.end(), {t(0, 0), t(0, 1), t(1, 1)});
+    if (sol.type == 3) {
+      m = sol.values;
+    } else {
+      m.reserve(3 * metrics.size());
+      for (const Metric& x : metrics) {
+        const Mat2 t = x.tensor();
+        m.insert(m.end(), {t(0, 0), t(0, 1), t(1, 1)});
+      }
     }
     val out = val::object();
     out.set("metrics", typedCopy(m.data(), m.size()));
