@@ -6,7 +6,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"
 
-packages=(cmake g++ make emscripten libeigen3-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev chromium clang-format clang-tidy)
+packages=(cmake g++ make emscripten libeigen3-dev nlohmann-json3-dev libfast-float-dev libgtest-dev libbenchmark-dev chromium clang-format clang-tidy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include <fast_float/fast_float.h>
+
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/core/types.h"
@@ -224,16 +226,13 @@ class TokenStream {
     p_ = stop;
     skipSpace();
   }
-  // Parses a double at b: std::from_chars where the library has it (correctly rounded, as
-  // strtod), strtod otherwise and for what from_chars refuses (a '+' sign, hexadecimal,
-  // out of range): the same value either way. Returns the end of the number (b if none).
+  // Parses a double at b: fast_float's from_chars (correctly rounded, as strtod, natively
+  // and in wasm), strtod for what it refuses (a '+' sign, hexadecimal) and for infinities
+  // (strtod tells an overflow from a written "inf"): the same value either way. Returns the
+  // end of the number (b if none).
   static const char* parseDouble(const char* b, const char* e, double* v, bool* overflow) {
-#if defined(__cpp_lib_to_chars)
-    const std::from_chars_result r = std::from_chars(b, e, *v);
-    if (r.ec == std::errc() && r.ptr > b && (r.ptr >= e || !isNumberChar(*r.ptr))) return r.ptr;
-#else
-    (void)e;
-#endif
+    const fast_float::from_chars_result r = fast_float::from_chars(b, e, *v);
+    if (r.ec == std::errc() && r.ptr > b && (r.ptr >= e || !isNumberChar(*r.ptr)) && !std::isinf(*v)) return r.ptr;
     // The text is NUL-terminated (a std::string) and b starts a token: strtod stops in it.
     char* stop = nullptr;
     errno = 0;
