@@ -156,7 +156,7 @@ function checkSvgOption(svg) {
 // Frees core handles (control spaces, kept runs) the user forgot to dispose(), once garbage collected.
 const registry = typeof FinalizationRegistry === 'function' ? new FinalizationRegistry((handle) => handle.delete()) : null;
 
-// The kept run of a planar meshCase made with { stats: false } (a handle of the core):
+// The kept run of a meshCase made with { stats: false } (a handle of the core):
 // report() makes its quality report once and frees it, dispose() frees it unreported;
 // forgotten, it is freed when the result is garbage collected.
 function deferredReport(handle, owner) {

@@ -305,8 +305,9 @@ val glyphsToJs(const std::vector<ControlSpaceGlyph>& glyphs) {
   return out;
 }
 
-// A planar run made with stats: false, kept for its quality report, which the caller asks
-// for after it has drawn the mesh. meshCase returns one per such run; the JS wrapper owns
+// A run made with stats: false, kept for its quality report (a surface run: with its 3D
+// measures, chord deviations and the rest), which the caller asks for after it has drawn
+// the mesh. meshCase returns one per such run; the JS wrapper owns
 // it (report() or dispose() deletes it), so runs are independent of each other.
 class CaseReportHandle {
  public:
@@ -314,7 +315,8 @@ class CaseReportHandle {
   // The quality report (stats JSON text) of the kept run; the run is freed after it.
   val stats() {
     return guarded([&] {
-      require(run_.finalSpace != nullptr, ErrorCode::InvalidArgument, "report: this run's report was already made");
+      require(run_.finalSpace != nullptr || run_.surfaceReport != nullptr, ErrorCode::InvalidArgument,
+              "report: this run's report was already made");
       const double t0 = emscripten_get_now();
       nlohmann::json stats = caseRunStats(run_);
       val out = val::object();
@@ -356,6 +358,7 @@ val meshCaseJson(std::string jsonText, val options) {
     o.vertexMetrics = options["vertexMetrics"].isTrue();
     o.stats = !options["stats"].isFalse();
     const bool measures = options["measures"].isTrue();
+    o.elementMeasures = measures;  // surface, stats false: the per-element values now, the rest in report()
     if (options["quads"].isTrue() || options["quads"].isFalse()) o.quads = options["quads"].isTrue();
     if (options["allQuads"].isTrue() || options["allQuads"].isFalse()) o.allQuads = options["allQuads"].isTrue();
     if (options["maxElements"].isNumber())

@@ -524,7 +524,7 @@ async function remesh() {
     status.classList.remove('err');
     if (state.runningVersion === version) state.runningVersion = null;
     // While dragging, the next input goes first: the report of a mesh already left
-    // behind is never computed. Otherwise the quality report (planar runs) follows.
+    // behind is never computed. Otherwise the quality report follows.
     if (dragWaiting) {
       state.jobsDone++;
       startWaitingDrag();

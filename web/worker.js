@@ -83,7 +83,7 @@ function sampledVtk(cs) {
 }
 
 const wallNow = () => performance.timeOrigin + performance.now();
-let lastMeshJob = null;  // id of the planar mesh job whose run the core keeps for its report
+let lastMeshJob = null;  // id of the mesh job whose run the core keeps for its report
 let keptRun = null;  // that job's meshCase result, whose report() makes the report
 
 // The planar mesher reports a fraction: 0 while the control space and its section 3.2
@@ -98,9 +98,10 @@ function stageOf(fraction) {
 
 const ops = {
   // Meshes a case (planar or surface: meshCase takes both): the mesh with per-edge metric
-  // lengths and per-element qualities for the colouring (measured in the core). A planar
-  // run's quality report is a separate job ('report'), which the page asks for once the
-  // mesh is drawn, and skips for the meshes a drag has already left behind.
+  // lengths and per-element qualities for the colouring (measured in the core). The
+  // quality report is a separate job ('report'), which the page asks for once the mesh is
+  // drawn, and skips for the meshes a drag has already left behind (a surface run's 3D
+  // measures, chord deviations and the rest, are made there too).
   // overlay: also inspect the final control space for the overlay (planar only).
   mesh({ case: c, surface = false, overlay = false }, { progress, marks, id }) {
     progress('control space', 0);
@@ -118,20 +119,20 @@ const ops = {
     marks.coreStart = wallNow();
     const run = am.meshCase(c, {
       inspectControlSpace: overlay && !surface, controlSpaceGlyphs: overlay && surface, patchParams: surface,
-      measures: true, stats: surface, onProgress,
+      measures: true, stats: false, onProgress,
     });
     marks.coreEnd = wallNow();
     const { mesh, measures, timings } = run;
-    keptRun?.dispose();  // the previous planar run's report was not asked for
-    keptRun = surface ? null : run;
-    lastMeshJob = surface ? null : id;
+    keptRun?.dispose();  // the previous run's report was not asked for
+    keptRun = run;
+    lastMeshJob = id;
     return {
       mesh,
       // Surfaces: each element's patch and its corners' (u, v) in it (the 2D view lays the patches side by side).
       patches: surface ? { element: run.elementPatch, corners: run.cornerParams } : null,
       overlay: overlay ? (surface ? overlayFromGlyphs(run.glyphs) : overlayFromInspect(run.controlSpace)) : null,
       measures: { edges: measures.edges, edgeLength: measures.edgeLength ?? null, quality: measures.quality ?? null, vertexH: measures.vertexH ?? null },
-      stats: run.stats,  // null for a planar run: see 'report'
+      stats: run.stats,  // null: see 'report'
       core: timings,
     };
   },
@@ -156,7 +157,7 @@ const ops = {
     lastMeshJob = null;
     return { mesh: r.mesh, field: r.fields[0], iteration: r.iterations[0], measures: r.measures };
   },
-  // The quality report of the planar mesh job `of`, which must be the last job run here.
+  // The quality report of the mesh job `of`, which must be the last job run here.
   report({ of }, { progress }) {
     if (of !== lastMeshJob) throw Object.assign(new Error(`report: job ${of} is not the last mesh job (${lastMeshJob})`), { code: 'INVALID_ARGUMENT' });
     progress('quality report', null);
