@@ -33,6 +33,16 @@ void DeferredMeasures::measureElements() {
       const SurfaceDerivatives d = surf.firstDerivatives(uv);
       return metric3DFromParameter(cs.metricAt(uv), d);
     };
+    // The metric at each point, made once for all its edges (the same value each time).
+    std::vector<Mat3> atPoint(mp.params.size());
+    std::vector<char> known(mp.params.size(), 0);
+    auto pointMetric = [&](int i) -> const Mat3& {
+      if (!known[size_t(i)]) {
+        atPoint[size_t(i)] = metric3(mp.params[size_t(i)]);
+        known[size_t(i)] = 1;
+      }
+      return atPoint[size_t(i)];
+    };
     // Once per merged edge, in the patch that meets it first.
     auto measureEdge = [&](int i0, int i1) {
       const int g0 = mp.gid[size_t(i0)], g1 = mp.gid[size_t(i1)];
@@ -41,9 +51,9 @@ void DeferredMeasures::measureElements() {
       const Vec2 u0 = mp.params[size_t(i0)], u1 = mp.params[size_t(i1)];
       const Vec3& x0 = points[size_t(g0)];
       const Vec3& x1 = points[size_t(g1)];
-      const double l = (edgeLength3D(x0, x1, metric3(u0)) + 4.0 * edgeLength3D(x0, x1, metric3(0.5 * (u0 + u1))) +
-                        edgeLength3D(x0, x1, metric3(u1))) /
-                       6.0;
+      const double l0 = edgeLength3D(x0, x1, pointMetric(i0));
+      const double l =
+          (l0 + 4.0 * edgeLength3D(x0, x1, metric3(0.5 * (u0 + u1))) + edgeLength3D(x0, x1, pointMetric(i1))) / 6.0;
       lenSum += l;
       edgeLengths.push_back({a, b, l});
       edgeAt.push_back({int(p), i0, i1});
