@@ -177,6 +177,12 @@ function deferredReport(handle, owner) {
         free();
       }
     },
+    // Surface runs made with { elementMeasures: false }: the per-element quality and edge
+    // lengths measures would have had, made now (the run stays kept for report()).
+    elementMeasures() {
+      if (!live) throw new AnisomeshError('INVALID_ARGUMENT', 'elementMeasures(): this run\'s report was already made or disposed');
+      return unwrap(live.elementMeasures());
+    },
     dispose: free,
   };
 }
@@ -280,7 +286,7 @@ export function wrapCore(core) {
       if (maxElements !== undefined && !(Number.isInteger(maxElements) && maxElements > 0)) {
         throw argError('options.maxElements: expected a positive integer');
       }
-      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates', 'vtu', 'controlSpaceGlyphs', 'patchParams']) {
+      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'elementMeasures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates', 'vtu', 'controlSpaceGlyphs', 'patchParams']) {
         if (options[key] !== undefined && typeof options[key] !== 'boolean') throw argError(`options.${key}: expected a boolean`);
       }
       const svg = checkSvgOption(options.svg);

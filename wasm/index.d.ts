@@ -296,6 +296,12 @@ export interface CaseResult<S extends MeshStats = MeshStats> {
    * come with the mesh).
    */
   report?(): S;
+  /**
+   * Surface runs with stats: false and elementMeasures: false: the per-element 3D quality
+   * and per-edge 3D metric length (as measures has them otherwise), made now; call it before
+   * report(), which frees the run.
+   */
+  elementMeasures?(): { quality: Float32Array; edgeLength: Float32Array };
   /** Runs with stats: false: frees the kept run without a report (report() then throws). */
   dispose?(): void;
   /** With options.svg: the .svg picture (as the CLI draws it). */
@@ -392,6 +398,12 @@ export interface MeshCaseOptions {
   vertexMetrics?: boolean;
   /** Also return per-edge lengths and per-element qualities (CaseResult.measures). */
   measures?: boolean;
+  /**
+   * Surface cases with stats: false and measures: false here leaves measures.quality and
+   * measures.edgeLength out (the distinct edges stay) for the result's elementMeasures():
+   * the mesh comes sooner (default true).
+   */
+  elementMeasures?: boolean;
   /**
    * false skips the quality report (stats is null); the result's report() makes it after
    * (surface cases: with the 3D measures it needs, so the mesh comes sooner).

@@ -65,6 +65,22 @@ test('meshCase of a surface with stats: false: the mesh and its measures first, 
     assert.ok(later.quality3d.chordDeviationMax > 0, name);
     assert.throws(() => quick.report(), { code: 'INVALID_ARGUMENT', message: /already made/ });
   }
+  // elementMeasures: false: the colours later from elementMeasures() (the page's drags), the same values.
+  const full = am.meshCase(surface('surface_p2_holes'), { measures: true });
+  const bare = am.meshCase(surface('surface_p2_holes'), { stats: false, measures: true, elementMeasures: false });
+  assert.equal(bare.measures.quality, undefined);
+  assert.equal(bare.measures.edgeLength, undefined);
+  assert.deepEqual(bare.measures.edges, full.measures.edges);
+  const em = bare.elementMeasures();
+  assert.deepEqual(em.quality, full.measures.quality);
+  assert.deepEqual(em.edgeLength, full.measures.edgeLength);
+  const strip = ({ secondsTotal, curvatureSeconds, controlSpaceSeconds, ...rest }) => rest;
+  assert.deepEqual(strip(bare.report()), strip(full.stats));
+  assert.throws(() => bare.elementMeasures(), { code: 'INVALID_ARGUMENT', message: /already made/ });
+  const planar = am.meshCase({ domain: { outer: [{ type: 'polyline', points: [[0, 0], [1, 0], [1, 1], [0, 1], [0, 0]] }] }, controlSpace: { hmax: 0.2 } }, { stats: false });
+  assert.throws(() => planar.elementMeasures(), { code: 'INVALID_ARGUMENT', message: /not a surface run/ });
+  planar.dispose();
+  assert.throws(() => am.meshCase(surface('surface_torus'), { elementMeasures: 0 }), { code: 'INVALID_ARGUMENT', message: /options\.elementMeasures/ });
   const d = am.meshCase(surface('surface_torus'), { stats: false });
   d.dispose();
   assert.throws(() => d.report(), { code: 'INVALID_ARGUMENT', message: /disposed/ });
