@@ -156,7 +156,7 @@ function checkSvgOption(svg) {
 // Frees core handles (control spaces, kept runs) the user forgot to dispose(), once garbage collected.
 const registry = typeof FinalizationRegistry === 'function' ? new FinalizationRegistry((handle) => handle.delete()) : null;
 
-// The kept run of a planar meshCase made with { stats: false } (a handle of the core):
+// The kept run of a meshCase made with { stats: false } (a handle of the core):
 // report() makes its quality report once and frees it, dispose() frees it unreported;
 // forgotten, it is freed when the result is garbage collected.
 function deferredReport(handle, owner) {
@@ -176,6 +176,12 @@ function deferredReport(handle, owner) {
       } finally {
         free();
       }
+    },
+    // Surface runs made with { elementMeasures: false }: the per-element quality and edge
+    // lengths measures would have had, made now (the run stays kept for report()).
+    elementMeasures() {
+      if (!live) throw new AnisomeshError('INVALID_ARGUMENT', 'elementMeasures(): this run\'s report was already made or disposed');
+      return unwrap(live.elementMeasures());
     },
     dispose: free,
   };
@@ -280,7 +286,7 @@ export function wrapCore(core) {
       if (maxElements !== undefined && !(Number.isInteger(maxElements) && maxElements > 0)) {
         throw argError('options.maxElements: expected a positive integer');
       }
-      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates', 'vtu', 'controlSpaceGlyphs', 'patchParams']) {
+      for (const key of ['inspectControlSpace', 'vertexMetrics', 'measures', 'elementMeasures', 'stats', 'quads', 'allQuads', 'controlSpaceUpdates', 'vtu', 'controlSpaceGlyphs', 'patchParams']) {
         if (options[key] !== undefined && typeof options[key] !== 'boolean') throw argError(`options.${key}: expected a boolean`);
       }
       const svg = checkSvgOption(options.svg);

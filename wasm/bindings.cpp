@@ -305,16 +305,51 @@ val glyphsToJs(const std::vector<ControlSpaceGlyph>& glyphs) {
   return out;
 }
 
-// A planar run made with stats: false, kept for its quality report, which the caller asks
-// for after it has drawn the mesh. meshCase returns one per such run; the JS wrapper owns
+// Surface runs: the 3D quality of each element and the 3D metric length of each edge (in
+// the order of distinctElementEdges) into measures m, when measured.
+void setSurfaceMeasures(val& m, const Mesh& mesh, const std::vector<double>& elementQuality,
+                        const std::vector<SurfaceEdgeLength>& edgeLengths) {
+  if (!elementQuality.empty()) {
+    const std::vector<float> quality(elementQuality.begin(), elementQuality.end());
+    m.set("quality", typedCopy(quality.data(), quality.size()));
+  }
+  if (!edgeLengths.empty()) {
+    std::map<std::pair<int, int>, double> byEdge;
+    for (const SurfaceEdgeLength& e : edgeLengths) byEdge[{e.a, e.b}] = e.length;
+    const std::vector<std::array<int, 2>> edges = distinctElementEdges(mesh);
+    std::vector<float> lengths(edges.size(), 0.0f);
+    for (size_t k = 0; k < edges.size(); ++k) {
+      const auto it = byEdge.find({std::min(edges[k][0], edges[k][1]), std::max(edges[k][0], edges[k][1])});
+      if (it != byEdge.end()) lengths[k] = float(it->second);
+    }
+    m.set("edgeLength", typedCopy(lengths.data(), lengths.size()));
+  }
+}
+
+// A run made with stats: false, kept for its quality report (a surface run: with its 3D
+// measures, chord deviations and the rest), which the caller asks for after it has drawn
+// the mesh. meshCase returns one per such run; the JS wrapper owns
 // it (report() or dispose() deletes it), so runs are independent of each other.
 class CaseReportHandle {
  public:
   explicit CaseReportHandle(CaseRun run) : run_(std::move(run)) {}
+  // Surface runs made with elementMeasures: false: { quality, edgeLength } (as measures has
+  // them), measured now; the run stays kept for stats().
+  val elementMeasures() {
+    return guarded([&] {
+      require(run_.surfaceReport != nullptr, ErrorCode::InvalidArgument,
+              "elementMeasures: not a surface run kept for its report");
+      measureSurfaceElements(*run_.surfaceReport);
+      val m = val::object();
+      setSurfaceMeasures(m, run_.mesh, run_.surfaceReport->elementQuality, run_.surfaceReport->edgeLengths);
+      return m;
+    });
+  }
   // The quality report (stats JSON text) of the kept run; the run is freed after it.
   val stats() {
     return guarded([&] {
-      require(run_.finalSpace != nullptr, ErrorCode::InvalidArgument, "report: this run's report was already made");
+      require(run_.finalSpace != nullptr || run_.surfaceReport != nullptr, ErrorCode::InvalidArgument,
+              "report: this run's report was already made");
       const double t0 = emscripten_get_now();
       nlohmann::json stats = caseRunStats(run_);
       val out = val::object();
@@ -356,6 +391,8 @@ val meshCaseJson(std::string jsonText, val options) {
     o.vertexMetrics = options["vertexMetrics"].isTrue();
     o.stats = !options["stats"].isFalse();
     const bool measures = options["measures"].isTrue();
+    // Surface, stats false: the per-element values now (unless elementMeasures: false), the rest in report().
+    o.elementMeasures = measures && !options["elementMeasures"].isFalse();
     if (options["quads"].isTrue() || options["quads"].isFalse()) o.quads = options["quads"].isTrue();
     if (options["allQuads"].isTrue() || options["allQuads"].isFalse()) o.allQuads = options["allQuads"].isTrue();
     if (options["maxElements"].isNumber())
@@ -381,21 +418,7 @@ val meshCaseJson(std::string jsonText, val options) {
     const double t2 = emscripten_get_now();
     if (measures) {
       val m = meshMeasures(run.mesh, run.finalSpace.get());
-      if (!run.elementQuality.empty()) {  // surface: the 3D quality of each element from the run
-        const std::vector<float> quality(run.elementQuality.begin(), run.elementQuality.end());
-        m.set("quality", typedCopy(quality.data(), quality.size()));
-      }
-      if (!run.edgeLengths.empty()) {  // surface: the run's 3D metric edge lengths, in the order of "edges"
-        std::map<std::pair<int, int>, double> byEdge;
-        for (const SurfaceEdgeLength& e : run.edgeLengths) byEdge[{e.a, e.b}] = e.length;
-        const std::vector<std::array<int, 2>> edges = distinctElementEdges(run.mesh);
-        std::vector<float> lengths(edges.size(), 0.0f);
-        for (size_t k = 0; k < edges.size(); ++k) {
-          const auto it = byEdge.find({std::min(edges[k][0], edges[k][1]), std::max(edges[k][0], edges[k][1])});
-          if (it != byEdge.end()) lengths[k] = float(it->second);
-        }
-        m.set("edgeLength", typedCopy(lengths.data(), lengths.size()));
-      }
+      setSurfaceMeasures(m, run.mesh, run.elementQuality, run.edgeLengths);
       out.set("measures", m);
     }
     if (o.controlSpaceGlyphs) out.set("glyphs", glyphsToJs(run.glyphs));
@@ -785,7 +808,8 @@ EMSCRIPTEN_BINDINGS(anisomesh) {
   emscripten::function("domainFromSvg", &domainFromSvg);
   emscripten::class_<CaseReportHandle>("CaseReportHandle")
       .smart_ptr<std::shared_ptr<CaseReportHandle>>("CaseReportHandlePtr")
-      .function("stats", &CaseReportHandle::stats);
+      .function("stats", &CaseReportHandle::stats)
+      .function("elementMeasures", &CaseReportHandle::elementMeasures);
   emscripten::class_<ControlSpaceHandle>("ControlSpaceHandle")
       .constructor<>()
       .function("build", &ControlSpaceHandle::build)

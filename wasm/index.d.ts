@@ -287,14 +287,22 @@ export interface ControlSpaceGlyphs {
 
 export interface CaseResult<S extends MeshStats = MeshStats> {
   mesh: MeshArrays;
-  /** The quality report; null for a planar run with stats: false (see report()). */
+  /** The quality report; null for a run with stats: false (see report()). */
   stats: S | null;
   /**
-   * Planar runs with stats: false: the quality report of this run, made now (once; the kept
-   * run is freed after it). Lets a caller draw the mesh first and show the report after.
+   * Runs with stats: false: the quality report of this run, made now (once; the kept run is
+   * freed after it). Lets a caller draw the mesh first and show the report after. A surface
+   * run makes its 3D measures here (chord deviations, ...; the per-element ones of measures
+   * come with the mesh).
    */
-  report?(): PlanarMeshStats;
-  /** Planar runs with stats: false: frees the kept run without a report (report() then throws). */
+  report?(): S;
+  /**
+   * Surface runs with stats: false and elementMeasures: false: the per-element 3D quality
+   * and per-edge 3D metric length (as measures has them otherwise), made now; call it before
+   * report(), which frees the run.
+   */
+  elementMeasures?(): { quality: Float32Array; edgeLength: Float32Array };
+  /** Runs with stats: false: frees the kept run without a report (report() then throws). */
   dispose?(): void;
   /** With options.svg: the .svg picture (as the CLI draws it). */
   svg?: string;
@@ -390,7 +398,16 @@ export interface MeshCaseOptions {
   vertexMetrics?: boolean;
   /** Also return per-edge lengths and per-element qualities (CaseResult.measures). */
   measures?: boolean;
-  /** Planar cases: false skips the quality report (stats is null); the result's report() makes it after. */
+  /**
+   * Surface cases with stats: false and measures: false here leaves measures.quality and
+   * measures.edgeLength out (the distinct edges stay) for the result's elementMeasures():
+   * the mesh comes sooner (default true).
+   */
+  elementMeasures?: boolean;
+  /**
+   * false skips the quality report (stats is null); the result's report() makes it after
+   * (surface cases: with the 3D measures it needs, so the mesh comes sooner).
+   */
   stats?: boolean;
   /** Override the case's options.quads / options.allQuads. */
   quads?: boolean;

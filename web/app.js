@@ -508,7 +508,9 @@ async function remesh() {
   const before = meshRunner.restarts;
   const overlay = wantOverlay();
   state.runningVersion = version;
-  const job = meshRunner.run('mesh', { case: state.case, surface: state.surface, overlay });
+  // A surface mesh while a handle is held comes without its colours (they follow with the report).
+  const dragging = Boolean(state.surface && views.dragging);
+  const job = meshRunner.run('mesh', { case: state.case, surface: state.surface, overlay, dragging });
   state.cancelled += meshRunner.restarts - before;
   if (meshRunner.restarts > before) {
     const t0 = performance.now();
@@ -524,7 +526,7 @@ async function remesh() {
     status.classList.remove('err');
     if (state.runningVersion === version) state.runningVersion = null;
     // While dragging, the next input goes first: the report of a mesh already left
-    // behind is never computed. Otherwise the quality report (planar runs) follows.
+    // behind is never computed. Otherwise the quality report follows.
     if (dragWaiting) {
       state.jobsDone++;
       startWaitingDrag();
@@ -535,6 +537,11 @@ async function remesh() {
       const r = await meshRunner.run('report', { of: id });
       stats = r.result.stats;
       b.reportMs = r.result.reportMs;
+      // A surface mesh made while dragging: its colours, if it is still the one shown.
+      if (r.result.measures && views.result === result) {
+        Object.assign(result.measures, r.result.measures);
+        views.setStyle(styleOf());
+      }
     }
     const t0 = wallNow();
     state.lastStats = stats;

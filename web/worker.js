@@ -83,8 +83,9 @@ function sampledVtk(cs) {
 }
 
 const wallNow = () => performance.timeOrigin + performance.now();
-let lastMeshJob = null;  // id of the planar mesh job whose run the core keeps for its report
+let lastMeshJob = null;  // id of the mesh job whose run the core keeps for its report
 let keptRun = null;  // that job's meshCase result, whose report() makes the report
+let keptWithoutElements = false;  // a surface run made while dragging: its colours come with the report
 
 // The planar mesher reports a fraction: 0 while the control space and its section 3.2
 // rounds run, then boundary (to 0.1), point insertion (to 0.8), improvement (to 0.95).
@@ -98,11 +99,14 @@ function stageOf(fraction) {
 
 const ops = {
   // Meshes a case (planar or surface: meshCase takes both): the mesh with per-edge metric
-  // lengths and per-element qualities for the colouring (measured in the core). A planar
-  // run's quality report is a separate job ('report'), which the page asks for once the
-  // mesh is drawn, and skips for the meshes a drag has already left behind.
+  // lengths and per-element qualities for the colouring (measured in the core). The
+  // quality report is a separate job ('report'), which the page asks for once the mesh is
+  // drawn, and skips for the meshes a drag has already left behind (a surface run's 3D
+  // measures, chord deviations and the rest, are made there too).
   // overlay: also inspect the final control space for the overlay (planar only).
-  mesh({ case: c, surface = false, overlay = false }, { progress, marks, id }) {
+  // dragging (surfaces): leave the per-element 3D quality and edge lengths (the colours) to
+  // the report too; the mesh comes sooner and is drawn plain until the report is in.
+  mesh({ case: c, surface = false, overlay = false, dragging = false }, { progress, marks, id }) {
     progress('control space', 0);
     let lastFraction = -1, lastAt = 0;
     const onProgress = (fraction) => {
@@ -118,20 +122,21 @@ const ops = {
     marks.coreStart = wallNow();
     const run = am.meshCase(c, {
       inspectControlSpace: overlay && !surface, controlSpaceGlyphs: overlay && surface, patchParams: surface,
-      measures: true, stats: surface, onProgress,
+      measures: true, elementMeasures: !(surface && dragging), stats: false, onProgress,
     });
     marks.coreEnd = wallNow();
     const { mesh, measures, timings } = run;
-    keptRun?.dispose();  // the previous planar run's report was not asked for
-    keptRun = surface ? null : run;
-    lastMeshJob = surface ? null : id;
+    keptRun?.dispose();  // the previous run's report was not asked for
+    keptRun = run;
+    keptWithoutElements = surface && dragging;
+    lastMeshJob = id;
     return {
       mesh,
       // Surfaces: each element's patch and its corners' (u, v) in it (the 2D view lays the patches side by side).
       patches: surface ? { element: run.elementPatch, corners: run.cornerParams } : null,
       overlay: overlay ? (surface ? overlayFromGlyphs(run.glyphs) : overlayFromInspect(run.controlSpace)) : null,
       measures: { edges: measures.edges, edgeLength: measures.edgeLength ?? null, quality: measures.quality ?? null, vertexH: measures.vertexH ?? null },
-      stats: run.stats,  // null for a planar run: see 'report'
+      stats: run.stats,  // null: see 'report'
       core: timings,
     };
   },
@@ -156,15 +161,17 @@ const ops = {
     lastMeshJob = null;
     return { mesh: r.mesh, field: r.fields[0], iteration: r.iterations[0], measures: r.measures };
   },
-  // The quality report of the planar mesh job `of`, which must be the last job run here.
+  // The quality report of the mesh job `of`, which must be the last job run here.
   report({ of }, { progress }) {
     if (of !== lastMeshJob) throw Object.assign(new Error(`report: job ${of} is not the last mesh job (${lastMeshJob})`), { code: 'INVALID_ARGUMENT' });
     progress('quality report', null);
     const t0 = performance.now();
+    // A surface mesh made while dragging: its per-element measures (the colours) first.
+    const measures = keptWithoutElements ? keptRun.elementMeasures() : null;
     const stats = keptRun.report();
     keptRun = null;
     lastMeshJob = null;
-    return { stats, reportMs: performance.now() - t0 };
+    return { stats, measures, reportMs: performance.now() - t0 };
   },
   // Text of the mesh in a file format.
   writeMesh({ mesh, format }) {

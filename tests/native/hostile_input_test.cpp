@@ -115,6 +115,34 @@ TEST(ControlSpaceBudget, ProgressDuringRefinementCancels) {
   EXPECT_EQ(calls, 2);
 }
 
+// The check skips the estimate when elementCountBound() is within the budget: the bound
+// must never be below the estimate, with either interpolation and sizes that jump from
+// node to node (serendipity weights go negative there).
+TEST(ElementEstimate, BoundIsNeverBelowTheEstimate) {
+  Domain square;
+  square.outer.add(std::make_shared<PolylineCurve>(std::vector<Vec2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}}));
+  for (const auto interp : {QuadtreeInterpolation::Bilinear, QuadtreeInterpolation::Serendipity}) {
+    QuadtreeOptions o;
+    o.interpolation = interp;
+    QuadtreeControlSpace cs(Box2{{-0.01, -0.01}, {1.01, 1.01}}, o);
+    cs.refine([](const ControlElement& e) { return e.size > 0.02 && e.box.center().x() < 0.4; }, nullptr);
+    for (int i = 0; i < cs.nodeCount(); ++i) {
+      const Vec2 p = cs.nodePosition(i);
+      const double h = (i % 3 == 0) ? 0.002 : 0.05 + 0.1 * p.y();  // fine and coarse nodes side by side
+      cs.setNodeMetric(i, Metric::fromSizes(3.0 * p.x(), h, 4.0 * h));
+    }
+    cs.applyConstraints();
+    const double estimate = estimateElementCount(square, cs), bound = elementCountBound(cs);
+    EXPECT_GT(estimate, 0.0);
+    EXPECT_LE(estimate, bound) << int(interp);
+    EXPECT_LT(bound, 1000.0 * estimate) << int(interp);  // a bound, not infinity
+    // Above the bound's budget the estimate is not made; below it, the check still refuses.
+    EXPECT_NO_THROW(checkElementEstimate(square, cs, std::int64_t(bound), "a stage"));
+    EXPECT_EQ(codeOf([&] { checkElementEstimate(square, cs, std::int64_t(estimate / 4), "a stage"); }),
+              ErrorCode::ElementBudgetExceeded);
+  }
+}
+
 TEST(ElementEstimate, MetricAreaOverUnitTriangles) {
   QuadtreeControlSpace cs(Box2{{-0.01, -0.01}, {1.01, 1.01}});
   for (int i = 0; i < cs.nodeCount(); ++i) cs.setNodeMetric(i, Metric::isotropic(0.01));

@@ -49,6 +49,43 @@ test('meshCase of a surface: glyphs, element patches, corner parameters and 3D q
   assert.equal(plain.cornerParams, undefined);
 });
 
+test('meshCase of a surface with stats: false: the mesh and its measures first, the same report from report() after', () => {
+  for (const [name, options] of [['surface_p2_holes', {}], ['surface_two_patch_c', { quads: true }]]) {
+    const full = am.meshCase(surface(name), { ...options, measures: true });
+    const quick = am.meshCase(surface(name), { ...options, stats: false, measures: true });
+    assert.equal(quick.stats, null, name);
+    assert.deepEqual(quick.mesh.triangles, full.mesh.triangles, name);
+    assert.deepEqual(quick.mesh.quads, full.mesh.quads, name);
+    // The per-element 3D values come with the mesh (the page colours by them).
+    assert.deepEqual(quick.measures.quality, full.measures.quality, name);
+    assert.deepEqual(quick.measures.edgeLength, full.measures.edgeLength, name);
+    const strip = ({ secondsTotal, curvatureSeconds, controlSpaceSeconds, ...rest }) => rest;  // times differ
+    const later = quick.report();
+    assert.deepEqual(strip(later), strip(full.stats), name);
+    assert.ok(later.quality3d.chordDeviationMax > 0, name);
+    assert.throws(() => quick.report(), { code: 'INVALID_ARGUMENT', message: /already made/ });
+  }
+  // elementMeasures: false: the colours later from elementMeasures() (the page's drags), the same values.
+  const full = am.meshCase(surface('surface_p2_holes'), { measures: true });
+  const bare = am.meshCase(surface('surface_p2_holes'), { stats: false, measures: true, elementMeasures: false });
+  assert.equal(bare.measures.quality, undefined);
+  assert.equal(bare.measures.edgeLength, undefined);
+  assert.deepEqual(bare.measures.edges, full.measures.edges);
+  const em = bare.elementMeasures();
+  assert.deepEqual(em.quality, full.measures.quality);
+  assert.deepEqual(em.edgeLength, full.measures.edgeLength);
+  const strip = ({ secondsTotal, curvatureSeconds, controlSpaceSeconds, ...rest }) => rest;
+  assert.deepEqual(strip(bare.report()), strip(full.stats));
+  assert.throws(() => bare.elementMeasures(), { code: 'INVALID_ARGUMENT', message: /already made/ });
+  const planar = am.meshCase({ domain: { outer: [{ type: 'polyline', points: [[0, 0], [1, 0], [1, 1], [0, 1], [0, 0]] }] }, controlSpace: { hmax: 0.2 } }, { stats: false });
+  assert.throws(() => planar.elementMeasures(), { code: 'INVALID_ARGUMENT', message: /not a surface run/ });
+  planar.dispose();
+  assert.throws(() => am.meshCase(surface('surface_torus'), { elementMeasures: 0 }), { code: 'INVALID_ARGUMENT', message: /options\.elementMeasures/ });
+  const d = am.meshCase(surface('surface_torus'), { stats: false });
+  d.dispose();
+  assert.throws(() => d.report(), { code: 'INVALID_ARGUMENT', message: /disposed/ });
+});
+
 test('domainFromSvg: a drawing with a hole is a domain that meshes', () => {
   const d = am.domainFromSvg('<svg><path d="M0 0 h100 v50 h-100 z"/><circle cx="50" cy="25" r="10"/></svg>', { size: 4 });
   assert.equal(d.holes.length, 1);

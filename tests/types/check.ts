@@ -78,6 +78,16 @@ const surfaceStats: SurfaceMeshStats | null = surface.stats;
 if (!surfaceStats) throw new Error('no surface stats');
 compare('surface', surfaceStats, surfaceKeys);
 compare('surface.quality3d', surfaceStats.quality3d, quality3dKeys);
+// A surface run's deferred report: the same keys (its 3D measures made in report()).
+const quickSurface = am.meshCase(plane, { stats: false, measures: true });
+if (quickSurface.stats !== null || !quickSurface.report) throw new Error('surface stats: false gives no stats and a report()');
+const laterSurface: SurfaceMeshStats = quickSurface.report();
+compare('surface (deferred)', laterSurface, surfaceKeys);
+compare('surface.quality3d (deferred)', laterSurface.quality3d, quality3dKeys);
+const bareSurface = am.meshCase(plane, { stats: false, measures: true, elementMeasures: false });
+const colours: { quality: Float32Array; edgeLength: Float32Array } = bareSurface.elementMeasures!();
+if (!(colours.quality instanceof Float32Array) || !(colours.edgeLength instanceof Float32Array)) problems.push('elementMeasures() arrays');
+bareSurface.dispose!();
 
 // Examples read from disk, narrowed by the discriminant.
 for (const file of ['point_source.json', 'surface/surface_sphere.json']) {

@@ -13,13 +13,16 @@ namespace anisomesh {
 int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback) {
   const int n = cs.nodeCount();
   std::vector<char> known(n, 0);
-  bool any = false;
+  bool any = false, unknown = false;
   for (int i = 0; i < n; ++i) {
     known[i] = cs.nodeIsFree(i) && cs.nodeIsInitialized(i);
     any = any || known[i];
+    unknown = unknown || (!known[i] && cs.nodeIsFree(i));
   }
   int filled = 0;
-  if (any) {
+  // (Every free node known, as after sources that reach the whole structure: nothing to
+  // fill, so the edge graph, a fifth of a surface drag's gradation cost, is not built.)
+  if (any && unknown) {
     std::vector<int> start, nbr;
     cs.edgeGraph(false, start, nbr);
     // Breadth-first fronts: the unknown free neighbours of the nodes known so far.

@@ -64,70 +64,89 @@ bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj
 namespace {
 
 // Max-heap of node indices by key (ties: smaller index first) with the position of each
-// node, so a node whose key changes moves in place instead of leaving a stale entry.
+// node, so a node whose key changes moves in place instead of leaving a stale entry. The
+// keys sit in the heap's entries (a comparison reads no other memory). (key, index) is a
+// strict order, so the nodes come out in the same order however the heap was built.
 class NodeHeap {
  public:
-  explicit NodeHeap(int n) : key_(n, 0.0), pos_(n, -1) {}
+  explicit NodeHeap(int n) : pos_(n, -1) {}
   bool empty() const { return heap_.empty(); }
   // The node pop() would return now (the heap must not be empty).
-  int top() const { return heap_.front(); }
+  int top() const { return heap_.front().node; }
   // Inserts node i with key k, or moves it to key k when present.
   void set(int i, double k) {
-    key_[i] = k;
     if (pos_[i] < 0) {
       pos_[i] = static_cast<int>(heap_.size());
-      heap_.push_back(i);
+      heap_.push_back({k, i});
+    } else {
+      heap_[pos_[i]].key = k;
     }
     down(up(pos_[i]));
   }
+  // Inserts nodes (distinct, none present) with keys key(i) into an empty heap at once.
+  template <class Key>
+  void build(const std::vector<int>& nodes, Key key) {
+    for (int i : nodes) {
+      if (pos_[i] >= 0) {  // (a repeat: as set() would take it)
+        set(i, key(i));
+        continue;
+      }
+      pos_[i] = static_cast<int>(heap_.size());
+      heap_.push_back({key(i), i});
+    }
+    for (int at = static_cast<int>(heap_.size()) / 2 - 1; at >= 0; --at) down(at);
+  }
   // Removes and returns the top node.
   int pop() {
-    const int top = heap_.front();
+    const int top = heap_.front().node;
     pos_[top] = -1;
-    const int last = heap_.back();
+    const Entry last = heap_.back();
     heap_.pop_back();
     if (!heap_.empty()) {
       heap_[0] = last;
-      pos_[last] = 0;
+      pos_[last.node] = 0;
       down(0);
     }
     return top;
   }
 
  private:
-  bool before(int a, int b) const { return key_[a] > key_[b] || (key_[a] == key_[b] && a < b); }
-  void place(int at, int i) {
-    heap_[at] = i;
-    pos_[i] = at;
+  struct Entry {
+    double key;
+    int node;
+  };
+  static bool before(const Entry& a, const Entry& b) { return a.key > b.key || (a.key == b.key && a.node < b.node); }
+  void place(int at, const Entry& e) {
+    heap_[at] = e;
+    pos_[e.node] = at;
   }
   int up(int at) {
-    const int i = heap_[at];
+    const Entry e = heap_[at];
     while (at > 0) {
       const int parent = (at - 1) / 2;
-      if (!before(i, heap_[parent])) break;
+      if (!before(e, heap_[parent])) break;
       place(at, heap_[parent]);
       at = parent;
     }
-    place(at, i);
+    place(at, e);
     return at;
   }
   void down(int at) {
-    const int i = heap_[at];
+    const Entry e = heap_[at];
     const int size = static_cast<int>(heap_.size());
     for (;;) {
       int child = 2 * at + 1;
       if (child >= size) break;
       if (child + 1 < size && before(heap_[child + 1], heap_[child])) ++child;
-      if (!before(heap_[child], i)) break;
+      if (!before(heap_[child], e)) break;
       place(at, heap_[child]);
       at = child;
     }
-    place(at, i);
+    place(at, e);
   }
 
-  std::vector<double> key_;
   std::vector<int> pos_;
-  std::vector<int> heap_;
+  std::vector<Entry> heap_;
 };
 
 // Largest eigenvalue of Mt: the inverse of the smallest requested size.
@@ -145,7 +164,14 @@ int gradationWorkSet(AdaptiveControlSpace& cs, const std::vector<int>& start, co
                      NodeHeap& heap) {
   // Ordered by the node's smallest requested size (smallest first, as in Dijkstra): a
   // node is mostly final when it is taken, so few nodes are re-queued.
-  for (int i : seeds) heap.set(i, sizeKey(cs.nodeMt(i)));
+  // At once (heapified) when no key is NaN: NaN keys are not ordered, and only the
+  // one-by-one insertion gives their order as it always was.
+  bool ordered = heap.empty();
+  for (size_t k = 0; ordered && k < seeds.size(); ++k) ordered = !std::isnan(sizeKey(cs.nodeMt(seeds[k])));
+  if (ordered)
+    heap.build(seeds, [&](int i) { return sizeKey(cs.nodeMt(i)); });
+  else
+    for (int i : seeds) heap.set(i, sizeKey(cs.nodeMt(i)));
   int updates = 0;
   auto enqueue = [&](int j, const SymMt& mj) {
     changed[j] = 1;

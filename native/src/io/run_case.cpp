@@ -32,6 +32,21 @@ auto readCase(const std::string& jsonText, F&& read) -> decltype(read()) {
   }
 }
 
+// The --stats object of a surface run: the mesher's report with the keys every report has
+// (planar reports carry the same), measured in 3D here.
+nlohmann::json surfaceRunStats(const Mesh& mesh, const SurfaceMeshReport& report) {
+  nlohmann::json stats = surfaceMeshReportToJson(report);
+  const nlohmann::json& q = stats["quality3d"];
+  stats["quads"] = mesh.quads.size();
+  stats["inverted"] = q["inverted"];
+  stats["edgeLength"] = {{"min", q["edgeLengthMin"]},
+                         {"mean", q["edgeLengthMean"]},
+                         {"max", q["edgeLengthMax"]},
+                         {"fractionWithinSqrt2", q["edgesWithinSqrt2"]}};
+  stats["quality"] = {{"mean", q["qualityMean"]}, {"min", q["qualityMin"]}};
+  return stats;
+}
+
 CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& options) {
   // Parsed once (a 1M-point polyline is 33 MB of text); on a syntax error the check
   // below gives one clean message for both kinds of case.
@@ -53,25 +68,21 @@ CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& opti
     if (options.quads) spec.options.quads = *options.quads;
     if (options.allQuads) spec.options.allQuads = *options.allQuads;
     spec.options.controlSpaceGlyphs = options.controlSpaceGlyphs;
-    SurfaceMeshReport report;
-    run.mesh = withStage("surface meshing", [&] { return meshSurfaceCase(spec, &report); });
-    run.stats = surfaceMeshReportToJson(report);
-    run.elementQuality = std::move(report.elementQuality);
-    run.edgeLengths = std::move(report.edgeLengths);
-    run.glyphs = std::move(report.controlSpaceGlyphs);
+    spec.options.deferQuality = !options.stats;
+    auto report = std::make_shared<SurfaceMeshReport>();
+    run.mesh = withStage("surface meshing", [&] { return meshSurfaceCase(spec, report.get()); });
+    if (!options.stats && options.elementMeasures) measureSurfaceElements(*report);
+    run.elementQuality = std::move(report->elementQuality);
+    run.edgeLengths = std::move(report->edgeLengths);
+    run.glyphs = std::move(report->controlSpaceGlyphs);
     if (options.patchParams) {
       run.elementPatch = elementPatches(spec.model, run.mesh);
       run.cornerParams = patchCornerParams(spec.model, run.mesh);
     }
-    // The keys every report has (planar reports carry the same), measured in 3D here.
-    const nlohmann::json& q = run.stats["quality3d"];
-    run.stats["quads"] = run.mesh.quads.size();
-    run.stats["inverted"] = q["inverted"];
-    run.stats["edgeLength"] = {{"min", q["edgeLengthMin"]},
-                               {"mean", q["edgeLengthMean"]},
-                               {"max", q["edgeLengthMax"]},
-                               {"fractionWithinSqrt2", q["edgesWithinSqrt2"]}};
-    run.stats["quality"] = {{"mean", q["qualityMean"]}, {"min", q["qualityMin"]}};
+    if (options.stats)
+      run.stats = surfaceRunStats(run.mesh, *report);
+    else
+      run.surfaceReport = std::move(report);
     return run;
   }
   CaseSpec spec = readCase(jsonText, [&] { return parseCaseJsonTree(root); });
@@ -106,7 +117,12 @@ CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options) {
 }
 
 nlohmann::json caseRunStats(const CaseRun& run) {
-  if (!run.stats.is_null() || !run.finalSpace) return run.stats;
+  if (!run.stats.is_null()) return run.stats;
+  if (run.surfaceReport) {
+    finishSurfaceMeasures(*run.surfaceReport);
+    return surfaceRunStats(run.mesh, *run.surfaceReport);
+  }
+  if (!run.finalSpace) return run.stats;
   return pipelineStatsJson(run.mesh, *run.finalSpace, run.report);
 }
 

@@ -124,8 +124,23 @@ double estimateElementCount(const Domain& domain, const AdaptiveControlSpace& cs
   return area / (std::sqrt(3.0) / 4.0);
 }
 
+double elementCountBound(const AdaptiveControlSpace& cs) {
+  double largest = 0.0;  // the largest |eigenvalue| of a node's Mt
+  for (int i = 0; i < cs.nodeCount(); ++i) {
+    const SymMt& m = cs.nodeMt(i);
+    const double half = 0.5 * (m.a - m.c);
+    largest = std::max(largest, std::fabs(0.5 * (m.a + m.c)) + std::sqrt(half * half + m.b * m.b));
+  }
+  const Vec2 size = cs.bounds().size();
+  const double l = 4.0 * largest;  // (weights' absolute sum: 1 bilinear, at most 3 serendipity)
+  return 1.0001 * std::fabs(size.x() * size.y()) * l * l / (std::sqrt(3.0) / 4.0);
+}
+
 void checkElementEstimate(const Domain& domain, const AdaptiveControlSpace& cs, std::int64_t maxElements,
                           const char* stage, const ElementEstimateOptions& options) {
+  // Far below the budget even at the finest node's size everywhere: the estimate (a query
+  // per control element) cannot exceed it. (NaN and infinite bounds take the estimate.)
+  if (elementCountBound(cs) <= options.slack * double(maxElements)) return;
   const double estimate = estimateElementCount(domain, cs);
   if (!(estimate > options.slack * double(maxElements))) return;
   std::ostringstream os;

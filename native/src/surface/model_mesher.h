@@ -159,16 +159,48 @@ class ModelMesher final : public Algorithm1Steps {
 
   const SurfaceModel& m_;
   SurfaceMeshOptions o_;
-  Counters counters_;
+  std::shared_ptr<Counters> counters_ = std::make_shared<Counters>();  // (kept by DeferredMeasures)
   std::vector<Slot> slots_;
   std::vector<PatchState> ps_;
   std::vector<std::vector<MetricSource>> pending_;
   int nextId_ = 0;
   int invalidations_ = 0;
-  std::vector<double> elementQuality_;
   double size_ = 1.0;
   SurfaceMeshReport* report_ = nullptr;
   std::array<int, 3> updateCounts_{};  // section 3.2 sources: chord, proximity, short segment
+};
+
+// One patch's mesh as the 3D measures read it: its (u, v) points and elements (local
+// indices, in the mesher's orientation) and each point's vertex in the merged mesh.
+struct MeasuredPatch {
+  std::shared_ptr<const Surface> surface;
+  const ControlSpace* space = nullptr;  // the patch's counted control space (PatchState::counted)
+  std::vector<Vec2> params;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<std::array<int, 4>> quads;
+  std::vector<int> gid;
+};
+
+// The 3D measures of one run (surface_measures.cpp): made at once, or kept
+// (SurfaceMeshReport::deferred) with the patch states whose control spaces they query.
+struct DeferredMeasures {
+  std::vector<PatchState> states;  // deferred: owns what MeasuredPatch::space points to
+  std::shared_ptr<Counters> counters;
+  std::vector<MeasuredPatch> patches;
+  std::vector<Vec3> points;  // merged-mesh points
+  double chordTolerance = 0.0;
+  double seconds = 0.0;  // time spent measuring
+  bool elementsDone = false, chordsDone = false;
+  Surface3DQuality q;
+  std::vector<double> elementQuality;          // triangles (all patches), then quads
+  std::vector<SurfaceEdgeLength> edgeLengths;  // distinct edges, in the order first met
+  std::vector<std::array<int, 3>> edgeAt;      // each distinct edge's patch and local points
+  // Per-element quality and per-edge length (every control-space query of the measures).
+  void measureElements();
+  // Chord deviations and inverted elements (surface evaluations only); measureElements() first.
+  void measureChords();
+  // Copies what is measured into the report.
+  void fill(SurfaceMeshReport& report) const;
 };
 
 std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& patch,

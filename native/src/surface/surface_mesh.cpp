@@ -91,7 +91,7 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
 void ModelMesher::buildControlSpaces() {
   for (size_t p = 0; p < m_.patches.size(); ++p) {
     try {
-      ps_[p].cs = buildControlSpaceImpl(m_.patches[p], m_.sources3d, o_, counters_);
+      ps_[p].cs = buildControlSpaceImpl(m_.patches[p], m_.sources3d, o_, *counters_);
     } catch (const Error& e) {
       throw Error(e.code(), patchLabel(m_.patches[p], int(p)) + ": " + e.what());
     }
@@ -113,7 +113,7 @@ void ModelMesher::refreshQueries(size_t p) {
     inner = st.parameterized.get();
   }
   st.counted =
-      std::make_unique<CountingControlSpace>(*inner, *m_.patches[p].surface, counters_, st.parameterized != nullptr);
+      std::make_unique<CountingControlSpace>(*inner, *m_.patches[p].surface, *counters_, st.parameterized != nullptr);
 }
 
 // 4: the invalid contours discretized (shared ones once, for both patches); after the
@@ -165,14 +165,9 @@ Mesh ModelMesher::meshPatches() {
   std::vector<int> defined(size_t(nextId_), -1);  // patch that placed each merged boundary vertex
   out.points.resize(size_t(nextId_));
   out.params.resize(size_t(nextId_));
-  Surface3DQuality q;
-  std::set<std::array<int, 2>> seenEdges, sharedEdges;
-  std::vector<SurfaceEdgeLength> edgeLengths;  // 3D metric length of every merged edge, as measured once
-  double lenSum = 0.0, qSum = 0.0;
-  int triCount = 0, within = 0;
-  q.edgeLengthMin = q.qualityMin = std::numeric_limits<double>::infinity();
+  std::set<std::array<int, 2>> sharedEdges;
   std::vector<int> patchTriangles, patchQuads;
-  std::vector<double> triQuality, quadQuality;
+  std::vector<MeasuredPatch> measured;            // what the 3D measures read (surface_measures.cpp)
   std::map<std::array<int, 2>, int> boundaryMid;  // all-quad: merged point splitting a contour edge
   for (size_t p = 0; p < m_.patches.size(); ++p) {
     const SurfacePatch& patch = m_.patches[p];
@@ -295,90 +290,20 @@ Mesh ModelMesher::meshPatches() {
         base += n;
       }
     }
-    auto uvOfLocal = [&](int i) { return pm.params[size_t(i)]; };
-    auto metric3 = [&](const Vec2& uv) {  // (needs Su, Sv only)
-      const SurfaceDerivatives d = surf.firstDerivatives(uv);
-      return metric3DFromParameter(cs.metricAt(uv), d);
-    };
-    // Edge statistics once per merged edge.
-    auto measureEdge = [&](int i0, int i1) {
-      const int g0 = gid[size_t(i0)], g1 = gid[size_t(i1)];
-      if (!seenEdges.insert({std::min(g0, g1), std::max(g0, g1)}).second) return;
-      const Vec2 u0 = uvOfLocal(i0), u1 = uvOfLocal(i1);
-      const Vec3& x0 = out.points[size_t(g0)];
-      const Vec3& x1 = out.points[size_t(g1)];
-      const double l = (edgeLength3D(x0, x1, metric3(u0)) + 4.0 * edgeLength3D(x0, x1, metric3(0.5 * (u0 + u1))) +
-                        edgeLength3D(x0, x1, metric3(u1))) /
-                       6.0;
-      lenSum += l;
-      edgeLengths.push_back({g0, g1, l});
-      q.edgeLengthMin = std::min(q.edgeLengthMin, l);
-      q.edgeLengthMax = std::max(q.edgeLengthMax, l);
-      if (l >= std::sqrt(0.5) && l <= std::sqrt(2.0)) ++within;
-      ChordDeviationOptions co;
-      co.samples = 7;
-      q.isoChordDeviationMax = std::max(q.isoChordDeviationMax, chordDeviation(surf, u0, u1, co));
-      q.edgeChordDeviationMax = std::max(q.edgeChordDeviationMax, normalChordDeviation(surf, u0, u1, x0, x1));
-      ++q.edges;
-    };
     for (const auto& t : pm.triangles) {
-      const std::array<int, 3> g{gid[size_t(t[0])], gid[size_t(t[1])], gid[size_t(t[2])]};
-      out.triangles.push_back(g);
+      out.triangles.push_back({gid[size_t(t[0])], gid[size_t(t[1])], gid[size_t(t[2])]});
       out.triangleRefs.push_back(patch.id);
-      if (!o_.measureQuality) continue;
-      const Vec2 a = uvOfLocal(t[0]), b = uvOfLocal(t[1]), c = uvOfLocal(t[2]);
-      const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-      if (!(area > 0)) ++q.inverted;
-      const Vec2 tu[3] = {a, b, c};
-      const Vec3 tx[3] = {out.points[size_t(g[0])], out.points[size_t(g[1])], out.points[size_t(g[2])]};
-      q.chordDeviationMax = std::max(q.chordDeviationMax, normalTriangleDeviation(surf, tu, tx));
-      const double qq = triangleQuality3D(tx[0], tx[1], tx[2], metric3((a + b + c) / 3.0));
-      qSum += qq;
-      triQuality.push_back(qq);
-      q.qualityMin = std::min(q.qualityMin, qq);
-      ++triCount;
-      for (int k = 0; k < 3; ++k) measureEdge(t[size_t(k)], t[size_t((k + 1) % 3)]);
     }
     for (const auto& t : pm.quads) {
-      const std::array<int, 4> g{gid[size_t(t[0])], gid[size_t(t[1])], gid[size_t(t[2])], gid[size_t(t[3])]};
-      out.quads.push_back(g);
+      out.quads.push_back({gid[size_t(t[0])], gid[size_t(t[1])], gid[size_t(t[2])], gid[size_t(t[3])]});
       out.quadRefs.push_back(patch.id);
-      if (!o_.measureQuality) continue;
-      Vec2 tu[4];
-      Vec3 tx[4];
-      for (int k = 0; k < 4; ++k) tu[k] = uvOfLocal(t[size_t(k)]), tx[k] = out.points[size_t(g[size_t(k)])];
-      // Inverted: a corner turning clockwise in (u, v) (non-convex or clockwise quad).
-      bool convex = true;
-      for (int k = 0; k < 4; ++k) {
-        const Vec2 e1 = tu[(k + 1) % 4] - tu[k], e0 = tu[k] - tu[(k + 3) % 4];
-        convex = convex && e0.x() * e1.y() - e0.y() * e1.x() > 0;
-      }
-      if (!convex) ++q.inverted;
-      // Chord deviation over the two triangles (0, 1, 2), (0, 2, 3) of the flat-split quad.
-      for (int d = 0; d < 2; ++d) {
-        const Vec2 su[3] = {tu[0], tu[1 + d], tu[2 + d]};
-        const Vec3 sx[3] = {tx[0], tx[1 + d], tx[2 + d]};
-        q.chordDeviationMax = std::max(q.chordDeviationMax, normalTriangleDeviation(surf, su, sx));
-      }
-      const double qq = quadQuality3D(tx, metric3(0.25 * (tu[0] + tu[1] + tu[2] + tu[3])));
-      qSum += qq;
-      quadQuality.push_back(qq);
-      q.qualityMin = std::min(q.qualityMin, qq);
-      ++triCount;
-      for (int k = 0; k < 4; ++k) measureEdge(t[size_t(k)], t[size_t((k + 1) % 4)]);
     }
     patchTriangles.push_back(int(pm.triangles.size()));
     patchQuads.push_back(int(pm.quads.size()));
+    if (o_.measureQuality)
+      measured.push_back(
+          {patch.surface, &cs, std::move(pm.params), std::move(pm.triangles), std::move(pm.quads), std::move(gid)});
   }
-  elementQuality_ = triQuality;
-  elementQuality_.insert(elementQuality_.end(), quadQuality.begin(), quadQuality.end());
-  q.edgesWithinSqrt2 = q.edges ? double(within) / q.edges : 0.0;
-  q.edgeLengthMean = q.edges ? lenSum / q.edges : 0.0;
-  q.qualityMean = triCount ? qSum / triCount : 0.0;
-  if (!q.edges) q.edgeLengthMin = 0.0;
-  if (!triCount) q.qualityMin = 0.0;
-  q.chordDeviationMax = std::max(q.chordDeviationMax, q.edgeChordDeviationMax);
-  q.chordDeviationMaxRelative = o_.metric.chordTolerance > 0 ? q.chordDeviationMax / o_.metric.chordTolerance : 0.0;
   if (o_.consistentOrientation) orientPatches(out, patchTriangles, patchQuads, sharedEdges);
   // Drop merged ids left over from earlier discretizations (never placed).
   {
@@ -405,14 +330,26 @@ Mesh ModelMesher::meshPatches() {
       se.insert({std::min(a, b), std::max(a, b)});
     }
     sharedEdges = std::move(se);
-    for (auto& e : edgeLengths) e.a = remap[size_t(e.a)], e.b = remap[size_t(e.b)];
+    for (auto& mp : measured)
+      for (int& g : mp.gid) g = remap[size_t(g)];
   }
   out.pointRefs.assign(out.points.size(), 0);
 
+  // The 3D measures: now, or kept for finishSurfaceMeasures() (with the patch states
+  // whose control spaces they query).
+  std::shared_ptr<DeferredMeasures> measures;
+  if (o_.measureQuality) {
+    measures = std::make_shared<DeferredMeasures>();
+    measures->counters = counters_;
+    measures->patches = std::move(measured);
+    measures->points = out.points;
+    measures->chordTolerance = o_.metric.chordTolerance;
+    if (!(o_.deferQuality && report)) {
+      measures->measureElements();
+      measures->measureChords();
+    }
+  }
   if (report) {
-    report->elementQuality = elementQuality_;
-    report->edgeLengths.clear();
-    for (const auto& e : edgeLengths) report->edgeLengths.push_back({std::min(e.a, e.b), std::max(e.a, e.b), e.length});
     if (o_.controlSpaceGlyphs) report->controlSpaceGlyphs = glyphs();
     report->patches = int(m_.patches.size());
     report->vertices = out.vertexCount();
@@ -420,12 +357,17 @@ Mesh ModelMesher::meshPatches() {
     report->sharedEdgeList.assign(sharedEdges.begin(), sharedEdges.end());
     report->sharedEdges = int(sharedEdges.size());
     report->crossSharedSizeRatioMax = acrossEdgeSizeRatio(out, report->sharedEdgeList);
-    report->quality = q;
-    report->curvatureEvaluations = counters_.curvature;
-    report->curvatureSeconds = counters_.curvatureSeconds;
-    report->controlSpaceQueries = counters_.queries;
-    report->controlSpaceSeconds = counters_.querySeconds;
+    report->curvatureEvaluations = counters_->curvature;
+    report->curvatureSeconds = counters_->curvatureSeconds;
+    report->controlSpaceQueries = counters_->queries;
+    report->controlSpaceSeconds = counters_->querySeconds;
     report->patchTriangles = patchTriangles;
+    if (measures && measures->chordsDone) {
+      measures->fill(*report);
+    } else if (measures) {
+      measures->states = std::move(ps_);  // (the mesher is done with them)
+      report->deferred = std::move(measures);
+    }
   }
   return out;
 }

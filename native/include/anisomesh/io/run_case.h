@@ -29,7 +29,10 @@ struct RunCaseOptions {
   bool vertexMetrics = false;         // planar: also the final control space's metric at every vertex
   bool controlSpaceGlyphs = false;    // surface: also CaseRun::glyphs (the final control spaces drawn)
   bool patchParams = false;           // surface: also CaseRun::elementPatch and CaseRun::cornerParams
-  bool stats = true;                  // planar: false leaves CaseRun::stats null (caseRunStats() later)
+  // false leaves CaseRun::stats null (caseRunStats() makes it later); a surface run then
+  // also leaves its 3D measures (chord deviations, ...) to caseRunStats().
+  bool stats = true;
+  bool elementMeasures = true;  // surface, stats false: CaseRun::elementQuality, edgeLengths all the same
   // Called with a fraction in [0, 1] while meshing; returning false cancels (ErrorCode::Cancelled).
   std::function<bool(double)> progress;
 };
@@ -47,6 +50,7 @@ struct CaseRun {
   std::vector<int> elementPatch;                     // surface, patchParams: patch index per element
   std::vector<Vec2> cornerParams;                    // surface, patchParams: (u, v) per element corner in its patch
   PipelineReport report;                             // planar: stage times and section 3.2 counts
+  std::shared_ptr<SurfaceMeshReport> surfaceReport;  // surface, stats false: the report caseRunStats() finishes
 };
 
 // True when the JSON text is a surface case (it has "patches").
@@ -60,8 +64,9 @@ Mesh meshSurfaceCase(const std::string& jsonText, SurfaceMeshReport* report = nu
 // OutOfMemory naming the stage, or the code of the stage that refused the input.
 CaseRun runCase(const std::string& jsonText, const RunCaseOptions& options = {});
 
-// The --stats object of a planar run made with RunCaseOptions::stats = false (the same
-// object runCase would have put in CaseRun::stats); a surface run's stats as they are.
+// The --stats object of a run made with RunCaseOptions::stats = false (the same object
+// runCase would have put in CaseRun::stats; a surface run's 3D measures are made now);
+// a run's stats as they are otherwise.
 nlohmann::json caseRunStats(const CaseRun& run);
 
 }  // namespace anisomesh

@@ -22,6 +22,12 @@ struct ElementEstimateOptions {
 // computed in double, infinite when the metric is.
 double estimateElementCount(const Domain& domain, const AdaptiveControlSpace& cs);
 
+// An upper bound of estimateElementCount(domain, cs) for any domain inside cs's bounds,
+// from the node values alone (no query): a query interpolates a leaf's node Mt with
+// weights whose absolute values sum to at most 3, so sqrt(det M) <= (4 max ||Mt_i||)^2
+// with margin, over the area of the bounds (the control elements tile them).
+double elementCountBound(const AdaptiveControlSpace& cs);
+
 // Throws ElementBudgetExceeded, naming stage and the estimate, when
 // estimateElementCount(domain, cs) > options.slack * maxElements.
 void checkElementEstimate(const Domain& domain, const AdaptiveControlSpace& cs, std::int64_t maxElements,

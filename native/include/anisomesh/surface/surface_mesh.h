@@ -26,6 +26,10 @@
 
 namespace anisomesh {
 
+namespace surface_mesher {
+struct DeferredMeasures;  // a run's 3D measures, not yet made (surface_measures.cpp)
+}
+
 // An isotropic size h requested within `radius` of a 3D point (applies to every patch).
 struct Source3D {
   Vec3 center = Vec3::Zero();
@@ -109,7 +113,10 @@ struct SurfaceMeshOptions {
   // Flip whole patches so the merged mesh has one 3D orientation across shared curves;
   // a flipped patch's triangles are then clockwise in its own (u, v).
   bool consistentOrientation = true;
-  bool measureQuality = true;       // fill SurfaceMeshReport::quality (3D measures cost about a mesh run)
+  bool measureQuality = true;  // fill SurfaceMeshReport::quality (3D measures cost about a mesh run)
+  // With measureQuality and a report: the run leaves its 3D measures to measureSurfaceElements()
+  // and finishSurfaceMeasures() (SurfaceMeshReport::deferred), so a caller can draw the mesh first.
+  bool deferQuality = false;
   bool controlSpaceGlyphs = false;  // fill SurfaceMeshReport::controlSpaceGlyphs (pictures)
 };
 
@@ -170,7 +177,21 @@ struct SurfaceMeshReport {
   std::vector<double> elementQuality;  // 3D quality of each element (triangles, then quads), with measureQuality
   std::vector<SurfaceEdgeLength> edgeLengths;         // every distinct edge's 3D metric length, with measureQuality
   std::vector<ControlSpaceGlyph> controlSpaceGlyphs;  // final control spaces, with options.controlSpaceGlyphs
+  // With options.deferQuality: the patch meshes and control spaces the 3D measures read,
+  // kept until finishSurfaceMeasures() (quality, elementQuality, edgeLengths and the
+  // controlSpaceQueries they add are unset until then).
+  std::shared_ptr<surface_mesher::DeferredMeasures> deferred;
 };
+
+// A run made with SurfaceMeshOptions::deferQuality: fills report.elementQuality and
+// report.edgeLengths (the per-element measures, which make every control-space query of
+// the measures) from report.deferred; no-op without it.
+void measureSurfaceElements(SurfaceMeshReport& report);
+
+// The same, then everything else measureQuality fills (quality: chord deviations,
+// inverted elements; controlSpaceQueries/Seconds), as a run without deferQuality would
+// have filled it; drops report.deferred. No-op without it.
+void finishSurfaceMeasures(SurfaceMeshReport& report);
 
 // Meshes every patch of the model (Algorithm 1) and merges them into one 3D Mesh:
 // points = S(u, v), params = (u, v) of the first patch using the vertex, triangleRefs =

@@ -29,7 +29,10 @@ double Mesher::metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double
 // sampling on a grid of up to 256 rows with even-odd coverage (sees features inside the domain that
 // no boundary triangle vertex samples).
 double Mesher::estimateMetricArea() {
-  std::int64_t budget = 200000;
+  // 20,000 subdivisions: the first boundary triangles (where the metric varies) take them
+  // all whatever the budget, and a larger one moved the estimate by under 1 % (p2 with a
+  // source: 2474 vs 2478 at 200,000) for ten times the queries (a surface drag's 9 %).
+  std::int64_t budget = 20000;
   double adaptive = 0.0;
   for (const auto& tr : tri_) {
     const auto& t = tr.v;
