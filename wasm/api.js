@@ -237,6 +237,11 @@ function metricOut(r) {
 }
 
 /** Wraps an instantiated embind module into the public API object. */
+// Large texts cross into the core as UTF-8 bytes from TextEncoder, copied with one
+// TypedArray.set (bindings.cpp textOf); embind's string conversion is a JS loop.
+const encoder = new TextEncoder();
+const utf8 = (text) => (text.length > 1 << 16 ? encoder.encode(text) : text);
+
 export function wrapCore(core) {
   return Object.freeze({
     /** Version of the core. */
@@ -360,13 +365,13 @@ export function wrapCore(core) {
       } else if (typeof text !== 'string') {
         throw argError('text: expected a string');
       }
-      return unwrap(core.readMesh(text, String(format))).mesh;
+      return unwrap(core.readMesh(typeof text === 'string' ? utf8(text) : text, String(format))).mesh;
     },
     /** Parses a Medit .sol (scalar sizes or tensors) for vertexCount vertices: Float64Array m11, m12, m22 per vertex. */
     readSol(text, vertexCount) {
       if (typeof text !== 'string') throw argError('text: expected a string');
       if (!Number.isInteger(vertexCount) || vertexCount < 0) throw argError('vertexCount: expected a non-negative integer');
-      return unwrap(core.readSol(text, vertexCount)).metrics;
+      return unwrap(core.readSol(utf8(text), vertexCount)).metrics;
     },
     /** Writes per-vertex tensors (m11, m12, m22) as a Medit .sol. */
     writeSol(metrics) {
