@@ -195,7 +195,20 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
   // Cell c's triangles, in two passes per ring of cells: a containing one ends the search
   // (true); only when the ring holds none, the nearest point of each is a candidate (of
   // equal distances the lowest triangle index wins, whatever the visiting order).
-  auto containsIn = [&](int c) {
+  // (the cell of a point is decided by a division: a relative slack on distance bounds)
+  const double slack = 1e-9 * (cell_.x() + cell_.y() + box_.size().norm());
+  // The distance from p to the box of cell (x, y).
+  auto cellDistance = [&](int x, int y) {
+    const double x0 = box_.lo.x() + x * cell_.x(), y0 = box_.lo.y() + y * cell_.y();
+    const double dx = std::max({0.0, x0 - p.x(), p.x() - (x0 + cell_.x())});
+    const double dy = std::max({0.0, y0 - p.y(), p.y() - (y0 + cell_.y())});
+    return std::sqrt(dx * dx + dy * dy);
+  };
+  // A cell farther than the slack holds no triangle containing p that p's own cell (or a
+  // nearer one) does not list: skipped.
+  auto containsIn = [&](int x, int y) {
+    if (cellDistance(x, y) > slack) return false;
+    const int c = cellIndex(x, y);
     for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
       const int t = cellTris_[size_t(k)];
       const auto& tri = tris_[size_t(t)];
@@ -211,13 +224,24 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     }
     return false;
   };
-  auto nearestIn = [&](int c) {
+  // A cell farther than the nearest point found cannot improve it (a triangle's nearest
+  // point lies in a cell it is listed in, never farther than the point): skipped.
+  auto nearestIn = [&](int x, int y) {
+    if (best >= 0 && cellDistance(x, y) - slack > std::sqrt(bestDist)) return false;
+    const int c = cellIndex(x, y);
     for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
       const int t = cellTris_[size_t(k)];
       const auto& tri = tris_[size_t(t)];
       const Vec2 a = point(tri[0]), b = point(tri[1]), d = point(tri[2]);
       const double det = (b.x() - a.x()) * (d.y() - a.y()) - (b.y() - a.y()) * (d.x() - a.x());
       if (det == 0) continue;
+      if (best >= 0) {  // a triangle whose box is farther than the nearest point found: skipped
+        const double dx =
+            std::max({0.0, std::min({a.x(), b.x(), d.x()}) - p.x(), p.x() - std::max({a.x(), b.x(), d.x()})});
+        const double dy =
+            std::max({0.0, std::min({a.y(), b.y(), d.y()}) - p.y(), p.y() - std::max({a.y(), b.y(), d.y()})});
+        if (std::sqrt(dx * dx + dy * dy) - slack > std::sqrt(bestDist)) continue;
+      }
       for (int e = 0; e < 3; ++e) {
         const Vec2 q = closestOnSegment(p, point(tri[e]), point(tri[(e + 1) % 3]));
         const double dist = (q - p).squaredNorm();
@@ -230,7 +254,7 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
   };
   // Calls f on the cells of ring r around p's cell in row order; true when f ends the search.
   auto ring = [&](int r, auto&& f) {
-    auto visit = [&](int x, int y) { return x >= 0 && y >= 0 && x < nx_ && y < ny_ && f(cellIndex(x, y)); };
+    auto visit = [&](int x, int y) { return x >= 0 && y >= 0 && x < nx_ && y < ny_ && f(x, y); };
     for (int y = cy - r; y <= cy + r; ++y) {
       if (y == cy - r || y == cy + r) {
         for (int x = cx - r; x <= cx + r; ++x)
@@ -253,8 +277,6 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     if (cy + r < ny_) d = std::min(d, std::max(0.0, box_.lo.y() + (cy + r) * cell_.y() - p.y()));
     return d;
   };
-  // (the cell of a point is decided by a division: a relative slack on the bound)
-  const double slack = 1e-9 * (cell_.x() + cell_.y() + box_.size().norm());
   // Rings of cells around p's cell: a containing triangle ends the search; otherwise the
   // nearest triangle of all: the rings are searched until the next one is farther than
   // the nearest point found (each triangle's nearest point lies in a cell it is listed in),
