@@ -10,11 +10,13 @@
 namespace anisomesh {
 namespace {
 
-// Triangles per grid cell: coarser cells list each (thin) triangle in fewer cells (the
-// lists' memory: 4 gives 288 instead of 340 MiB peak on the 1e6 front of
-// native/bench/remesh_throughput.mjs, and a faster control space); the answers do not
+// Triangles per grid cell: coarser cells list each (thin) triangle in fewer cells, finer
+// ones test fewer triangles per query. The lists' memory only matters on large carriers:
+// 1 per cell up to 2^18 triangles, growing to 8 at 2^21 and more (the 1e6 front of
+// native/bench/remesh_throughput.mjs, a 4M-triangle carrier: 228 MiB peak instead of 340
+// with 1 per cell; its 2,000-triangle case on 80k is fastest with 1). The answers do not
 // depend on it (metricAt's search is exact).
-constexpr double kTrianglesPerCell = 4.0;
+double trianglesPerCell(size_t triangles) { return std::min(8.0, std::max(1.0, double(triangles) / 262144.0)); }
 
 // The cell index floor(t) clamped to [0, n - 1], decided in double so that NaN, infinite
 // and huge t never reach an int conversion.
@@ -72,9 +74,9 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
   const Vec2 span = box_.size();
   require(std::isfinite(4.0 * span.x() * span.y()) && span.allFinite(), ErrorCode::InvalidDomain,
           "metric field: the mesh's coordinates span more than the double range allows");
-  // About kTrianglesPerCell triangles per cell on square-ish cells.
+  // About trianglesPerCell triangles per cell on square-ish cells.
   const Vec2 size = box_.size().cwiseMax(Vec2::Constant(1e-300));
-  const double side = std::sqrt(kTrianglesPerCell * size.x() * size.y() / double(triCount_));
+  const double side = std::sqrt(trianglesPerCell(triCount_) * size.x() * size.y() / double(triCount_));
   nx_ = side > 0 ? std::max(1, clampedCell(size.x() / side, 2049)) : 1;
   ny_ = side > 0 ? std::max(1, clampedCell(size.y() / side, 2049)) : 1;
   cell_ = Vec2(size.x() / nx_, size.y() / ny_);
