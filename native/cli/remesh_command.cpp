@@ -8,6 +8,7 @@
 #include <ctime>
 #include <iostream>
 #include <memory>
+#include <utility>
 
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/io/file_io.h"
@@ -151,15 +152,16 @@ int runRemesh(Args& args) {
   std::vector<int>().swap(in.triangleRefs);
   std::vector<int>().swap(in.quadRefs);
   if (!sol.empty()) solData = readSolFile(sol);
-  const std::vector<Metric> metrics = !sol.empty() ? solToMetrics(solData, in.vertexCount())
-                                      : hsiz > 0   ? uniformMetrics(in, hsiz)
-                                                   : edgeLengthMetrics(in);
+  std::vector<Metric> metrics = !sol.empty() ? solToMetrics(solData, in.vertexCount())
+                                : hsiz > 0   ? uniformMetrics(in, hsiz)
+                                             : edgeLengthMetrics(in);
   std::vector<double>().swap(solData.values);  // the metrics hold them now
   PipelineReport report;
   std::unique_ptr<AdaptiveControlSpace> cs;
   CaseRun run;
   options.onStage = [&log](const char* stage) { log.start(stage); };
-  run.mesh = remesh(in, metrics, options, &report, &cs);
+  // Moved in: the input and its metrics are freed once the control space is built.
+  run.mesh = remesh(std::move(in), std::move(metrics), options, &report, &cs);
   run.finalSpace = std::move(cs);
   log.start("write");
   writeOutput(output, run, CaseSvgOptions{});

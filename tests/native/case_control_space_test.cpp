@@ -190,6 +190,70 @@ TEST(MeshMetricField, InterpolatesLinearlyAndClampsOutside) {
   EXPECT_THROW(TriangleMeshMetricField(m, std::vector<Metric>(3)), Error);
 }
 
+// Outside the mesh the field takes the nearest triangle of all (of equal distances the
+// lowest index), whatever the grid: checked against a search over every triangle, on a
+// rotated square of thin graded triangles queried all over its bounding box and beyond
+// (a search stopping one ring of cells past the first candidate misses some).
+TEST(MeshMetricField, OutsideTakesTheNearestTriangleOfAll) {
+  Mesh m;
+  const double c = std::cos(0.5235987755982988), s = std::sin(0.5235987755982988);
+  std::vector<double> vs{0.0};
+  while (vs.back() < 1.0) vs.push_back(std::min(1.0, vs.back() + 0.002 + 0.05 * std::abs(vs.back() - 0.5)));
+  const int nu = 61, nv = int(vs.size());
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const double u = i / double(nu - 1) - 0.5, v = vs[size_t(j)] - 0.5;
+      m.points.push_back(Vec3(0.5 + c * u - s * v, 0.5 + s * u + c * v, 0));
+    }
+  auto id = [&](int i, int j) { return j * nu + i; };
+  for (int j = 0; j + 1 < nv; ++j)
+    for (int i = 0; i + 1 < nu; ++i) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  std::vector<Metric> metrics;  // a different Mt at every vertex
+  for (size_t k = 0; k < m.points.size(); ++k)
+    metrics.push_back(Metric::fromTransform(Mat2::Identity() * (10.0 + double(k))));
+  const TriangleMeshMetricField f(m, metrics);
+  auto pt = [&](int v) { return Vec2(m.points[size_t(v)].head<2>()); };
+  auto bary = [&](const std::array<int, 3>& t, const Vec2& q) {
+    const Vec2 a = pt(t[0]), b = pt(t[1]), d = pt(t[2]);
+    const double det = (b.x() - a.x()) * (d.y() - a.y()) - (b.y() - a.y()) * (d.x() - a.x());
+    const double l1 = ((q.x() - a.x()) * (d.y() - a.y()) - (q.y() - a.y()) * (d.x() - a.x())) / det;
+    const double l2 = ((b.x() - a.x()) * (q.y() - a.y()) - (b.y() - a.y()) * (q.x() - a.x())) / det;
+    return Vec3(1.0 - l1 - l2, l1, l2);
+  };
+  int outside = 0;
+  for (int gy = 0; gy <= 40; ++gy)
+    for (int gx = 0; gx <= 40; ++gx) {
+      const Vec2 p(-0.4 + 1.8 * gx / 40.0, -0.4 + 1.8 * gy / 40.0);
+      bool inside = false;
+      int best = -1;
+      double bestDist = 0;
+      Vec2 bestPoint = p;
+      for (size_t t = 0; t < m.triangles.size(); ++t) {
+        const auto& tri = m.triangles[t];
+        if (bary(tri, p).minCoeff() >= -1e-9) inside = true;
+        for (int e = 0; e < 3; ++e) {
+          const Vec2 a = pt(tri[size_t(e)]), b = pt(tri[size_t((e + 1) % 3)]);
+          const double l = std::min(1.0, std::max(0.0, (p - a).dot(b - a) / (b - a).squaredNorm()));
+          const Vec2 q = a + l * (b - a);
+          if (best < 0 || (q - p).squaredNorm() < bestDist)
+            best = int(t), bestDist = (q - p).squaredNorm(), bestPoint = q;
+        }
+      }
+      if (inside) continue;
+      ++outside;
+      const auto& tri = m.triangles[size_t(best)];
+      const Vec3 l = bary(tri, bestPoint).cwiseMax(0.0);
+      double expected = 0;
+      for (int k = 0; k < 3; ++k) expected += l[k] * (10.0 + tri[size_t(k)]);
+      expected /= l.sum();
+      EXPECT_NEAR(f.metricAt(p).transform()(0, 0), expected, 1e-9) << p.transpose();
+    }
+  EXPECT_GT(outside, 500);
+}
+
 TEST(RemeshGeometry, BoundaryLoopsKeepRefsAndOrientation) {
   const Mesh m = squareMesh();
   const auto loops = boundaryLoopsFromMesh(m);

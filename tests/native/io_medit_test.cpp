@@ -74,6 +74,54 @@ TEST(IoMedit, RoundTrip3D) {
   expectSameMesh(m, parseMedit(writeMedit(m)));
 }
 
+// Files are parsed as they are read (a memory map, the parsed batches of lines given
+// back): the same mesh and solution as from the whole text, also when a section's last
+// line holds a comment or its last record is split over two lines (its fast reading fails
+// after earlier batches were given back and the section is read again token by token).
+TEST(IoMedit, FileReadInBatchesGivesTheWholeTextsMesh) {
+  Mesh m;
+  const int n = 560;  // 313,600 vertices, 623,538 triangles: batches of 262,144 lines
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) m.points.push_back(Vec3(i / 7.0, j / 3.0 + 1e-9 * i, 0));
+  m.pointRefs.assign(m.points.size(), 2);
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i;
+      m.triangles.push_back({a, a + 1, a + n + 1});
+      m.triangles.push_back({a, a + n + 1, a + n});
+      m.triangleRefs.insert(m.triangleRefs.end(), {i % 5, j % 3});
+    }
+  m.dimension = 2;
+  std::string text = writeMedit(m);
+  const std::string path = tempPath("batches.mesh");
+  auto write = [&](const std::string& t) { std::ofstream(path, std::ios::binary) << t; };
+  write(text);
+  expectSameMesh(m, readMeditFile(path));
+  const size_t end = text.rfind("\nEnd");
+  ASSERT_NE(end, std::string::npos);
+  text.insert(end, " # the last triangle");            // the last line of the Triangles section
+  const size_t lastRef = text.rfind(" 2\nTriangles");  // the last vertex's reference on a line of its own
+  ASSERT_NE(lastRef, std::string::npos);
+  text[lastRef] = '\n';
+  write(text);
+  expectSameMesh(m, readMeditFile(path));
+  SolData sol;
+  sol.dimension = 2;
+  sol.type = 3;
+  for (size_t k = 0; k < m.points.size(); ++k) sol.values.insert(sol.values.end(), {1.0 + k, 0.5 / (k + 1), 3.0});
+  std::string solText = writeSol(sol);
+  const std::string solPath = tempPath("batches.sol");
+  std::ofstream(solPath, std::ios::binary) << solText;
+  EXPECT_EQ(readSolFile(solPath).values, sol.values);
+  const size_t lastValue = solText.rfind(" 3\n\nEnd");  // the last vertex's last value on a line of its own
+  ASSERT_NE(lastValue, std::string::npos);
+  solText[lastValue] = '\n';
+  std::ofstream(solPath, std::ios::binary) << solText;
+  EXPECT_EQ(readSolFile(solPath).values, sol.values);
+  std::remove(path.c_str());
+  std::remove(solPath.c_str());
+}
+
 TEST(IoMedit, FileRoundTripIsAtomic) {
   const std::string path = tempPath("round.mesh");
   writeMeditFile(path, sampleMesh(2));

@@ -285,6 +285,35 @@ TEST(PipelineRemesh, HgradSmoothsTheBackgroundMeshControlSpace) {
   EXPECT_THROW(buildRemeshControlSpace(m, std::vector<Metric>(3), graded), Error);
 }
 
+// remesh(Mesh&&, ...) frees its input once the control space is built: the same mesh.
+TEST(PipelineRemesh, MovedInputGivesTheSameMesh) {
+  Mesh m;
+  for (int j = 0; j <= 6; ++j)
+    for (int i = 0; i <= 6; ++i) m.points.push_back(Vec3(i / 6.0, j / 6.0, 0));
+  for (int j = 0; j < 6; ++j)
+    for (int i = 0; i < 6; ++i) {
+      const int a = j * 7 + i;
+      m.triangles.push_back({a, a + 1, a + 8});
+      m.triangles.push_back({a, a + 8, a + 7});
+    }
+  std::vector<Metric> metrics;
+  for (const Vec3& p : m.points) metrics.push_back(Metric::fromSizes(0.3, 0.01 + 0.2 * std::abs(p.y() - 0.5), 0.1));
+  RemeshOptions o;
+  o.hgrad = 1.5;
+  PipelineReport r0, r1;
+  const Mesh kept = remesh(m, metrics, o, &r0);
+  Mesh copy = m;
+  std::vector<Metric> metricsCopy = metrics;
+  const Mesh moved = remesh(std::move(copy), std::move(metricsCopy), o, &r1);
+  EXPECT_GT(kept.triangles.size(), 100u);
+  EXPECT_EQ(moved.points, kept.points);
+  EXPECT_EQ(moved.triangles, kept.triangles);
+  EXPECT_EQ(moved.edges, kept.edges);
+  EXPECT_EQ(moved.edgeRefs, kept.edgeRefs);
+  EXPECT_EQ(r1.controlNodes, r0.controlNodes);
+  EXPECT_EQ(r1.boundaryPoints, r0.boundaryPoints);
+}
+
 TEST(PipelineStats, NeighbourSizeRatioAndStatsJson) {
   Mesh m;
   m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(4, 4, 0)};

@@ -1,5 +1,6 @@
 #include "anisomesh/io/file_io.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <cerrno>
@@ -10,7 +11,9 @@
 #include <random>
 
 #include <dirent.h>
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -80,6 +83,52 @@ std::string readTextFile(const std::string& path, const ReadFileOptions& options
   std::fclose(f);
   require(!failed, ErrorCode::IoError, "error while reading '" + path + "': " + why);
   return out;
+}
+
+TextFileView::TextFileView(const std::string& path, const ReadFileOptions& options) {
+  const long page = sysconf(_SC_PAGESIZE);
+  struct stat st {};
+  // A map only for a regular file within the limit whose size is not a whole number of
+  // pages: the rest of its last page reads as zeros (the NUL after the text). Anything
+  // else, and any failure, goes through readTextFile (and its errors).
+  if (page > 0 && stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0 &&
+      std::int64_t(st.st_size) <= options.maxBytes && st.st_size % page != 0) {
+    const int fd = open(path.c_str(), O_RDONLY);
+    if (fd >= 0) {
+      struct stat fst {};
+      if (fstat(fd, &fst) == 0 && fst.st_size == st.st_size) {
+        void* m = mmap(nullptr, size_t(fst.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
+        if (m != MAP_FAILED) {
+          map_ = m;
+          mapSize_ = size_t(fst.st_size);
+        }
+      }
+      close(fd);
+    }
+  }
+  if (map_) {
+    begin_ = released_ = static_cast<const char*>(map_);
+    end_ = begin_ + mapSize_;
+    madvise(map_, mapSize_, MADV_SEQUENTIAL);
+    return;
+  }
+  text_ = readTextFile(path, options);
+  begin_ = released_ = text_.data();
+  end_ = begin_ + text_.size();
+}
+
+TextFileView::~TextFileView() {
+  if (map_) munmap(map_, mapSize_);
+}
+
+void TextFileView::release(const char* p) {
+  if (!map_ || p <= released_) return;
+  const size_t page = size_t(sysconf(_SC_PAGESIZE));
+  const size_t upTo = size_t(std::min(p, end_) - begin_) / page * page;  // whole pages before p
+  const size_t from = size_t(released_ - begin_);
+  if (upTo <= from) return;
+  madvise(const_cast<char*>(begin_) + from, upTo - from, MADV_DONTNEED);
+  released_ = begin_ + upTo;
 }
 
 int removeStaleTemporaries(const std::string& path) {

@@ -164,8 +164,12 @@ std::string writeMedit(const Mesh& mesh) {
   return out;
 }
 
-Mesh parseMedit(const std::string& text) {
-  TokenStream ts(text, "Medit mesh", '#');
+namespace {
+
+// parseMedit on [begin, end) (NUL after it); view (when set) is given back the parsed text.
+Mesh parseMeditText(const char* begin, const char* end, TextFileView* view) {
+  TokenStream ts(begin, end, "Medit mesh", '#');
+  if (view) ts.setRelease([view](const char* p) { view->release(p); });
   Mesh mesh;
   int version = 0, dimension = 0;
   bool haveVertices = false, dataStarted = false;
@@ -236,7 +240,14 @@ Mesh parseMedit(const std::string& text) {
   return mesh;
 }
 
-Mesh readMeditFile(const std::string& path) { return parseMedit(readTextFile(path)); }
+}  // namespace
+
+Mesh parseMedit(const std::string& text) { return parseMeditText(text.data(), text.data() + text.size(), nullptr); }
+
+Mesh readMeditFile(const std::string& path) {
+  TextFileView view(path);  // parsed as it is read: the whole text is not held beside the mesh
+  return parseMeditText(view.begin(), view.end(), &view);
+}
 
 void writeMeditFile(const std::string& path, const Mesh& mesh) { writeTextFileAtomic(path, meditPieces(mesh)); }
 
@@ -257,8 +268,12 @@ std::string writeSol(const SolData& sol) {
   return out;
 }
 
-SolData parseSol(const std::string& text) {
-  TokenStream ts(text, "Medit sol", '#');
+namespace {
+
+// parseSol on [begin, end) (NUL after it); view (when set) is given back the parsed text.
+SolData parseSolText(const char* begin, const char* end, TextFileView* view) {
+  TokenStream ts(begin, end, "Medit sol", '#');
+  if (view) ts.setRelease([view](const char* p) { view->release(p); });
   SolData sol;
   int version = 0, dimension = 0;
   bool haveField = false;
@@ -310,9 +325,14 @@ SolData parseSol(const std::string& text) {
   return sol;
 }
 
+}  // namespace
+
+SolData parseSol(const std::string& text) { return parseSolText(text.data(), text.data() + text.size(), nullptr); }
+
 SolData readSolFile(const std::string& path) {
-  const std::string bytes = readTextFile(path);
-  return fileExtension(path) == "solb" ? parseSolBinary(bytes) : parseSol(bytes);
+  if (fileExtension(path) == "solb") return parseSolBinary(readTextFile(path));
+  TextFileView view(path);  // parsed as it is read
+  return parseSolText(view.begin(), view.end(), &view);
 }
 
 void writeSolFile(const std::string& path, const SolData& sol) {

@@ -320,6 +320,10 @@ void writeMeshFile(const std::string& path, const Mesh& mesh) {
   writeTextFileAtomic(path, writeMeshString(mesh, format));
 }
 
-Mesh readMeshFile(const std::string& path) { return parseMeshString(readTextFile(path), meshFormatFromPath(path)); }
+Mesh readMeshFile(const std::string& path) {
+  const MeshFormat format = meshFormatFromPath(path);
+  if (format == MeshFormat::Medit) return readMeditFile(path);  // parsed as it is read
+  return parseMeshString(readTextFile(path), format);
+}
 
 }  // namespace anisomesh

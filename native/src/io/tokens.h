@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -43,9 +44,13 @@ class TokenStream {
   // Scans text lazily (constant memory, also for huge meshes); everything from
   // commentChar (when nonzero) to the end of a line is dropped.
   TokenStream(const std::string& text, std::string format, char commentChar, int firstLine = 1)
-      : format_(std::move(format)), text_(text), comment_(commentChar), line_(firstLine), lastLine_(firstLine) {
-    p_ = text_.data();
-    end_ = p_ + text_.size();
+      : TokenStream(text.data(), text.data() + text.size(), std::move(format), commentChar, firstLine) {}
+  // The text [begin, end), which must be followed by a NUL byte (as a std::string's) and
+  // stay alive for the whole parse.
+  TokenStream(const char* begin, const char* end, std::string format, char commentChar, int firstLine = 1)
+      : format_(std::move(format)), comment_(commentChar), line_(firstLine), lastLine_(firstLine) {
+    p_ = begin;
+    end_ = end;
     skipSpace();
   }
   TokenStream(const TokenStream&) = delete;
@@ -130,6 +135,9 @@ class TokenStream {
     return n;
   }
   const std::string& format() const { return format_; }
+  // Called by lineRecords with the end of each batch of lines it has parsed (the text
+  // before it is not read again unless the section falls back to token-by-token reading).
+  void setRelease(std::function<void(const char*)> release) { release_ = std::move(release); }
 
   // Reads the tokens of one line (LineRecords below); every read is false when the token
   // is missing, would end the line early or is refused by the token-by-token reading.
@@ -184,31 +192,39 @@ class TokenStream {
   bool lineRecords(long long n, const Record& record) {
     constexpr long long kMinRecords = 1 << 14;
     constexpr size_t kChunkLines = 1 << 14;
+    // Chunks found and parsed per batch (a few MB of text): the text is scanned once, batch
+    // by batch, and each parsed batch is handed to release_.
+    constexpr size_t kBatchChunks = 16;
     if (n < kMinRecords || atEnd()) return false;
     const size_t records = size_t(n);
     const size_t chunks = chunkCount(records, kChunkLines);
-    std::vector<const char*> start(chunks + 1);
+    std::vector<const char*> start(kBatchChunks + 1);
+    std::vector<char> ok(kBatchChunks, 0);
     const char* q = p_;
-    for (size_t c = 0; c < chunks; ++c) {
-      start[c] = q;
-      const size_t lines = std::min(kChunkLines, records - c * kChunkLines);
-      for (size_t l = 0; l < lines; ++l) {
-        if (q >= end_) return false;  // fewer lines than records
-        const void* nl = std::memchr(q, '\n', size_t(end_ - q));
-        q = nl ? static_cast<const char*>(nl) + 1 : end_;
+    for (size_t first = 0; first < chunks; first += kBatchChunks) {
+      const size_t batch = std::min(kBatchChunks, chunks - first);
+      for (size_t c = 0; c < batch; ++c) {
+        start[c] = q;
+        const size_t lines = std::min(kChunkLines, records - (first + c) * kChunkLines);
+        for (size_t l = 0; l < lines; ++l) {
+          if (q >= end_) return false;  // fewer lines than records
+          const void* nl = std::memchr(q, '\n', size_t(end_ - q));
+          q = nl ? static_cast<const char*>(nl) + 1 : end_;
+        }
       }
+      start[batch] = q;
+      std::fill(ok.begin(), ok.end(), char(0));
+      parallelChunks(batch, 1, [&](size_t c, size_t, size_t) {
+        LineCursor cursor(start[c], end_, comment_);
+        const size_t last = std::min(records, (first + c + 1) * kChunkLines);
+        for (size_t i = (first + c) * kChunkLines; i < last; ++i)
+          if (!record(i, cursor) || !cursor.endLine()) return;
+        ok[c] = 1;
+      });
+      for (size_t c = 0; c < batch; ++c)
+        if (!ok[c]) return false;
+      if (release_) release_(q);
     }
-    start[chunks] = q;
-    std::vector<char> ok(chunks, 0);
-    parallelChunks(chunks, 1, [&](size_t c, size_t, size_t) {
-      LineCursor cursor(start[c], end_, comment_);
-      const size_t last = std::min(records, (c + 1) * kChunkLines);
-      for (size_t i = c * kChunkLines; i < last; ++i)
-        if (!record(i, cursor) || !cursor.endLine()) return;
-      ok[c] = 1;
-    });
-    for (const char k : ok)
-      if (!k) return false;
     lastLine_ = line_ + int(n - 1);
     line_ += int(q > p_ && q[-1] == '\n' ? n : n - 1);
     p_ = q;
@@ -261,7 +277,7 @@ class TokenStream {
     }
   }
   std::string format_;
-  const std::string& text_;  // the caller's text, alive for the whole parse
+  std::function<void(const char*)> release_;  // setRelease
   char comment_;
   int line_;
   int lastLine_ = 1;

@@ -10,6 +10,14 @@
 namespace anisomesh {
 namespace {
 
+// Triangles per grid cell: coarser cells list each (thin) triangle in fewer cells, finer
+// ones test fewer triangles per query. The lists' memory only matters on large carriers:
+// 1 per cell up to 2^18 triangles, growing to 8 at 2^21 and more (the 1e6 front of
+// native/bench/remesh_throughput.mjs, a 4M-triangle carrier: 228 MiB peak instead of 340
+// with 1 per cell; its 2,000-triangle case on 80k is fastest with 1). The answers do not
+// depend on it (metricAt's search is exact).
+double trianglesPerCell(size_t triangles) { return std::min(8.0, std::max(1.0, double(triangles) / 262144.0)); }
+
 // The cell index floor(t) clamped to [0, n - 1], decided in double so that NaN, infinite
 // and huge t never reach an int conversion.
 int clampedCell(double t, int n) {
@@ -66,9 +74,9 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
   const Vec2 span = box_.size();
   require(std::isfinite(4.0 * span.x() * span.y()) && span.allFinite(), ErrorCode::InvalidDomain,
           "metric field: the mesh's coordinates span more than the double range allows");
-  // About one triangle per cell on square-ish cells.
+  // About trianglesPerCell triangles per cell on square-ish cells.
   const Vec2 size = box_.size().cwiseMax(Vec2::Constant(1e-300));
-  const double side = std::sqrt(size.x() * size.y() / double(triCount_));
+  const double side = std::sqrt(trianglesPerCell(triCount_) * size.x() * size.y() / double(triCount_));
   nx_ = side > 0 ? std::max(1, clampedCell(size.x() / side, 2049)) : 1;
   ny_ = side > 0 ? std::max(1, clampedCell(size.y() / side, 2049)) : 1;
   cell_ = Vec2(size.x() / nx_, size.y() / ny_);
@@ -183,14 +191,26 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     const double t = l2 > 0 ? std::min(1.0, std::max(0.0, (q - a).dot(ab) / l2)) : 0.0;
     return Vec2(a + t * ab);
   };
-  int best = -1, foundRing = -1;
+  int best = -1;
   double bestDist = INFINITY;
   Vec2 bestPoint = p;
   // Cell c's triangles, in two passes per ring of cells: a containing one ends the search
-  // (true); only when the ring holds none, the nearest point of each is a candidate (the
-  // first of equal distances wins). The same answer as one interleaved pass, without the
-  // distances to the triangles before the containing one.
-  auto containsIn = [&](int c) {
+  // (true); only when the ring holds none, the nearest point of each is a candidate (of
+  // equal distances the lowest triangle index wins, whatever the visiting order).
+  // (the cell of a point is decided by a division: a relative slack on distance bounds)
+  const double slack = 1e-9 * (cell_.x() + cell_.y() + box_.size().norm());
+  // The distance from p to the box of cell (x, y).
+  auto cellDistance = [&](int x, int y) {
+    const double x0 = box_.lo.x() + x * cell_.x(), y0 = box_.lo.y() + y * cell_.y();
+    const double dx = std::max({0.0, x0 - p.x(), p.x() - (x0 + cell_.x())});
+    const double dy = std::max({0.0, y0 - p.y(), p.y() - (y0 + cell_.y())});
+    return std::sqrt(dx * dx + dy * dy);
+  };
+  // A cell farther than the slack holds no triangle containing p that p's own cell (or a
+  // nearer one) does not list: skipped.
+  auto containsIn = [&](int x, int y) {
+    if (cellDistance(x, y) > slack) return false;
+    const int c = cellIndex(x, y);
     for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
       const int t = cellTris_[size_t(k)];
       const auto& tri = tris_[size_t(t)];
@@ -206,24 +226,37 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     }
     return false;
   };
-  auto nearestIn = [&](int c) {
+  // A cell farther than the nearest point found cannot improve it (a triangle's nearest
+  // point lies in a cell it is listed in, never farther than the point): skipped.
+  auto nearestIn = [&](int x, int y) {
+    if (best >= 0 && cellDistance(x, y) - slack > std::sqrt(bestDist)) return false;
+    const int c = cellIndex(x, y);
     for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
       const int t = cellTris_[size_t(k)];
       const auto& tri = tris_[size_t(t)];
       const Vec2 a = point(tri[0]), b = point(tri[1]), d = point(tri[2]);
       const double det = (b.x() - a.x()) * (d.y() - a.y()) - (b.y() - a.y()) * (d.x() - a.x());
       if (det == 0) continue;
+      if (best >= 0) {  // a triangle whose box is farther than the nearest point found: skipped
+        const double dx =
+            std::max({0.0, std::min({a.x(), b.x(), d.x()}) - p.x(), p.x() - std::max({a.x(), b.x(), d.x()})});
+        const double dy =
+            std::max({0.0, std::min({a.y(), b.y(), d.y()}) - p.y(), p.y() - std::max({a.y(), b.y(), d.y()})});
+        if (std::sqrt(dx * dx + dy * dy) - slack > std::sqrt(bestDist)) continue;
+      }
       for (int e = 0; e < 3; ++e) {
         const Vec2 q = closestOnSegment(p, point(tri[e]), point(tri[(e + 1) % 3]));
         const double dist = (q - p).squaredNorm();
-        if (dist < bestDist || best < 0) bestDist = dist, best = t, bestPoint = q;  // inf when p is far
+        // (inf when p is far: the first candidate is taken; a triangle's own first edge of
+        // equal distances is kept)
+        if (best < 0 || dist < bestDist || (dist == bestDist && t < best)) bestDist = dist, best = t, bestPoint = q;
       }
     }
     return false;
   };
   // Calls f on the cells of ring r around p's cell in row order; true when f ends the search.
   auto ring = [&](int r, auto&& f) {
-    auto visit = [&](int x, int y) { return x >= 0 && y >= 0 && x < nx_ && y < ny_ && f(cellIndex(x, y)); };
+    auto visit = [&](int x, int y) { return x >= 0 && y >= 0 && x < nx_ && y < ny_ && f(x, y); };
     for (int y = cy - r; y <= cy + r; ++y) {
       if (y == cy - r || y == cy + r) {
         for (int x = cx - r; x <= cx + r; ++x)
@@ -235,14 +268,28 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     }
     return false;
   };
+  // A lower bound of the distance from p to the cells of ring r (r >= 1): each of its
+  // cells lies in one of its four sides beyond the block of the inner rings; infinite
+  // when the ring has no cell in the grid (nor has any further ring).
+  auto ringDistance = [&](int r) {
+    double d = INFINITY;
+    if (cx - r >= 0) d = std::min(d, std::max(0.0, p.x() - (box_.lo.x() + (cx - r + 1) * cell_.x())));
+    if (cx + r < nx_) d = std::min(d, std::max(0.0, box_.lo.x() + (cx + r) * cell_.x() - p.x()));
+    if (cy - r >= 0) d = std::min(d, std::max(0.0, p.y() - (box_.lo.y() + (cy - r + 1) * cell_.y())));
+    if (cy + r < ny_) d = std::min(d, std::max(0.0, box_.lo.y() + (cy + r) * cell_.y() - p.y()));
+    return d;
+  };
   // Rings of cells around p's cell: a containing triangle ends the search; otherwise the
-  // nearest triangle seen up to one ring past the first ring with candidates. Rings closer
-  // than the nearest nonempty cell hold nothing: skipped.
-  for (int r = emptyRings_[size_t(cellIndex(cx, cy))]; r <= std::max(nx_, ny_); ++r) {
+  // nearest triangle of all: the rings are searched until the next one is farther than
+  // the nearest point found (each triangle's nearest point lies in a cell it is listed in),
+  // so the answer does not depend on the cell size. Rings closer than the nearest
+  // nonempty cell hold nothing: skipped.
+  for (int r = emptyRings_[size_t(cellIndex(cx, cy))];; ++r) {
     if (ring(r, containsIn)) return interpolateAt(best, p);
     ring(r, nearestIn);
-    if (best >= 0 && foundRing < 0) foundRing = r;
-    if (foundRing >= 0 && r >= foundRing + 1) break;
+    const double next = ringDistance(r + 1);
+    if (next == INFINITY) break;
+    if (best >= 0 && next - slack > std::sqrt(bestDist)) break;
   }
   if (best < 0) throw Error(ErrorCode::InvalidArgument, "metric field: every triangle of the mesh is degenerate");
   return interpolateAt(best, bestPoint);

@@ -273,8 +273,13 @@ std::unique_ptr<AdaptiveControlSpace> buildRemeshControlSpace(const Mesh& input,
   return buildAdaptiveControlSpace(s);
 }
 
-Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshOptions& options, PipelineReport* report,
-            std::unique_ptr<AdaptiveControlSpace>* controlSpace) {
+namespace {
+
+// remesh; releaseInput (when set) is called once the input and its metrics are no longer
+// read (after the boundary loops and the control space are built).
+Mesh remeshImpl(const Mesh& input, const std::vector<Metric>& metrics, const RemeshOptions& options,
+                PipelineReport* report, std::unique_ptr<AdaptiveControlSpace>* controlSpace,
+                const std::function<void()>& releaseInput) {
   PipelineReport local;
   PipelineReport& r = report ? *report : local;
   auto stage = [&](const char* name) {
@@ -296,6 +301,7 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
   std::unique_ptr<AdaptiveControlSpace> cs =
       withStage("control-space construction", [&] { return buildRemeshControlSpace(input, metrics, options); });
   r.secondsControlSpace = secondsSince(t);
+  if (releaseInput) releaseInput();
   r.controlElements = cs->elementCount();
   r.controlNodes = cs->nodeCount();
   withStage("element estimate", [&] {
@@ -319,6 +325,23 @@ Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshO
   r.secondsMeshing = secondsSince(t);
   if (controlSpace) *controlSpace = std::move(cs);
   return mesh;
+}
+
+}  // namespace
+
+Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshOptions& options, PipelineReport* report,
+            std::unique_ptr<AdaptiveControlSpace>* controlSpace) {
+  return remeshImpl(input, metrics, options, report, controlSpace, nullptr);
+}
+
+Mesh remesh(Mesh&& input, std::vector<Metric>&& metrics, const RemeshOptions& options, PipelineReport* report,
+            std::unique_ptr<AdaptiveControlSpace>* controlSpace) {
+  Mesh carrier = std::move(input);
+  std::vector<Metric> carrierMetrics = std::move(metrics);
+  return remeshImpl(carrier, carrierMetrics, options, report, controlSpace, [&] {
+    carrier = Mesh();
+    std::vector<Metric>().swap(carrierMetrics);
+  });
 }
 
 Mesh meshSurfaceCase(const SurfaceCaseSpec& spec, SurfaceMeshReport* report) {

@@ -24,6 +24,32 @@ struct ReadFileOptions {
 // options.maxBytes bytes (checked up front for regular files, while reading for pipes).
 std::string readTextFile(const std::string& path, const ReadFileOptions& options = {});
 
+// The text of the file at path for a parser that reads it once from front to back: a
+// read-only memory map of a regular file where the system has one, so the parsed pages
+// can be given back while the parse goes on (a large input is then not held in full
+// beside what it is parsed into); otherwise the text read as readTextFile does. The same
+// checks and errors as readTextFile. The text is followed by a NUL byte.
+class TextFileView {
+ public:
+  explicit TextFileView(const std::string& path, const ReadFileOptions& options = {});
+  ~TextFileView();
+  TextFileView(const TextFileView&) = delete;
+  TextFileView& operator=(const TextFileView&) = delete;
+  const char* begin() const { return begin_; }
+  const char* end() const { return end_; }
+  // Gives the whole pages before p back to the system (a map only; read again from the
+  // file when touched later).
+  void release(const char* p);
+
+ private:
+  std::string text_;  // when not mapped
+  void* map_ = nullptr;
+  size_t mapSize_ = 0;
+  const char* begin_ = nullptr;
+  const char* end_ = nullptr;
+  const char* released_ = nullptr;
+};
+
 // Writes contents to path through a temporary sibling file (path.tmp-PID-...) and a
 // rename; throws IoError (and removes the temporary) on any failure, leaving path
 // untouched. Temporaries of path left by processes that no longer run are removed first.

@@ -28,7 +28,8 @@ class TriangleMeshMetricField : public ControlSpace {
   TriangleMeshMetricField(const TriangleMeshMetricField&) = delete;
   TriangleMeshMetricField& operator=(const TriangleMeshMetricField&) = delete;
   // Barycentric interpolation of Mt in the containing triangle; outside the mesh, the
-  // nearest triangle found in the grid with its coordinates clamped to it.
+  // nearest triangle (exact: of equal distances the lowest index) with its coordinates
+  // clamped to it. The grid's cell size changes the speed only, not the answer.
   Metric metricAt(const Vec2& p) const override;
   Box2 bounds() const override { return box_; }
   // True when b meets a grid cell holding a triangle (outside, the field is only extrapolated).

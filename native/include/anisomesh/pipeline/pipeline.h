@@ -107,6 +107,11 @@ std::unique_ptr<AdaptiveControlSpace> buildRemeshControlSpace(const Mesh& input,
 // is given it receives the control space used.
 Mesh remesh(const Mesh& input, const std::vector<Metric>& metrics, const RemeshOptions& options = {},
             PipelineReport* report = nullptr, std::unique_ptr<AdaptiveControlSpace>* controlSpace = nullptr);
+// The same, consuming the input and its metrics: both are freed as soon as the boundary
+// loops and the control space are built, before the contours are discretized and the
+// domain meshed (the memory peak of large remeshing runs; the same mesh).
+Mesh remesh(Mesh&& input, std::vector<Metric>&& metrics, const RemeshOptions& options = {},
+            PipelineReport* report = nullptr, std::unique_ptr<AdaptiveControlSpace>* controlSpace = nullptr);
 
 // Meshes a surface case (meshSurfaceModel with the case's options).
 Mesh meshSurfaceCase(const SurfaceCaseSpec& spec, SurfaceMeshReport* report = nullptr);
