@@ -236,12 +236,12 @@ function metricOut(r) {
   return { m11, m12, m22, t11, t12, t22, alpha, h1, h2 };
 }
 
-/** Wraps an instantiated embind module into the public API object. */
 // Large texts cross into the core as UTF-8 bytes from TextEncoder, copied with one
 // TypedArray.set (bindings.cpp textOf); embind's string conversion is a JS loop.
 const encoder = new TextEncoder();
 const utf8 = (text) => (text.length > 1 << 16 ? encoder.encode(text) : text);
 
+/** Wraps an instantiated embind module into the public API object. */
 export function wrapCore(core) {
   return Object.freeze({
     /** Version of the core. */

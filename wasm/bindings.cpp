@@ -524,14 +524,14 @@ val writeSolText(val metrics) {
 // Remeshing of a mesh under per-vertex tensors: { mesh, stats }.
 val remeshJs(val mesh, val metrics, val options) {
   return guarded([&] {
-    const Mesh input = meshFromJs(mesh);
+    Mesh input = meshFromJs(mesh);
     // metrics null: isotropic sizes from the mesh itself (options.hsiz everywhere, else
     // each vertex's mean incident edge length), as the CLI does without -sol.
     const double hsiz = options["hsiz"].isNumber() ? options["hsiz"].as<double>() : 0.0;
-    const std::vector<Metric> m = !metrics.isNull()
-                                      ? metricsFromFlat(emscripten::convertJSArrayToNumberVector<double>(metrics))
-                                  : hsiz > 0 ? uniformMetrics(input, hsiz)
-                                             : edgeLengthMetrics(input);
+    std::vector<Metric> m = !metrics.isNull()
+                                ? metricsFromFlat(emscripten::convertJSArrayToNumberVector<double>(metrics))
+                            : hsiz > 0 ? uniformMetrics(input, hsiz)
+                                       : edgeLengthMetrics(input);
     require(
         m.size() == input.points.size(), ErrorCode::InvalidArgument,
         "metrics: " + std::to_string(m.size()) + " tensors for " + std::to_string(input.points.size()) + " vertices");
@@ -547,7 +547,9 @@ val remeshJs(val mesh, val metrics, val options) {
     PipelineReport report;
     std::unique_ptr<AdaptiveControlSpace> cs;
     CaseRun run;
-    run.mesh = remesh(input, m, o, &report, &cs);
+    // Moved in, as the CLI does: the input and its metrics are freed once the control space
+    // is built (the wasm heap's peak on large carriers).
+    run.mesh = remesh(std::move(input), std::move(m), o, &report, &cs);
     run.finalSpace = std::move(cs);
     val r = val::object();
     r.set("mesh", meshToJs(run.mesh));

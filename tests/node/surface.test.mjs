@@ -50,6 +50,7 @@ test('meshCase of a surface: glyphs, element patches, corner parameters and 3D q
 });
 
 test('meshCase of a surface with stats: false: the mesh and its measures first, the same report from report() after', () => {
+  const strip = ({ secondsTotal, curvatureSeconds, controlSpaceSeconds, ...rest }) => rest;  // times differ
   for (const [name, options] of [['surface_p2_holes', {}], ['surface_two_patch_c', { quads: true }]]) {
     const full = am.meshCase(surface(name), { ...options, measures: true });
     const quick = am.meshCase(surface(name), { ...options, stats: false, measures: true });
@@ -59,7 +60,6 @@ test('meshCase of a surface with stats: false: the mesh and its measures first, 
     // The per-element 3D values come with the mesh (the page colours by them).
     assert.deepEqual(quick.measures.quality, full.measures.quality, name);
     assert.deepEqual(quick.measures.edgeLength, full.measures.edgeLength, name);
-    const strip = ({ secondsTotal, curvatureSeconds, controlSpaceSeconds, ...rest }) => rest;  // times differ
     const later = quick.report();
     assert.deepEqual(strip(later), strip(full.stats), name);
     assert.ok(later.quality3d.chordDeviationMax > 0, name);
@@ -74,7 +74,6 @@ test('meshCase of a surface with stats: false: the mesh and its measures first, 
   const em = bare.elementMeasures();
   assert.deepEqual(em.quality, full.measures.quality);
   assert.deepEqual(em.edgeLength, full.measures.edgeLength);
-  const strip = ({ secondsTotal, curvatureSeconds, controlSpaceSeconds, ...rest }) => rest;
   assert.deepEqual(strip(bare.report()), strip(full.stats));
   assert.throws(() => bare.elementMeasures(), { code: 'INVALID_ARGUMENT', message: /already made/ });
   const planar = am.meshCase({ domain: { outer: [{ type: 'polyline', points: [[0, 0], [1, 0], [1, 1], [0, 1], [0, 0]] }] }, controlSpace: { hmax: 0.2 } }, { stats: false });

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/metric/sym_eigen.h"
 
 namespace anisomesh {
 namespace {
@@ -128,8 +129,12 @@ double elementCountBound(const AdaptiveControlSpace& cs) {
   double largest = 0.0;  // the largest |eigenvalue| of a node's Mt
   for (int i = 0; i < cs.nodeCount(); ++i) {
     const SymMt& m = cs.nodeMt(i);
-    const double half = 0.5 * (m.a - m.c);
-    largest = std::max(largest, std::fabs(0.5 * (m.a + m.c)) + std::sqrt(half * half + m.b * m.b));
+    Mat2 mt;
+    mt << m.a, m.b, m.b, m.c;
+    const SymEigen2 e = symEigenValues(mt);
+    const double l = std::max(std::fabs(e.l1), std::fabs(e.l2));
+    if (!(l < INFINITY)) return INFINITY;  // (a NaN node too: std::max would drop it)
+    largest = std::max(largest, l);
   }
   const Vec2 size = cs.bounds().size();
   const double l = 4.0 * largest;  // (weights' absolute sum: 1 bilinear, at most 3 serendipity)
