@@ -3,6 +3,7 @@
 #include "anisomesh/mesh/planar_mesher.h"
 
 #include "anisomesh/mesh/all_quad_split.h"
+#include "anisomesh/mesh/domain_decomposition.h"
 
 #include "planar/mesher_impl.h"
 
@@ -79,6 +80,12 @@ Mesh Mesher::run() {
 
 Mesh meshPlanarBoundary(const std::vector<BoundaryLoop>& loops, const ControlSpace& controlSpace,
                         const PlanarMesherOptions& options) {
+  if (options.partElements > 0 && !options.boundaryOnly && !options.allQuads) {
+    DomainDecompositionOptions d;
+    d.partElements = options.partElements;
+    const DomainParts parts = decomposeDomain(loops, controlSpace, d);
+    if (parts.parts.size() > 1) return meshDomainParts(loops, parts, controlSpace, options);
+  }
   planar::Mesher mesher(loops, controlSpace, options);
   return mesher.run();
 }

@@ -55,6 +55,10 @@ struct PlanarMesherOptions {
   // Quad-dominant merge: pairs whose quad would have a lower metric quality stay triangles.
   double minQuadQuality = 0.3;
   MesherTimings* timings = nullptr;  // optional output: stage times
+  // Domain decomposition (mesh/domain_decomposition.h): domains estimated at 2 x this many
+  // elements or more are split into parts of about this size, meshed concurrently and merged;
+  // 0 meshes the domain whole. Not with boundaryOnly or allQuads.
+  std::int64_t partElements = 150000;
 };
 
 // Meshes the region inside loops[0] and outside loops[1..]; every boundary point is a

@@ -1,0 +1,386 @@
+// Planar domain decomposition: recursive bisection at the metric-area median by chords
+// between boundary points (see mesh/domain_decomposition.h).
+#include "anisomesh/mesh/domain_decomposition.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "anisomesh/boundary/discretize.h"
+#include "anisomesh/geometry/curve.h"
+#include "anisomesh/geometry/domain.h"
+#include "anisomesh/mesh/predicates.h"
+
+namespace anisomesh {
+namespace {
+
+constexpr double kTriangleArea = 0.43301270189221932;  // sqrt(3) / 4: a unit equilateral triangle
+constexpr int kCutTries = 25;                          // cut positions tried around the median
+
+struct Edge {
+  int a, b, ref;
+  char chord;
+};
+
+struct Chord {
+  int a, b;
+};
+
+// The decomposition under way: the global points and the parts split so far.
+class Decomposer {
+ public:
+  Decomposer(const ControlSpace& cs, const DomainDecompositionOptions& o, std::vector<Vec2>& points)
+      : cs_(cs), o_(o), pts_(points) {}
+
+  // Metric-area samples of a part along its longer box side: columns of det(Mt) times area.
+  struct Samples {
+    int axis = 0;
+    double lo = 0.0, width = 0.0;
+    std::vector<double> column;
+    double total = 0.0;
+  };
+
+  Samples sample(const std::vector<Edge>& edges) const {
+    Samples s;
+    Vec2 lo = pts_[edges[0].a], hi = lo;
+    for (const Edge& e : edges) lo = lo.cwiseMin(pts_[e.a]), hi = hi.cwiseMax(pts_[e.a]);
+    const Vec2 size = hi - lo;
+    s.axis = size.y() > size.x() ? 1 : 0;
+    const int across = 1 - s.axis;
+    const int nc = std::max(4, o_.gridSide), nr = std::max(4, o_.gridSide / 4);
+    s.lo = lo[s.axis];
+    s.width = size[s.axis] / nc;
+    const double dr = size[across] / nr;
+    s.column.assign(nc, 0.0);
+    if (!(s.width > 0.0) || !(dr > 0.0)) return s;
+    std::vector<double> xs;
+    for (int r = 0; r < nr; ++r) {
+      const double y = lo[across] + (r + 0.5) * dr;
+      xs.clear();
+      for (const Edge& e : edges) {
+        const Vec2 &p = pts_[e.a], &q = pts_[e.b];
+        if ((p[across] > y) != (q[across] > y))
+          xs.push_back(p[s.axis] + (y - p[across]) / (q[across] - p[across]) * (q[s.axis] - p[s.axis]));
+      }
+      std::sort(xs.begin(), xs.end());
+      for (size_t k = 0; k + 1 < xs.size(); k += 2) {
+        const double xa = xs[k], xb = xs[k + 1];
+        for (int j = std::max(0, static_cast<int>((xa - s.lo) / s.width)); j < nc; ++j) {
+          const double c0 = std::max(xa, s.lo + j * s.width), c1 = std::min(xb, s.lo + (j + 1) * s.width);
+          if (c0 >= xb) break;
+          if (c1 <= c0) continue;
+          Vec2 p;
+          p[s.axis] = 0.5 * (c0 + c1);
+          p[across] = y;
+          const double d = cs_.metricAt(p).transform().determinant();
+          if (std::isfinite(d)) s.column[j] += (c1 - c0) * dr * std::fabs(d);
+        }
+      }
+    }
+    for (double c : s.column) s.total += c;
+    return s;
+  }
+
+  // Splits a part in two or more; empty when no valid cut was found.
+  std::vector<DomainPart> split(const DomainPart& part) {
+    const std::vector<Edge> edges = edgesOf(part);
+    const Samples s = sample(edges);
+    if (!(s.total > 0.0) || !std::isfinite(s.total)) return {};
+    // The median of the metric area, interpolated inside its column.
+    double cum = 0.0, median = s.lo + 0.5 * s.width * s.column.size();
+    for (size_t j = 0; j < s.column.size(); ++j) {
+      if (cum + s.column[j] >= 0.5 * s.total) {
+        const double f = s.column[j] > 0.0 ? (0.5 * s.total - cum) / s.column[j] : 0.5;
+        median = s.lo + (static_cast<double>(j) + f) * s.width;
+        break;
+      }
+      cum += s.column[j];
+    }
+    for (int k = 0; k < kCutTries; ++k) {
+      const int step = (k + 1) / 2 * (k % 2 == 1 ? 1 : -1);  // 0, +1, -1, +2, -2, ...
+      std::vector<DomainPart> parts = cutAt(edges, s.axis, median + 0.25 * step * s.width);
+      if (!parts.empty()) return parts;
+    }
+    return {};
+  }
+
+ private:
+  static std::vector<Edge> edgesOf(const DomainPart& part) {
+    std::vector<Edge> edges;
+    for (size_t l = 0; l < part.loops.size(); ++l) {
+      const auto& ids = part.loops[l];
+      for (size_t i = 0; i < ids.size(); ++i)
+        edges.push_back({ids[i], ids[(i + 1) % ids.size()], part.edgeRefs[l][i], part.chord[l][i]});
+    }
+    return edges;
+  }
+
+  // Segments [p, q] and [r, s] meet (touching included).
+  static bool segmentsMeet(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
+    const double d1 = orient2d(p, q, r), d2 = orient2d(p, q, s), d3 = orient2d(r, s, p), d4 = orient2d(r, s, q);
+    if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
+    auto on = [](const Vec2& a, const Vec2& b, const Vec2& c) {  // c on [a, b], given collinear
+      return std::min(a.x(), b.x()) <= c.x() && c.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= c.y() &&
+             c.y() <= std::max(a.y(), b.y());
+    };
+    return (d1 == 0 && on(p, q, r)) || (d2 == 0 && on(p, q, s)) || (d3 == 0 && on(r, s, p)) ||
+           (d4 == 0 && on(r, s, q));
+  }
+
+  // Even-odd containment of p in the edges' region.
+  bool inside(const std::vector<Edge>& edges, const Vec2& p) const {
+    bool in = false;
+    for (const Edge& e : edges) {
+      const Vec2 &a = pts_[e.a], &b = pts_[e.b];
+      if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
+        in = !in;
+    }
+    return in;
+  }
+
+  // The angle between u and v in the metric of point p is at least minChordAngle.
+  bool wideAngle(const Vec2& p, const Vec2& u, const Vec2& v) const {
+    const Mat2 m = cs_.metricAt(p).transform();
+    const Vec2 mu = m * u, mv = m * v;
+    const double c = mu.dot(mv) / (mu.norm() * mv.norm());
+    return std::isfinite(c) && c < std::cos(o_.minChordAngle);
+  }
+
+  // The chords of the cut line {x[axis] = c} across the part, or empty when one is invalid.
+  std::vector<Chord> chordsAt(const std::vector<Edge>& edges, int axis, double c) const {
+    const int across = 1 - axis;
+    std::vector<std::pair<double, int>> crossings;  // (across coordinate, chosen end point)
+    for (const Edge& e : edges) {
+      const double da = pts_[e.a][axis] - c, db = pts_[e.b][axis] - c;
+      if (da == 0.0 || db == 0.0) return {};  // a point on the line: try another position
+      if ((da > 0.0) == (db > 0.0)) continue;
+      const double t = pts_[e.a][across] + (-da) / (db - da) * (pts_[e.b][across] - pts_[e.a][across]);
+      crossings.emplace_back(t, std::fabs(da) <= std::fabs(db) ? e.a : e.b);
+    }
+    if (crossings.size() < 2 || crossings.size() % 2 != 0) return {};
+    std::sort(crossings.begin(), crossings.end());
+    std::vector<Chord> chords;
+    std::vector<int> ends;
+    for (size_t k = 0; k + 1 < crossings.size(); k += 2) {
+      if (crossings[k].first == crossings[k + 1].first) return {};
+      chords.push_back({crossings[k].second, crossings[k + 1].second});
+      ends.push_back(crossings[k].second);
+      ends.push_back(crossings[k + 1].second);
+    }
+    std::sort(ends.begin(), ends.end());
+    if (std::adjacent_find(ends.begin(), ends.end()) != ends.end()) return {};  // shared end point
+    for (size_t k = 0; k < chords.size(); ++k) {
+      const Chord& ch = chords[k];
+      const Vec2 &a = pts_[ch.a], &b = pts_[ch.b];
+      for (const Edge& e : edges) {
+        const bool atA = e.a == ch.a || e.b == ch.a, atB = e.a == ch.b || e.b == ch.b;
+        if (atA || atB) {
+          // Edges at an end: not too sharp against the chord (this also rules out overlaps).
+          if (atA && !wideAngle(a, b - a, pts_[e.a == ch.a ? e.b : e.a] - a)) return {};
+          if (atB && !wideAngle(b, a - b, pts_[e.a == ch.b ? e.b : e.a] - b)) return {};
+          if (atA && atB) return {};  // the chord is an edge's twin
+          continue;
+        }
+        if (segmentsMeet(a, b, pts_[e.a], pts_[e.b])) return {};
+      }
+      for (size_t j = 0; j < k; ++j)
+        if (segmentsMeet(a, b, pts_[chords[j].a], pts_[chords[j].b])) return {};
+      if (!inside(edges, 0.5 * (a + b))) return {};
+    }
+    return chords;
+  }
+
+  // The faces of the part's edges and the chords (both ways), each a vertex cycle.
+  struct Face {
+    std::vector<int> directed;  // indices into the directed edge list
+    double area = 0.0;
+  };
+
+  // Where w - v lies turning clockwise from du - v: 0 within (0, pi), 1 at pi, 2 within
+  // (pi, 2 pi), 3 at 2 pi (along du - v itself).
+  static int clockClass(const Vec2& v, const Vec2& du, const Vec2& w) {
+    const double o = orient2d(v, du, w);
+    if (o < 0) return 0;
+    if (o > 0) return 2;
+    return (w - v).dot(du - v) < 0 ? 1 : 3;
+  }
+
+  std::vector<DomainPart> cutAt(const std::vector<Edge>& edges, int axis, double c) {
+    const std::vector<Chord> chords = chordsAt(edges, axis, c);
+    if (chords.empty()) return {};
+    // Directed edges: the part's (domain on their left) and each chord both ways.
+    std::vector<Edge> dir = edges;
+    for (size_t k = 0; k < chords.size(); ++k) {
+      dir.push_back({chords[k].a, chords[k].b, 0, 1});
+      dir.push_back({chords[k].b, chords[k].a, 0, 1});
+    }
+    std::vector<std::pair<int, int>> out;  // (source, directed edge) sorted by source
+    out.reserve(dir.size());
+    for (size_t i = 0; i < dir.size(); ++i) out.emplace_back(dir[i].a, static_cast<int>(i));
+    std::sort(out.begin(), out.end());
+    auto nextEdge = [&](int i) {  // the first outgoing edge clockwise from the reversed edge i
+      const int v = dir[i].b, u = dir[i].a;
+      auto it = std::lower_bound(out.begin(), out.end(), std::make_pair(v, -1));
+      int best = -1, bestClass = 4;
+      for (; it != out.end() && it->first == v; ++it) {
+        const int j = it->second;
+        const int cl = clockClass(pts_[v], pts_[u], pts_[dir[j].b]);
+        if (best < 0 || cl < bestClass ||
+            (cl == bestClass && (cl == 0 || cl == 2) && orient2d(pts_[v], pts_[dir[j].b], pts_[dir[best].b]) < 0)) {
+          best = j;
+          bestClass = cl;
+        }
+      }
+      return best;
+    };
+    std::vector<char> used(dir.size(), 0);
+    std::vector<Face> faces;
+    for (size_t start = 0; start < dir.size(); ++start) {
+      if (used[start]) continue;
+      Face f;
+      int i = static_cast<int>(start);
+      while (!used[i]) {
+        used[i] = 1;
+        f.directed.push_back(i);
+        i = nextEdge(i);
+        if (i < 0 || f.directed.size() > dir.size()) return {};
+      }
+      if (i != static_cast<int>(start)) return {};
+      for (int j : f.directed) {
+        const Vec2 &p = pts_[dir[j].a], &q = pts_[dir[j].b];
+        f.area += p.x() * q.y() - p.y() * q.x();
+      }
+      std::vector<int> vs;
+      for (int j : f.directed) vs.push_back(dir[j].a);
+      std::sort(vs.begin(), vs.end());
+      if (std::adjacent_find(vs.begin(), vs.end()) != vs.end()) return {};  // a pinched face
+      faces.push_back(std::move(f));
+    }
+    std::vector<size_t> outer;
+    for (size_t k = 0; k < faces.size(); ++k)
+      if (faces[k].area > 0.0) outer.push_back(k);
+    if (outer.size() < 2) return {};
+    // Holes no chord touches belong to the face around them.
+    std::vector<std::vector<size_t>> holes(outer.size());
+    for (size_t k = 0; k < faces.size(); ++k) {
+      if (faces[k].area > 0.0) continue;
+      const Vec2& p = pts_[dir[faces[k].directed[0]].a];
+      int owner = -1;
+      for (size_t o = 0; o < outer.size(); ++o) {
+        std::vector<Edge> fe;
+        for (int j : faces[outer[o]].directed) fe.push_back(dir[j]);
+        if (inside(fe, p)) {
+          if (owner >= 0) return {};
+          owner = static_cast<int>(o);
+        }
+      }
+      if (owner < 0) return {};
+      holes[owner].push_back(k);
+    }
+    // Valid: discretize the chords at unit metric length, then write the parts.
+    std::vector<std::vector<int>> inner(chords.size());
+    for (size_t k = 0; k < chords.size(); ++k) {
+      const LineCurve line(pts_[chords[k].a], pts_[chords[k].b]);
+      const std::vector<double> t = discretizeCurve(line, cs_, 1);
+      for (size_t j = 1; j + 1 < t.size(); ++j) {
+        inner[k].push_back(static_cast<int>(pts_.size()));
+        pts_.push_back(line.point(t[j]));
+      }
+    }
+    auto appendLoop = [&](const Face& f, DomainPart& p) {
+      std::vector<int> ids, refs;
+      std::vector<char> ch;
+      for (int j : f.directed) {
+        const Edge& e = dir[j];
+        ids.push_back(e.a);
+        if (j < static_cast<int>(edges.size())) {
+          refs.push_back(e.ref);
+          ch.push_back(e.chord);
+          continue;
+        }
+        const size_t k = static_cast<size_t>(j - edges.size()) / 2;
+        const bool forward = (j - edges.size()) % 2 == 0;
+        const auto& in = inner[k];
+        for (size_t m = 0; m < in.size(); ++m) ids.push_back(forward ? in[m] : in[in.size() - 1 - m]);
+        refs.insert(refs.end(), in.size() + 1, 0);
+        ch.insert(ch.end(), in.size() + 1, 1);
+      }
+      p.loops.push_back(std::move(ids));
+      p.edgeRefs.push_back(std::move(refs));
+      p.chord.push_back(std::move(ch));
+    };
+    std::vector<DomainPart> parts(outer.size());
+    for (size_t o = 0; o < outer.size(); ++o) {
+      appendLoop(faces[outer[o]], parts[o]);
+      for (size_t h : holes[o]) appendLoop(faces[h], parts[o]);
+    }
+    return parts;
+  }
+
+  const ControlSpace& cs_;
+  const DomainDecompositionOptions& o_;
+  std::vector<Vec2>& pts_;
+};
+
+}  // namespace
+
+DomainParts decomposeDomain(const std::vector<BoundaryLoop>& loops, const ControlSpace& cs,
+                            const DomainDecompositionOptions& options) {
+  DomainParts out;
+  DomainPart whole;
+  bool usable = !loops.empty();
+  for (const BoundaryLoop& l : loops) {
+    usable = usable && l.points.size() >= 3 && l.edgeRefs.size() == l.points.size();
+    for (const Vec2& p : l.points) usable = usable && p.allFinite();
+  }
+  for (size_t l = 0; usable && l < loops.size(); ++l) {
+    const BoundaryLoop& lp = loops[l];
+    const int n = static_cast<int>(lp.points.size()), base = static_cast<int>(out.points.size());
+    out.points.insert(out.points.end(), lp.points.begin(), lp.points.end());
+    std::vector<int> ids(n), refs(lp.edgeRefs);
+    for (int i = 0; i < n; ++i) ids[i] = base + i;
+    // The outer loop counter-clockwise, the holes clockwise: each edge has the domain on its left.
+    const double area = signedArea(lp.points);
+    usable = usable && area != 0.0 && std::isfinite(area);
+    if ((l == 0) != (area > 0.0)) {
+      std::reverse(ids.begin(), ids.end());  // edge k now joins old points n-1-k and n-2-k: old edge n-2-k
+      for (int k = 0; k < n; ++k) refs[k] = lp.edgeRefs[(2 * n - 2 - k) % n];
+    }
+    whole.loops.push_back(std::move(ids));
+    whole.edgeRefs.push_back(std::move(refs));
+    whole.chord.emplace_back(n, 0);
+  }
+  out.loopPoints = static_cast<int>(out.points.size());
+  if (!usable || options.partElements <= 0) {
+    out.parts.push_back(std::move(whole));
+    return out;
+  }
+  Decomposer d(cs, options, out.points);
+  std::vector<Edge> all;
+  for (size_t l = 0; l < whole.loops.size(); ++l)
+    for (size_t i = 0; i < whole.loops[l].size(); ++i)
+      all.push_back({whole.loops[l][i], whole.loops[l][(i + 1) % whole.loops[l].size()], 0, 0});
+  const Decomposer::Samples s = d.sample(all);
+  out.estimatedElements = s.total / kTriangleArea;
+  int leaves = 1;
+  while (2 * leaves <= options.maxParts && 2.0 * leaves * static_cast<double>(options.partElements) <= out.estimatedElements)
+    leaves *= 2;
+  out.parts.push_back(std::move(whole));
+  for (int level = 1; level < leaves; level *= 2) {
+    std::vector<DomainPart> next;
+    for (const DomainPart& p : out.parts) {
+      std::vector<DomainPart> pieces = d.split(p);
+      if (pieces.empty()) {
+        next.push_back(p);
+      } else {
+        for (DomainPart& q : pieces) next.push_back(std::move(q));
+      }
+    }
+    out.parts = std::move(next);
+  }
+  return out;
+}
+
+}  // namespace anisomesh

@@ -1,0 +1,118 @@
+// Planar domain decomposition: the parts meshed (in parallel) and merged into one mesh
+// (see mesh/domain_decomposition.h).
+#include <algorithm>
+#include <mutex>
+#include <sstream>
+#include <vector>
+
+#include "anisomesh/controlspace/concurrency.h"
+#include "anisomesh/core/error.h"
+#include "anisomesh/core/parallel.h"
+#include "anisomesh/mesh/domain_decomposition.h"
+
+namespace anisomesh {
+
+Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& parts, const ControlSpace& cs,
+                     const PlanarMesherOptions& options) {
+  const size_t n = parts.parts.size();
+  std::vector<Mesh> meshes(n);
+  std::vector<MesherTimings> timings(n);
+  std::vector<double> fraction(n, 0.0);
+  std::mutex progressLock;
+  // Larger parts first (by boundary size, a stand-in for their work): better balance.
+  std::vector<size_t> order(n);
+  for (size_t p = 0; p < n; ++p) order[p] = p;
+  auto loopPoints = [&](size_t p) {
+    size_t s = 0;
+    for (const auto& l : parts.parts[p].loops) s += l.size();
+    return s;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return loopPoints(a) > loopPoints(b); });
+  auto meshPart = [&](size_t p) {
+    const DomainPart& part = parts.parts[p];
+    std::vector<BoundaryLoop> partLoops(part.loops.size());
+    for (size_t l = 0; l < part.loops.size(); ++l) {
+      for (int id : part.loops[l]) partLoops[l].points.push_back(parts.points[id]);
+      partLoops[l].edgeRefs = part.edgeRefs[l];
+    }
+    PlanarMesherOptions o = options;
+    o.partElements = 0;
+    o.timings = &timings[p];
+    if (options.progress) {
+      o.progress = [&, p](double f) {
+        std::lock_guard<std::mutex> lock(progressLock);
+        fraction[p] = f;
+        double sum = 0.0;
+        for (double x : fraction) sum += x;
+        return options.progress(sum / static_cast<double>(n));
+      };
+    }
+    meshes[p] = meshPlanarBoundary(partLoops, cs, o);
+  };
+  if (queriesAreConcurrent(cs)) {
+    parallelChunks(n, 1, [&](size_t c, size_t, size_t) { meshPart(order[c]); });
+  } else {
+    for (size_t c = 0; c < n; ++c) meshPart(order[c]);
+  }
+
+  // Merge: the loops' and chords' points keep their global ids, inner points follow part by part.
+  Mesh m;
+  m.dimension = 2;
+  size_t total = parts.points.size();
+  std::vector<size_t> innerBase(n);
+  for (size_t p = 0; p < n; ++p) {
+    size_t nb = 0;
+    for (const auto& l : parts.parts[p].loops) nb += l.size();
+    innerBase[p] = total;
+    total += meshes[p].points.size() - nb;
+  }
+  m.points.resize(total);
+  m.params.resize(total);
+  for (size_t i = 0; i < parts.points.size(); ++i) {
+    m.params[i] = parts.points[i];
+    m.points[i] = Vec3(parts.points[i].x(), parts.points[i].y(), 0.0);
+  }
+  m.pointRefs.assign(total, 0);
+  MesherTimings sum;
+  for (size_t p = 0; p < n; ++p) {
+    const Mesh& pm = meshes[p];
+    std::vector<int> map;
+    for (const auto& l : parts.parts[p].loops) map.insert(map.end(), l.begin(), l.end());
+    const size_t nb = map.size();
+    for (size_t v = nb; v < pm.points.size(); ++v) {
+      const size_t g = innerBase[p] + (v - nb);
+      map.push_back(static_cast<int>(g));
+      m.points[g] = pm.points[v];
+      m.params[g] = pm.points[v].head<2>();
+    }
+    for (const auto& t : pm.triangles) m.triangles.push_back({map[t[0]], map[t[1]], map[t[2]]});
+    m.triangleRefs.insert(m.triangleRefs.end(), pm.triangleRefs.begin(), pm.triangleRefs.end());
+    for (const auto& q : pm.quads) m.quads.push_back({map[q[0]], map[q[1]], map[q[2]], map[q[3]]});
+    m.quadRefs.insert(m.quadRefs.end(), pm.quadRefs.begin(), pm.quadRefs.end());
+    sum.boundary += timings[p].boundary;
+    sum.insertion += timings[p].insertion;
+    sum.improvement += timings[p].improvement;
+    sum.quads += timings[p].quads;
+    sum.estimatedElements += timings[p].estimatedElements;
+  }
+  // Boundary edges: the input loops' edges in input order, as the single-part mesher gives them.
+  int base = 0;
+  for (const BoundaryLoop& l : loops) {
+    const int k = static_cast<int>(l.points.size());
+    for (int i = 0; i < k; ++i) {
+      m.edges.push_back({base + i, base + (i + 1) % k});
+      m.edgeRefs.push_back(l.edgeRefs[i]);
+    }
+    base += k;
+  }
+  if (m.elementCount() > options.maxElements) {
+    std::ostringstream os;
+    os << "meshPlanarBoundary: the mesh has " << m.elementCount() << " elements, above the element budget of "
+       << options.maxElements;
+    throw Error(ErrorCode::ElementBudgetExceeded, os.str());
+  }
+  if (options.timings) *options.timings = sum;
+  return m;
+}
+
+}  // namespace anisomesh
