@@ -44,7 +44,8 @@ Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& 
         fraction[p] = f;
         double sum = 0.0;
         for (double x : fraction) sum += x;
-        return options.progress(sum / static_cast<double>(n));
+        // The whole domain's boundary stage reported 0.1 before the parts started.
+        return options.progress(0.1 + 0.9 * sum / static_cast<double>(n));
       };
     }
     meshes[p] = meshPlanarBoundary(partLoops, cs, o);

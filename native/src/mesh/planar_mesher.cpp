@@ -10,7 +10,7 @@
 namespace anisomesh {
 namespace planar {
 
-Mesh Mesher::run() {
+double Mesher::start() {
   validate();
   auto t0 = Clock::now();
   elementRatio_ = opt_.allQuads ? 2.0 : (opt_.quads ? 0.6 : 1.0);
@@ -19,10 +19,8 @@ Mesh Mesher::run() {
   removeOutside();
   for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v) vx_[v].m = queryMetric(vx_[v].p);
 
-  Mesh mesh;
   if (opt_.boundaryOnly) {
     timings_.boundary = secondsSince(t0);
-    mesh = output();
   } else {
     // Budget check before the expensive work: one unit equilateral triangle per sqrt(3)/4 of metric area.
     const double metricArea = estimateMetricArea();
@@ -36,7 +34,16 @@ Mesh Mesher::run() {
       throw Error(ErrorCode::ElementBudgetExceeded, os.str());
     }
     checkProgress(0.1);
-    t0 = Clock::now();
+  }
+  return estimate_ * elementRatio_;
+}
+
+Mesh Mesher::finish() {
+  Mesh mesh;
+  if (opt_.boundaryOnly) {
+    mesh = output();
+  } else {
+    auto t0 = Clock::now();
     // Room for the expected mesh (the estimate is within ~10%): no reallocation copies.
     const size_t expect = static_cast<size_t>(std::min(1.15 * estimate_, static_cast<double>(opt_.maxElements))) + 1024;
     tri_.reserve(expect);
@@ -80,14 +87,17 @@ Mesh Mesher::run() {
 
 Mesh meshPlanarBoundary(const std::vector<BoundaryLoop>& loops, const ControlSpace& controlSpace,
                         const PlanarMesherOptions& options) {
-  if (options.partElements > 0 && !options.boundaryOnly && !options.allQuads) {
+  planar::Mesher mesher(loops, controlSpace, options);
+  const double estimate = mesher.start();
+  // Only large domains pay for the decomposition's samples (small ones keep their queries).
+  if (options.partElements > 0 && !options.boundaryOnly && !options.allQuads &&
+      estimate >= 2.0 * static_cast<double>(options.partElements)) {
     DomainDecompositionOptions d;
     d.partElements = options.partElements;
     const DomainParts parts = decomposeDomain(loops, controlSpace, d);
     if (parts.parts.size() > 1) return meshDomainParts(loops, parts, controlSpace, options);
   }
-  planar::Mesher mesher(loops, controlSpace, options);
-  return mesher.run();
+  return mesher.finish();
 }
 
 }  // namespace anisomesh

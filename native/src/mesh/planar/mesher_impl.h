@@ -88,7 +88,14 @@ class Mesher {
   Mesher(const std::vector<BoundaryLoop>& loops, const ControlSpace& cs, const PlanarMesherOptions& opt)
       : loops_(loops), cs_(cs), opt_(opt) {}
 
-  Mesh run();
+  // Validates, triangulates the boundary and estimates the element count (the budget
+  // checked): returns the estimate. Then finish() meshes the inside.
+  double start();
+  Mesh finish();
+  Mesh run() {
+    start();
+    return finish();
+  }
 
  private:
   // ---- setup and output ----
