@@ -125,8 +125,7 @@ class Decomposer {
       return std::min(a.x(), b.x()) <= c.x() && c.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= c.y() &&
              c.y() <= std::max(a.y(), b.y());
     };
-    return (d1 == 0 && on(p, q, r)) || (d2 == 0 && on(p, q, s)) || (d3 == 0 && on(r, s, p)) ||
-           (d4 == 0 && on(r, s, q));
+    return (d1 == 0 && on(p, q, r)) || (d2 == 0 && on(p, q, s)) || (d3 == 0 && on(r, s, p)) || (d4 == 0 && on(r, s, q));
   }
 
   // Even-odd containment of p in the edges' region.
@@ -365,7 +364,8 @@ DomainParts decomposeDomain(const std::vector<BoundaryLoop>& loops, const Contro
   const Decomposer::Samples s = d.sample(all);
   out.estimatedElements = s.total / kTriangleArea;
   int leaves = 1;
-  while (2 * leaves <= options.maxParts && 2.0 * leaves * static_cast<double>(options.partElements) <= out.estimatedElements)
+  while (2 * leaves <= options.maxParts &&
+         2.0 * leaves * static_cast<double>(options.partElements) <= out.estimatedElements)
     leaves *= 2;
   out.parts.push_back(std::move(whole));
   for (int level = 1; level < leaves; level *= 2) {

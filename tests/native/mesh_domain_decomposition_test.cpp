@@ -1,0 +1,169 @@
+// Planar domain decomposition (mesh/domain_decomposition.h): the parts tile the domain,
+// their chords are shared point for point, and the merged mesh is one conforming mesh,
+// the same for any thread count, of the whole mesh's quality.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/controlspace/quadtree_control_space.h"
+#include "anisomesh/core/parallel.h"
+#include "anisomesh/mesh/domain_decomposition.h"
+#include "mesh_test_util.h"
+
+using namespace anisomesh;
+using namespace meshtest;
+
+namespace {
+
+struct ThreadCountGuard {
+  int saved = threadCount();
+  ~ThreadCountGuard() { setThreadCount(saved); }
+};
+
+// A rotated shear layer along the diagonal of [0, 2] x [0, 1] (aspect ratio 8 at it).
+Metric shear(const Vec2& p) {
+  const double d = std::abs(p.y() - 0.5 * p.x());
+  return Metric::fromSizes(std::atan(0.5), 0.024, std::min(0.024, 0.003 + 0.1 * d));
+}
+
+std::unique_ptr<QuadtreeControlSpace> shearSpace() {
+  QuadtreeOptions o;
+  o.maxLevel = 8;
+  auto cs = std::make_unique<QuadtreeControlSpace>(Box2{{0.0, 0.0}, {2.0, 1.0}}, o);
+  ContinuousInsertionOptions c;
+  c.threshold = 0.3;
+  c.sampleThreshold = 0.05;
+  insertMetricFunction(*cs, shear, c);
+  return cs;
+}
+
+// The rectangle with two round holes (clockwise), one of them on the layer.
+std::vector<BoundaryLoop> domainWithHoles(const ControlSpace& cs) {
+  return {metricPolygonLoop({{0, 0}, {2, 0}, {2, 1}, {0, 1}}, cs), circleLoop({0.6, 0.3}, 0.12, 60, true),
+          circleLoop({1.4, 0.7}, 0.1, 48, true, 11)};
+}
+
+// Every edge of the mesh is used by one element (a boundary edge) or two (inner).
+void expectConforming(const Mesh& m) {
+  std::map<std::uint64_t, int> uses;
+  for (const auto& t : m.triangles)
+    for (int i = 0; i < 3; ++i) ++uses[key(t[i], t[(i + 1) % 3])];
+  std::vector<std::uint64_t> boundary;
+  for (const auto& e : m.edges) boundary.push_back(key(e[0], e[1]));
+  std::sort(boundary.begin(), boundary.end());
+  int bad = 0;
+  for (const auto& [k, n] : uses) {
+    const bool onBoundary = std::binary_search(boundary.begin(), boundary.end(), k);
+    if (n != (onBoundary ? 1 : 2)) ++bad;
+  }
+  EXPECT_EQ(bad, 0) << "edges not shared by exactly two triangles (one on the boundary)";
+  std::vector<std::pair<double, double>> pts;
+  for (const auto& p : m.params) pts.emplace_back(p.x(), p.y());
+  std::sort(pts.begin(), pts.end());
+  EXPECT_EQ(std::adjacent_find(pts.begin(), pts.end()), pts.end()) << "two mesh points at one place";
+}
+
+double partArea(const DomainParts& d, const DomainPart& part) {
+  double a = 0.0;
+  for (const auto& loop : part.loops) {
+    BoundaryLoop l;
+    for (int id : loop) l.points.push_back(d.points[id]);
+    a += (&loop == &part.loops[0] ? 1.0 : -1.0) * loopArea(l);
+  }
+  return a;
+}
+
+}  // namespace
+
+// The parts tile the domain: their areas sum to it, every input edge is in one part once,
+// every chord edge in two parts in opposite directions.
+TEST(DomainDecomposition, PartsTileTheDomainAndShareTheirChords) {
+  const auto cs = shearSpace();
+  const auto loops = domainWithHoles(*cs);
+  DomainDecompositionOptions o;
+  o.partElements = 2000;
+  const DomainParts d = decomposeDomain(loops, *cs, o);
+  ASSERT_GE(d.parts.size(), 4u);
+  EXPECT_GE(
+      d.estimatedElements,
+      static_cast<double>(d.parts.size() *
+                          o.partElements));  // leaves: the largest power of 2 with leaves x partElements <= estimate
+  double area = 0.0;
+  std::map<std::pair<int, int>, int> inputEdges, chordEdges;
+  for (const DomainPart& p : d.parts) {
+    area += partArea(d, p);
+    EXPECT_GT(partArea(d, p), 0.0);
+    for (size_t l = 0; l < p.loops.size(); ++l)
+      for (size_t i = 0; i < p.loops[l].size(); ++i) {
+        const int a = p.loops[l][i], b = p.loops[l][(i + 1) % p.loops[l].size()];
+        ++(p.chord[l][i] ? chordEdges : inputEdges)[{a, b}];
+      }
+  }
+  EXPECT_NEAR(area, domainArea(loops), 1e-12 * domainArea(loops));
+  size_t nInput = 0;
+  for (const auto& l : loops) nInput += l.points.size();
+  EXPECT_EQ(inputEdges.size(), nInput);
+  for (const auto& [e, n] : inputEdges) EXPECT_EQ(n, 1);
+  ASSERT_FALSE(chordEdges.empty());
+  for (const auto& [e, n] : chordEdges) {
+    EXPECT_EQ(n, 1);
+    EXPECT_EQ(chordEdges.count({e.second, e.first}), 1u) << "chord edge " << e.first << "-" << e.second << " unmatched";
+  }
+}
+
+// The merged mesh: boundary kept, conforming, same for 1, 2 and 4 threads, and of the
+// quality of the domain meshed whole.
+TEST(DomainDecomposition, MergedMeshIsConformingAndTheSameForAnyThreadCount) {
+  ThreadCountGuard guard;
+  const auto cs = shearSpace();
+  const auto loops = domainWithHoles(*cs);
+  PlanarMesherOptions whole;
+  whole.partElements = 0;
+  const Mesh reference = meshPlanarBoundary(loops, *cs, whole);
+  const QualityReport rq = measureQuality(reference, *cs);
+  PlanarMesherOptions split;
+  split.partElements = 2000;
+  Mesh first;
+  for (int threads : {1, 2, 4}) {
+    setThreadCount(threads);
+    const Mesh m = meshPlanarBoundary(loops, *cs, split);
+    if (threads == 1) {
+      checkPlanarMesh(m, loops);
+      expectConforming(m);
+      EXPECT_FALSE(sameMesh(m, reference));  // it was decomposed
+      const QualityReport q = measureQuality(m, *cs);
+      EXPECT_EQ(q.inverted, 0);
+      EXPECT_NEAR(static_cast<double>(q.triangles), static_cast<double>(rq.triangles), 0.03 * rq.triangles);
+      EXPECT_GE(q.edgesWithinSqrt2, rq.edgesWithinSqrt2 - 0.01);
+      EXPECT_GE(q.qualityMean, rq.qualityMean - 0.01);
+      EXPECT_GE(q.qualityMin, 0.5 * rq.qualityMin);
+      first = m;
+      continue;
+    }
+    EXPECT_TRUE(sameMesh(m, first)) << threads << " threads";
+  }
+}
+
+// A domain estimated below twice partElements is meshed whole: the same mesh as without decomposition.
+TEST(DomainDecomposition, SmallDomainsAreMeshedWhole) {
+  const auto cs = shearSpace();
+  const auto loops = domainWithHoles(*cs);
+  PlanarMesherOptions whole, big;
+  whole.partElements = 0;
+  big.partElements = 1000000;
+  EXPECT_TRUE(sameMesh(meshPlanarBoundary(loops, *cs, whole), meshPlanarBoundary(loops, *cs, big)));
+  DomainDecompositionOptions o;
+  o.partElements = 1000000;
+  EXPECT_EQ(decomposeDomain(loops, *cs, o).parts.size(), 1u);
+  // Loops the mesher refuses stay one part (and the mesher names the error).
+  std::vector<BoundaryLoop> bad{makeLoop({{0, 0}, {1, 0}})};
+  o.partElements = 10;
+  EXPECT_EQ(decomposeDomain(bad, *cs, o).parts.size(), 1u);
+  PlanarMesherOptions small;
+  small.partElements = 10;
+  EXPECT_THROW(meshPlanarBoundary(bad, *cs, small), Error);
+}
