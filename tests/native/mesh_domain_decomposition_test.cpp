@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <memory>
 
@@ -166,4 +167,27 @@ TEST(DomainDecomposition, SmallDomainsAreMeshedWhole) {
   PlanarMesherOptions small;
   small.partElements = 10;
   EXPECT_THROW(meshPlanarBoundary(bad, *cs, small), Error);
+}
+
+// Chords cross a layer of aspect ratio 100 at 30 degrees (the cuts are axis-aligned, the
+// layer is rotated): the parts' meshes along the chords stay as good as the whole mesh.
+TEST(DomainDecomposition, ChordsAcrossAStrongLayerKeepTheQuality) {
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  AnalyticControlSpace cs(Box2{{0.0, 0.0}, {1.0, 1.0}}, [=](const Vec2& p) {
+    const double v = -s * (p.x() - 0.5) + c * (p.y() - 0.5);
+    return Metric::fromSizes(M_PI / 6, 0.01, std::min(0.01, 0.0001 + 0.02 * std::abs(v)));
+  });
+  const std::vector<BoundaryLoop> loops{metricPolygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, cs)};
+  PlanarMesherOptions whole, split;
+  whole.partElements = 0;
+  split.partElements = 4000;
+  const Mesh a = meshPlanarBoundary(loops, cs, whole), b = meshPlanarBoundary(loops, cs, split);
+  checkPlanarMesh(b, loops);
+  expectConforming(b);
+  EXPECT_FALSE(sameMesh(a, b));
+  const QualityReport qa = measureQuality(a, cs), qb = measureQuality(b, cs);
+  std::cout << "whole " << qa.triangles << " min Q " << qa.qualityMin << " / decomposed " << qb.triangles
+            << " min Q " << qb.qualityMin << "\n";
+  EXPECT_GE(qb.qualityMin, 0.8 * qa.qualityMin);
+  EXPECT_GE(qb.edgesWithinSqrt2, qa.edgesWithinSqrt2 - 0.01);
 }

@@ -12,12 +12,20 @@
 #include "anisomesh/geometry/curve.h"
 #include "anisomesh/geometry/domain.h"
 #include "anisomesh/mesh/predicates.h"
+#include "anisomesh/metric/sym_eigen.h"
 
 namespace anisomesh {
 namespace {
 
 constexpr double kTriangleArea = 0.43301270189221932;  // sqrt(3) / 4: a unit equilateral triangle
 constexpr int kCutTries = 25;                          // cut positions tried around the median
+// Chords through anisotropic metric (aspect ratio above kAlignAspect) must run within
+// kAlignAngle of a principal direction: the mesher leaves fans of slivers (min Q 0.01)
+// along straight boundaries that cross a strongly stretched layer obliquely (measured at
+// 10 to 75 degrees on an aspect-ratio-100 layer), and chords are boundaries to the parts.
+constexpr double kAlignAspect = 1.5;
+constexpr double kAlignAngle = 0.035;  // radians, 2 degrees
+constexpr int kAlignSamples = 32;      // metric samples along a chord
 
 struct Edge {
   int a, b, ref;
@@ -34,18 +42,22 @@ class Decomposer {
   Decomposer(const ControlSpace& cs, const DomainDecompositionOptions& o, std::vector<Vec2>& points)
       : cs_(cs), o_(o), pts_(points) {}
 
+  // Cut lines run along the frame's axes: columns of frame are unit vectors (physical).
+  void setFrame(const Mat2& frame) { frame_ = frame; }
+
   // Metric-area samples of a part along its longer box side: columns of det(Mt) times area.
   struct Samples {
     int axis = 0;
     double lo = 0.0, width = 0.0;
     std::vector<double> column;
     double total = 0.0;
+    Mat2 stretch = Mat2::Zero();  // sum of area x (1 - 1/aspect) x e e^T, e the small-size direction
   };
 
   Samples sample(const std::vector<Edge>& edges) const {
     Samples s;
-    Vec2 lo = pts_[edges[0].a], hi = lo;
-    for (const Edge& e : edges) lo = lo.cwiseMin(pts_[e.a]), hi = hi.cwiseMax(pts_[e.a]);
+    Vec2 lo = local(pts_[edges[0].a]), hi = lo;
+    for (const Edge& e : edges) lo = lo.cwiseMin(local(pts_[e.a])), hi = hi.cwiseMax(local(pts_[e.a]));
     const Vec2 size = hi - lo;
     s.axis = size.y() > size.x() ? 1 : 0;
     const int across = 1 - s.axis;
@@ -60,7 +72,7 @@ class Decomposer {
       const double y = lo[across] + (r + 0.5) * dr;
       xs.clear();
       for (const Edge& e : edges) {
-        const Vec2 &p = pts_[e.a], &q = pts_[e.b];
+        const Vec2 p = local(pts_[e.a]), q = local(pts_[e.b]);
         if ((p[across] > y) != (q[across] > y))
           xs.push_back(p[s.axis] + (y - p[across]) / (q[across] - p[across]) * (q[s.axis] - p[s.axis]));
       }
@@ -74,8 +86,16 @@ class Decomposer {
           Vec2 p;
           p[s.axis] = 0.5 * (c0 + c1);
           p[across] = y;
-          const double d = cs_.metricAt(p).transform().determinant();
-          if (std::isfinite(d)) s.column[j] += (c1 - c0) * dr * std::fabs(d);
+          const Mat2 mt = cs_.metricAt(frame_ * p).transform();
+          const double d = mt.determinant();
+          if (!std::isfinite(d)) continue;
+          const double w = (c1 - c0) * dr * std::fabs(d);
+          s.column[j] += w;
+          const SymEigen2 e = symEigen(mt);
+          if (e.l2 > 0.0) {
+            const Vec2 dir(pm::cos(e.theta), pm::sin(e.theta));
+            s.stretch += w * (1.0 - e.l2 / e.l1) * dir * dir.transpose();
+          }
         }
       }
     }
@@ -147,15 +167,34 @@ class Decomposer {
     return std::isfinite(c) && c < std::cos(o_.minChordAngle);
   }
 
+  // Where the metric along [a, b] is anisotropic, the chord runs near a principal direction.
+  bool aligned(const Vec2& a, const Vec2& b) const {
+    const Vec2 d = (b - a).normalized();
+    const double limit = pm::sin(2.0 * kAlignAngle);
+    for (int k = 0; k < kAlignSamples; ++k) {
+      const SymEigen2 e = symEigen(cs_.metricAt(a + (b - a) * ((k + 0.5) / kAlignSamples)).transform());
+      if (!(e.l2 > 0.0) || !std::isfinite(e.l1)) return false;
+      if (e.l1 <= kAlignAspect * e.l2) continue;
+      const Vec2 u(pm::cos(e.theta), pm::sin(e.theta));
+      // |sin 2 theta| between the chord and u: zero along either principal direction.
+      if (2.0 * std::fabs(d.dot(u) * (d.x() * u.y() - d.y() * u.x())) > limit) return false;
+    }
+    return true;
+  }
+
+  // p in the frame's coordinates.
+  Vec2 local(const Vec2& p) const { return frame_.transpose() * p; }
+
   // The chords of the cut line {x[axis] = c} across the part, or empty when one is invalid.
   std::vector<Chord> chordsAt(const std::vector<Edge>& edges, int axis, double c) const {
     const int across = 1 - axis;
     std::vector<std::pair<double, int>> crossings;  // (across coordinate, chosen end point)
     for (const Edge& e : edges) {
-      const double da = pts_[e.a][axis] - c, db = pts_[e.b][axis] - c;
+      const Vec2 pa = local(pts_[e.a]), pb = local(pts_[e.b]);
+      const double da = pa[axis] - c, db = pb[axis] - c;
       if (da == 0.0 || db == 0.0) return {};  // a point on the line: try another position
       if ((da > 0.0) == (db > 0.0)) continue;
-      const double t = pts_[e.a][across] + (-da) / (db - da) * (pts_[e.b][across] - pts_[e.a][across]);
+      const double t = pa[across] + (-da) / (db - da) * (pb[across] - pa[across]);
       crossings.emplace_back(t, std::fabs(da) <= std::fabs(db) ? e.a : e.b);
     }
     if (crossings.size() < 2 || crossings.size() % 2 != 0) return {};
@@ -187,6 +226,7 @@ class Decomposer {
       for (size_t j = 0; j < k; ++j)
         if (segmentsMeet(a, b, pts_[chords[j].a], pts_[chords[j].b])) return {};
       if (!inside(edges, 0.5 * (a + b))) return {};
+      if (!aligned(a, b)) return {};
     }
     return chords;
   }
@@ -321,6 +361,7 @@ class Decomposer {
   const ControlSpace& cs_;
   const DomainDecompositionOptions& o_;
   std::vector<Vec2>& pts_;
+  Mat2 frame_ = Mat2::Identity();
 };
 
 }  // namespace
@@ -363,6 +404,18 @@ DomainParts decomposeDomain(const std::vector<BoundaryLoop>& loops, const Contro
       all.push_back({whole.loops[l][i], whole.loops[l][(i + 1) % whole.loops[l].size()], 0, 0});
   const Decomposer::Samples s = d.sample(all);
   out.estimatedElements = s.total / kTriangleArea;
+  // Cut along the dominant stretching (a rotated layer gets cuts along and across it);
+  // within 1e-6 rad of the coordinate axes the frame stays exactly the identity.
+  const Mat2& st = s.stretch;
+  if (st(0, 1) != 0.0) {
+    const double phi = 0.5 * pm::atan2(2.0 * st(0, 1), st(0, 0) - st(1, 1));
+    const double off = phi - (M_PI / 2) * std::round(phi / (M_PI / 2));
+    if (std::fabs(off) > 1e-6 && std::isfinite(off)) {
+      Mat2 frame;
+      frame << pm::cos(off), -pm::sin(off), pm::sin(off), pm::cos(off);
+      d.setFrame(frame);
+    }
+  }
   int leaves = 1;
   while (2 * leaves <= options.maxParts &&
          2.0 * leaves * static_cast<double>(options.partElements) <= out.estimatedElements)

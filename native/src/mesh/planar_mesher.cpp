@@ -95,7 +95,15 @@ Mesh meshPlanarBoundary(const std::vector<BoundaryLoop>& loops, const ControlSpa
     DomainDecompositionOptions d;
     d.partElements = options.partElements;
     const DomainParts parts = decomposeDomain(loops, controlSpace, d);
-    if (parts.parts.size() > 1) return meshDomainParts(loops, parts, controlSpace, options);
+    if (parts.parts.size() > 1) {
+      try {
+        return meshDomainParts(loops, parts, controlSpace, options);
+      } catch (const Error& e) {
+        // A part the mesher refuses (a chord too close to a boundary it did not see) must
+        // not fail a domain the mesher takes whole: mesh it whole, as without decomposition.
+        if (e.code() == ErrorCode::ElementBudgetExceeded || e.code() == ErrorCode::Cancelled) throw;
+      }
+    }
   }
   return mesher.finish();
 }
