@@ -186,8 +186,8 @@ TEST(DomainDecomposition, ChordsAcrossAStrongLayerKeepTheQuality) {
   expectConforming(b);
   EXPECT_FALSE(sameMesh(a, b));
   const QualityReport qa = measureQuality(a, cs), qb = measureQuality(b, cs);
-  std::cout << "whole " << qa.triangles << " min Q " << qa.qualityMin << " / decomposed " << qb.triangles
-            << " min Q " << qb.qualityMin << "\n";
+  std::cout << "whole " << qa.triangles << " min Q " << qa.qualityMin << " / decomposed " << qb.triangles << " min Q "
+            << qb.qualityMin << "\n";
   EXPECT_GE(qb.qualityMin, 0.8 * qa.qualityMin);
   EXPECT_GE(qb.edgesWithinSqrt2, qa.edgesWithinSqrt2 - 0.01);
 }

@@ -18,7 +18,11 @@ namespace anisomesh {
 namespace {
 
 constexpr double kTriangleArea = 0.43301270189221932;  // sqrt(3) / 4: a unit equilateral triangle
-constexpr int kCutTries = 25;                          // cut positions tried around the median
+// Cut positions tried: the median first, then half a sample column further each way, up
+// to a quarter of the part's extent (a layer crossing the median obliquely is avoided
+// where it runs square to the cut: a sinusoidal front is cut at its crests).
+constexpr double kCutStep = 0.5;
+constexpr double kCutReach = 0.25;
 // Chords through anisotropic metric (aspect ratio above kAlignAspect) must run within
 // kAlignAngle of a principal direction: the mesher leaves fans of slivers (min Q 0.01)
 // along straight boundaries that cross a strongly stretched layer obliquely (measured at
@@ -54,12 +58,12 @@ class Decomposer {
     Mat2 stretch = Mat2::Zero();  // sum of area x (1 - 1/aspect) x e e^T, e the small-size direction
   };
 
-  Samples sample(const std::vector<Edge>& edges) const {
+  Samples sample(const std::vector<Edge>& edges, int axis = -1) const {
     Samples s;
     Vec2 lo = local(pts_[edges[0].a]), hi = lo;
     for (const Edge& e : edges) lo = lo.cwiseMin(local(pts_[e.a])), hi = hi.cwiseMax(local(pts_[e.a]));
     const Vec2 size = hi - lo;
-    s.axis = size.y() > size.x() ? 1 : 0;
+    s.axis = axis >= 0 ? axis : (size.y() > size.x() ? 1 : 0);
     const int across = 1 - s.axis;
     const int nc = std::max(4, o_.gridSide), nr = std::max(4, o_.gridSide / 4);
     s.lo = lo[s.axis];
@@ -103,10 +107,18 @@ class Decomposer {
     return s;
   }
 
-  // Splits a part in two or more; empty when no valid cut was found.
+  // Splits a part in two or more; empty when no valid cut was found. Cuts across the
+  // longer side first, then across the other.
   std::vector<DomainPart> split(const DomainPart& part) {
     const std::vector<Edge> edges = edgesOf(part);
-    const Samples s = sample(edges);
+    const Samples first = sample(edges);
+    std::vector<DomainPart> parts = splitAlong(edges, first);
+    if (parts.empty()) parts = splitAlong(edges, sample(edges, 1 - first.axis));
+    return parts;
+  }
+
+ private:
+  std::vector<DomainPart> splitAlong(const std::vector<Edge>& edges, const Samples& s) {
     if (!(s.total > 0.0) || !std::isfinite(s.total)) return {};
     // The median of the metric area, interpolated inside its column.
     double cum = 0.0, median = s.lo + 0.5 * s.width * s.column.size();
@@ -118,15 +130,15 @@ class Decomposer {
       }
       cum += s.column[j];
     }
-    for (int k = 0; k < kCutTries; ++k) {
+    const int tries = 1 + 2 * static_cast<int>(kCutReach * static_cast<double>(s.column.size()) / kCutStep);
+    for (int k = 0; k < tries; ++k) {
       const int step = (k + 1) / 2 * (k % 2 == 1 ? 1 : -1);  // 0, +1, -1, +2, -2, ...
-      std::vector<DomainPart> parts = cutAt(edges, s.axis, median + 0.25 * step * s.width);
+      std::vector<DomainPart> parts = cutAt(edges, s.axis, median + kCutStep * step * s.width);
       if (!parts.empty()) return parts;
     }
     return {};
   }
 
- private:
   static std::vector<Edge> edgesOf(const DomainPart& part) {
     std::vector<Edge> edges;
     for (size_t l = 0; l < part.loops.size(); ++l) {
@@ -209,6 +221,8 @@ class Decomposer {
     }
     std::sort(ends.begin(), ends.end());
     if (std::adjacent_find(ends.begin(), ends.end()) != ends.end()) return {};  // shared end point
+    for (const Chord& ch : chords)  // the cheap test first: many positions fail it
+      if (!aligned(pts_[ch.a], pts_[ch.b])) return {};
     for (size_t k = 0; k < chords.size(); ++k) {
       const Chord& ch = chords[k];
       const Vec2 &a = pts_[ch.a], &b = pts_[ch.b];
@@ -226,7 +240,6 @@ class Decomposer {
       for (size_t j = 0; j < k; ++j)
         if (segmentsMeet(a, b, pts_[chords[j].a], pts_[chords[j].b])) return {};
       if (!inside(edges, 0.5 * (a + b))) return {};
-      if (!aligned(a, b)) return {};
     }
     return chords;
   }

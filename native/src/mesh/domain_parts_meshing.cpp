@@ -112,6 +112,7 @@ Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& 
        << options.maxElements;
     throw Error(ErrorCode::ElementBudgetExceeded, os.str());
   }
+  sum.parts = static_cast<int>(n);
   if (options.timings) *options.timings = sum;
   return m;
 }

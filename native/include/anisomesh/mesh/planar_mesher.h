@@ -40,6 +40,7 @@ struct MesherTimings {
   double improvement = 0.0;  // edge swaps and node smoothing
   double quads = 0.0;        // quad conversion
   std::int64_t estimatedElements = 0;
+  int parts = 1;  // domain decomposition parts (the stage times are then sums over them)
 };
 
 struct PlanarMesherOptions {
