@@ -50,6 +50,8 @@ export class JobRunner {
     this.lastStartMs = null;   // time from creating a worker to its 'ready' message
     this.version = null;
     this.spare = null;
+    this.spareWanted = false;  // a cancellation's spare, started when the runner is idle
+    this.lastWarm = null;      // [key, op, args] of the last warmSpare() call
     this.#use(this.#spawn());
     if (this.useSpare) this.spare = this.#spawn();
   }
@@ -107,7 +109,11 @@ export class JobRunner {
     }
   }
 
-  #busyChanged() { this.onBusy(this.pending.size > 0); }
+  #busyChanged() {
+    this.onBusy(this.pending.size > 0);
+    // (after onBusy: a job its handler posts keeps the spare waiting)
+    if (this.pending.size === 0 && this.spareWanted) setTimeout(() => this.#replaceSpare(), 0);
+  }
 
   get busy() { return this.pending.size > 0; }
 
@@ -133,6 +139,7 @@ export class JobRunner {
    * dropped (ids 0 match no pending job). Returns whether a job was posted.
    */
   warmSpare(key, op, args) {
+    this.lastWarm = [key, op, args];
     const spare = this.spare;
     if (!spare || spare.warmKey === key) return false;
     spare.warmKey = key;
@@ -151,9 +158,19 @@ export class JobRunner {
     this.spare = null;
     if (spare?.isReady) this.spareSwaps++;
     this.#use(spare ?? this.#spawn());
-    // The next spare starts when this one is in use: instantiating it from the compiled
-    // module is cheap and runs in its own thread.
-    if (this.useSpare) this.spare = this.#spawn();
+    // The next spare starts once the jobs that follow the cancellation are done: its
+    // start-up (module glue, instance, bindings) would take CPU from the job the user waits
+    // for (a drag's release), and a second cancellation before then starts a fresh worker.
+    if (this.useSpare) this.spareWanted = true;
     this.#busyChanged();
+  }
+
+  /** The spare a cancellation used up, replaced when no job runs. */
+  #replaceSpare() {
+    if (!this.spareWanted || this.pending.size > 0) return;
+    this.spareWanted = false;
+    this.spare = this.#spawn();
+    // The warm-up the used spare had (or was asked for last).
+    if (this.lastWarm) this.warmSpare(...this.lastWarm);
   }
 }
