@@ -50,7 +50,7 @@ export class JobRunner {
     this.lastStartMs = null;   // time from creating a worker to its 'ready' message
     this.version = null;
     this.spare = null;
-    this.spareWanted = false;  // a cancellation's spare, started when the runner is idle
+    this.spareWanted = false;  // a cancellation's spare, started after the next result
     this.lastWarm = null;      // [key, op, args] of the last warmSpare() call
     this.#use(this.#spawn());
     if (this.useSpare) this.spare = this.#spawn();
@@ -104,16 +104,15 @@ export class JobRunner {
     } else if (data.type === 'result') {
       this.pending.delete(data.id);
       this.#busyChanged();
+      // The first result after a cancellation: the used-up spare is replaced a task later
+      // (once the result's handlers have drawn it).
+      if (this.spareWanted) setTimeout(() => this.#replaceSpare(), 0);
       if (data.ok) p.resolve({ result: data.result, workerMs: data.workerMs, marks: data.marks, totalMs: performance.now() - p.started, receivedAt: wallNow() });
       else p.reject(Object.assign(new Error(data.error.message), { code: data.error.code }));
     }
   }
 
-  #busyChanged() {
-    this.onBusy(this.pending.size > 0);
-    // (after onBusy: a job its handler posts keeps the spare waiting)
-    if (this.pending.size === 0 && this.spareWanted) setTimeout(() => this.#replaceSpare(), 0);
-  }
+  #busyChanged() { this.onBusy(this.pending.size > 0); }
 
   get busy() { return this.pending.size > 0; }
 
@@ -158,16 +157,16 @@ export class JobRunner {
     this.spare = null;
     if (spare?.isReady) this.spareSwaps++;
     this.#use(spare ?? this.#spawn());
-    // The next spare starts once the jobs that follow the cancellation are done: its
+    // The next spare starts once the job that follows the cancellation has delivered: its
     // start-up (module glue, instance, bindings) would take CPU from the job the user waits
-    // for (a drag's release), and a second cancellation before then starts a fresh worker.
+    // for (a drag's release); a second cancellation before then starts a fresh worker.
     if (this.useSpare) this.spareWanted = true;
     this.#busyChanged();
   }
 
-  /** The spare a cancellation used up, replaced when no job runs. */
+  /** The spare a cancellation used up, replaced (see cancelAll). */
   #replaceSpare() {
-    if (!this.spareWanted || this.pending.size > 0) return;
+    if (!this.spareWanted) return;
     this.spareWanted = false;
     this.spare = this.#spawn();
     // The warm-up the used spare had (or was asked for last).
