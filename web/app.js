@@ -508,8 +508,10 @@ async function remesh() {
   const before = meshRunner.restarts;
   const overlay = wantOverlay();
   state.runningVersion = version;
-  // A surface mesh while a handle is held comes without its colours (they follow with the report).
-  const dragging = Boolean(state.surface && views.dragging);
+  // A surface mesh while a handle is held, and the one its release asks for, comes without
+  // its colours (the per-element 3D measures: they follow with the report, a third of a
+  // 50k-triangle run), so the mesh is drawn sooner.
+  const dragging = Boolean(state.surface && (views.dragging || state.dragEndAt));
   const job = meshRunner.run('mesh', { case: state.case, surface: state.surface, overlay, dragging });
   state.cancelled += meshRunner.restarts - before;
   if (meshRunner.restarts > before) {

@@ -50,6 +50,8 @@ export class JobRunner {
     this.lastStartMs = null;   // time from creating a worker to its 'ready' message
     this.version = null;
     this.spare = null;
+    this.spareWanted = false;  // a cancellation's spare, started after the next result
+    this.lastWarm = null;      // [key, op, args] of the last warmSpare() call
     this.#use(this.#spawn());
     if (this.useSpare) this.spare = this.#spawn();
   }
@@ -102,6 +104,9 @@ export class JobRunner {
     } else if (data.type === 'result') {
       this.pending.delete(data.id);
       this.#busyChanged();
+      // The first result after a cancellation: the used-up spare is replaced a task later
+      // (once the result's handlers have drawn it).
+      if (this.spareWanted) setTimeout(() => this.#replaceSpare(), 0);
       if (data.ok) p.resolve({ result: data.result, workerMs: data.workerMs, marks: data.marks, totalMs: performance.now() - p.started, receivedAt: wallNow() });
       else p.reject(Object.assign(new Error(data.error.message), { code: data.error.code }));
     }
@@ -133,6 +138,7 @@ export class JobRunner {
    * dropped (ids 0 match no pending job). Returns whether a job was posted.
    */
   warmSpare(key, op, args) {
+    this.lastWarm = [key, op, args];
     const spare = this.spare;
     if (!spare || spare.warmKey === key) return false;
     spare.warmKey = key;
@@ -151,9 +157,19 @@ export class JobRunner {
     this.spare = null;
     if (spare?.isReady) this.spareSwaps++;
     this.#use(spare ?? this.#spawn());
-    // The next spare starts when this one is in use: instantiating it from the compiled
-    // module is cheap and runs in its own thread.
-    if (this.useSpare) this.spare = this.#spawn();
+    // The next spare starts once the job that follows the cancellation has delivered: its
+    // start-up (module glue, instance, bindings) would take CPU from the job the user waits
+    // for (a drag's release); a second cancellation before then starts a fresh worker.
+    if (this.useSpare) this.spareWanted = true;
     this.#busyChanged();
+  }
+
+  /** The spare a cancellation used up, replaced (see cancelAll). */
+  #replaceSpare() {
+    if (!this.spareWanted) return;
+    this.spareWanted = false;
+    this.spare = this.#spawn();
+    // The warm-up the used spare had (or was asked for last).
+    if (this.lastWarm) this.warmSpare(...this.lastWarm);
   }
 }

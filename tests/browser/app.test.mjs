@@ -243,7 +243,11 @@ test('a new job supersedes a running one (the worker is replaced) and the last i
     a.state.case.controlSpace.hmin = 0.002;
     a.edited(0);
     await a.whenIdle();
-    return { spareSwaps: a.meshRunner.spareSwaps, cancelled: a.state.cancelled - cancelledBefore, meshed: a.state.meshedVersion, version: a.state.caseVersion, restartMs: a.state.workerRestartMs, error: a.state.lastError, tris: a.state.lastStats.triangles };
+    // The cancellation's replacement spare starts once the runner is idle (a task later).
+    const t0 = performance.now();
+    while (!a.meshRunner.spare && performance.now() - t0 < 5000) await new Promise((res) => setTimeout(res, 10));
+    await a.meshRunner.spare?.ready;
+    return { spareAgain: Boolean(a.meshRunner.spare?.isReady), spareSwaps: a.meshRunner.spareSwaps, cancelled: a.state.cancelled - cancelledBefore, meshed: a.state.meshedVersion, version: a.state.caseVersion, restartMs: a.state.workerRestartMs, error: a.state.lastError, tris: a.state.lastStats.triangles };
   });
   assert.equal(r.error, null);
   assert.ok(r.cancelled >= 1, `cancelled ${r.cancelled}`);
@@ -252,6 +256,8 @@ test('a new job supersedes a running one (the worker is replaced) and the last i
   assert.ok(r.restartMs.length >= 1);
   // The spare worker, instantiated ahead of time, took over the cancelled one's place.
   assert.ok(r.spareSwaps >= 1, `spare swaps ${r.spareSwaps}`);
+  // ...and a new spare is ready for the next cancellation.
+  assert.ok(r.spareAgain, 'a new spare worker after the cancellation');
   console.log(`# worker restart (precompiled module): ${r.restartMs.join(', ')} ms`);
   assert.deepEqual(errors, []);
   await page.close();

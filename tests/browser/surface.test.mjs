@@ -305,6 +305,13 @@ test('a source placed by clicking on the 3D surface refines the mesh there; drag
     return { before: count(window.before), after: count(window.anisomeshApp.views.mesh) };
   }, [moved, placed.s.radius]);
   assert.ok(nearMoved.after > 2 * nearMoved.before + 10, `triangles near the moved source: ${JSON.stringify(nearMoved)}`);
+  // The release's mesh came without its colours (drawn sooner); the report brought them:
+  // one 3D quality per element of the mesh on screen.
+  const colours = await page.evaluate(() => {
+    const a = window.anisomeshApp, m = a.views.mesh;
+    return { quality: a.state.lastMeasures.quality?.length ?? 0, elements: m.triangles.length / 3 + m.quads.length / 4 };
+  });
+  assert.equal(colours.quality, colours.elements);
   assert.equal(await page.evaluate(() => window.anisomeshApp.state.lastError), null);
   assert.deepEqual(errors, []);
   await page.close();

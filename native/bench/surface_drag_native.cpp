@@ -1,0 +1,87 @@
+// Native twin of native/bench/surface_drag.mjs: the page worker's surface meshCase call
+// (runCase with stats: false, elementMeasures: false, patchParams: true, as while a handle
+// is held) on a surface case whose first patch gets a radial source moved by 0.1 in u per
+// run, as a drag moves it. One process, so the curvature-stage cache works as in the
+// worker. Prints CPU and wall ms per run and the median of the runs after the first; a
+// profiler (perf record -g) run on it shows where a drag's time goes.
+//
+// Usage: surface_drag_native CASE.json [RUNS] [--hmax H --chord T] [--report]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "anisomesh/io/run_case.h"
+
+namespace {
+double cpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return 1e3 * double(ts.tv_sec) + 1e-6 * double(ts.tv_nsec);
+}
+double wallMs() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: surface_drag_native CASE.json [RUNS] [--hmax H] [--chord T] [--report]\n");
+    return 2;
+  }
+  std::ifstream in(argv[1]);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  nlohmann::json c = nlohmann::json::parse(ss.str());
+  int runs = 8;
+  bool report = false;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--hmax" && i + 1 < argc)
+      c["metric"]["hmax"] = std::stod(argv[++i]);
+    else if (a == "--chord" && i + 1 < argc)
+      c["metric"]["chordTolerance"] = std::stod(argv[++i]);
+    else if (a == "--report")
+      report = true;
+    else
+      runs = std::stoi(a);
+  }
+  anisomesh::RunCaseOptions o;
+  o.stats = false;
+  o.elementMeasures = false;
+  o.patchParams = true;
+  std::vector<double> cpu, wall, rep;
+  size_t tris = 0;
+  for (int k = 0; k < runs; ++k) {
+    c["patches"][0]["sources"] = nlohmann::json::array({{{"type", "radial"},
+                                                         {"center", {0.1 * k, 0.0}},
+                                                         {"metric", {{"alpha", 0.0}, {"h1", 0.15}, {"h2", 0.15}}},
+                                                         {"radius", 1.5}}});
+    const std::string text = c.dump();
+    const double c0 = cpuMs(), w0 = wallMs();
+    anisomesh::CaseRun run = anisomesh::runCase(text, o);
+    cpu.push_back(cpuMs() - c0);
+    wall.push_back(wallMs() - w0);
+    tris = run.mesh.triangles.size();
+    if (report) {
+      const double r0 = cpuMs();
+      anisomesh::measureSurfaceElements(*run.surfaceReport);
+      (void)anisomesh::caseRunStats(run);
+      rep.push_back(cpuMs() - r0);
+    }
+    std::printf("run %d: %zu triangles, CPU %.1f ms (wall %.1f)\n", k, tris, cpu.back(), wall.back());
+  }
+  std::printf("%s: %zu triangles: first CPU %.1f ms, later median CPU %.1f ms (wall %.1f)", argv[1], tris, cpu[0],
+              median({cpu.begin() + 1, cpu.end()}), median({wall.begin() + 1, wall.end()}));
+  if (report) std::printf(", report after: median CPU %.1f ms", median(rep));
+  std::printf("\n");
+  return 0;
+}

@@ -1,0 +1,118 @@
+#!/usr/bin/env node
+// Issue #12's figure, measured on the page: drags of a radial source on "Surface p2 with
+// holes" (examples/surface/surface_p2_holes.json, ~5.8k triangles with the source) and the
+// same case refined (chord tolerance 0.0025, hmax 0.3: ~53k), in headless Chromium
+// (tests/browser/launch.mjs). Per drag: the drag's last edit -> its mesh drawn (the app's
+// dragInputToMeshMs: "total"), the worker's part (the core call, coreMs, and the worker's
+// whole job, workerMs), the result's way to the page (toPageMs) and the main thread's draw
+// (geometry + render), whether the release cancelled a stale job (the spare worker then
+// meshes), and the CPU ms of Chromium's renderer over the drag (all threads: the workers,
+// the spare's warm-up, the page's drawing). Also a plain edit of the source (no drag: a warm worker, no
+// cancellation). Prints a table of medians (no timed assertions; a measurement).
+//
+// Usage: node native/bench/surface_drag_page.mjs [--drags N] [--only small|refined]
+import { readFileSync, readdirSync } from 'node:fs';
+import { chromium } from 'playwright-core';
+import { chromiumArgs, openPage, settle } from '../../tests/browser/launch.mjs';
+import { startServer } from '../../web/serve.mjs';
+
+const args = process.argv.slice(2);
+const opt = (name, fallback) => (args.includes(name) ? args[args.indexOf(name) + 1] : fallback);
+const drags = Number(opt('--drags', 11));
+const only = opt('--only', null);
+const median = (a) => (a.length ? [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)] : NaN);
+
+// CPU ns of Chromium's renderer processes (utime + stime of /proc/PID/stat, which keep the
+// time of exited threads: a terminated worker's CPU stays counted), all threads.
+const tick = 1e9 / 100;  // USER_HZ
+function workerCpuNs() {
+  let ns = 0;
+  for (const pid of readdirSync('/proc').filter((d) => /^\d+$/.test(d))) {
+    try {
+      if (!readFileSync(`/proc/${pid}/cmdline`, 'utf8').includes('--type=renderer')) continue;
+      const f = readFileSync(`/proc/${pid}/stat`, 'utf8').split(') ')[1].split(' ');
+      ns += (Number(f[11]) + Number(f[12])) * tick;
+    } catch { /* gone */ }
+  }
+  return ns;
+}
+
+const cases = [
+  ['small', 'p2 with holes + radial source', null],
+  ['refined', 'p2 refined (chord 0.0025, hmax 0.3) + radial source', { chordTolerance: 0.0025, hmax: 0.3 }],
+].filter(([id]) => !only || only === id);
+
+// CHROMIUM_JS_FLAGS="--no-wasm-dynamic-tiering" passes V8 flags (e.g. to see what tier-up costs).
+const { server, url } = await startServer({ port: 0 });
+const jsFlags = process.env.CHROMIUM_JS_FLAGS;
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium', headless: true,
+  args: [...chromiumArgs, ...(jsFlags ? [`--js-flags=${jsFlags}`] : [])],
+});
+const env = { browser, url, close: async () => { await browser.close(); await new Promise((r) => server.close(r)); } };
+const rows = [];
+try {
+  for (const [, label, edit] of cases) {
+    const { page, errors } = await openPage(env.browser, env.url);
+    await settle(page, () => window.anisomeshApp.loadPreset('p2-holes'));
+    await settle(page, (e) => {
+      const a = window.anisomeshApp;
+      if (e) Object.assign(a.state.case.metric, e);
+      a.state.case.patches[0].sources = [{ type: 'radial', center: [0, 0], metric: { alpha: 0, h1: 0.15, h2: 0.15 }, radius: 1.5 }];
+      a.state.selected = 0;
+      a.edited(0);
+    }, edit);
+    await page.evaluate(() => new Promise((r) => setTimeout(r, 500)));  // the spare's warm-up
+    // Plain edits: the source moved from the panel (one job on a warm worker).
+    const plain = [];
+    for (let k = 0; k < 5; k++) {
+      const n0 = workerCpuNs();
+      await settle(page, (x) => {
+        const a = window.anisomeshApp;
+        a.state.case.patches[0].sources[0].center = [x, 0.05];
+        a.edited(0);
+      }, 0.05 * (k + 1));
+      const r = await page.evaluate(() => ({ b: window.anisomeshApp.state.breakdowns.at(-1), job: window.anisomeshApp.state.lastJob }));
+      plain.push({ ...r.b, workerMs: r.job.workerMs, cpu: (workerCpuNs() - n0) / 1e6 });
+    }
+    const samples = [];
+    for (let rep = 0; rep < drags; rep++) {
+      const h = await page.evaluate(() => window.anisomeshApp.handleClientPosition(0, 'center'));
+      const before = await page.evaluate(() => window.anisomeshApp.meshRunner.restarts);
+      const n0 = workerCpuNs();
+      await page.mouse.move(h.x, h.y);
+      await page.mouse.down();
+      const dir = rep % 2 ? 1 : -1;
+      for (let k = 1; k <= 6; k++) await page.mouse.move(h.x + dir * 6 * k, h.y + 2 * k);
+      await page.evaluate(() => { window.anisomeshApp.state.dragToMeshMs = null; });
+      await page.mouse.up();
+      await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
+      const r = await page.evaluate(() => {
+        const a = window.anisomeshApp, s = a.state;
+        return { total: s.dragInputToMeshMs, up: s.dragToMeshMs, b: s.breakdowns.filter((x) => x.drag).at(-1) ?? null, job: s.lastJob, restarts: a.meshRunner.restarts, tris: a.views.mesh.triangles.length / 3 };
+      });
+      await page.evaluate(() => new Promise((res) => setTimeout(res, 300)));
+      samples.push({ ...r, cancelled: r.restarts - before, cpu: (workerCpuNs() - n0) / 1e6 });
+    }
+    if (errors.length) console.log('page errors:', errors);
+    rows.push({ label, plain, samples });
+    await page.close();
+  }
+} finally {
+  await env.close();
+}
+
+const f = (x) => (Number.isFinite(x) ? x.toFixed(0) : '-');
+console.log(`median ms (drags: ${drags} each; plain edits: 5). total = the last edit -> its mesh drawn; worker = the core call in the worker (coreMs);`);
+console.log('job = the worker\'s whole job; page = result to page + geometry + render; cpu = Chromium renderer CPU over the drag (all threads: workers, the spare\'s warm-up, drawing)');
+console.log('case'.padEnd(52), 'kind'.padEnd(6), 'triangles', 'total', 'worker', '  job', ' page', '  cpu', 'cancelled');
+for (const { label, plain, samples } of rows) {
+  const m = (list, key) => median(list.map((s) => (typeof key === 'function' ? key(s) : s[key])).filter((x) => Number.isFinite(x)));
+  const page = (b) => (b ? b.toPageMs + b.geometryMs + b.renderMs : NaN);
+  console.log(label.padEnd(52), 'drag'.padEnd(6), String(samples.at(-1).tris).padStart(9), f(m(samples, 'total')).padStart(5),
+    f(m(samples, (s) => s.b?.coreMs)).padStart(6), f(m(samples, (s) => s.job?.workerMs)).padStart(5), f(m(samples, (s) => page(s.b))).padStart(5),
+    f(m(samples, 'cpu')).padStart(5), `${samples.filter((s) => s.cancelled > 0).length}/${samples.length}`.padStart(9));
+  console.log(''.padEnd(52), 'edit'.padEnd(6), String(plain.at(-1).triangles).padStart(9), f(m(plain, 'inputToDrawnMs')).padStart(5),
+    f(m(plain, 'coreMs')).padStart(6), f(m(plain, 'workerMs')).padStart(5), f(m(plain, page)).padStart(5), f(m(plain, 'cpu')).padStart(5), '-'.padStart(9));
+  console.log('  drags, total:', samples.map((s) => s.total).join(' '), ' worker:', samples.map((s) => f(s.b?.coreMs)).join(' '));
+}
