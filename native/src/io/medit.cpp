@@ -192,10 +192,12 @@ Mesh parseMeditText(const char* begin, const char* end, TextFileView* view) {
       mesh.dimension = dimension;
       // Fast path: one vertex per line, in parallel chunks (the same values).
       const size_t base = mesh.points.size(), refBase = mesh.pointRefs.size();
-      mesh.points.resize(base + size_t(n), Vec3::Zero());
+      // (not zero-filled here: each record sets its point, in parallel)
+      mesh.points.resize(base + size_t(n));
       mesh.pointRefs.resize(refBase + size_t(n));
       const bool fast = ts.lineRecords(n, [&](size_t i, TokenStream::LineCursor& c) {
         Vec3& p = mesh.points[base + i];
+        p.z() = 0.0;
         for (int k = 0; k < dimension; ++k)
           if (!c.number(&p[k])) return false;
         long long ref = 0;
