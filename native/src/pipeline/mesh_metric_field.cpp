@@ -27,6 +27,8 @@ int clampedCell(double t, int n) {
   return int(t);
 }
 
+// Each list entry's filter: its triangle's widened box in a kFilterSide^2 grid of the cell.
+constexpr int kFilterSide = 16;
 // Items per parallel chunk of the index build (fixed: the same index for any thread count).
 constexpr size_t kBuildChunk = 65536;
 
@@ -153,12 +155,39 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
   // decreasing order), each ends at its start with the triangles in increasing order.
   for (size_t c = 1; c < cellStart_.size(); ++c) cellStart_[c] += cellStart_[c - 1];
   cellTris_.resize(size_t(cellStart_.back()));
+  cellFilter_.resize(cellTris_.size());
+  // A triangle containing p (barycentric coordinates >= -1e-12) lies within 3e-12 of its
+  // diameter from p, plus the rounding of the coordinates: the margin is far above both.
+  const double extent =
+      std::max({std::abs(box_.lo.x()), std::abs(box_.lo.y()), std::abs(box_.hi.x()), std::abs(box_.hi.y())});
+  const Vec2 margin = Vec2::Constant(1e-9 * (cell_.x() + cell_.y() + box_.size().norm()) + 1e-12 * extent);
+  sub_ = cell_ / double(kFilterSide);
   perBand([&](int r0, int r1) {
     int x0, x1, y0, y1;
     for (int i = int(triCount_) - 1; i >= 0; --i) {
       unpack(size_t(i), &x0, &x1, &y0, &y1);
-      for (int y = std::max(y0, r0); y <= std::min(y1, r1 - 1); ++y)
-        for (int x = x0; x <= x1; ++x) cellTris_[size_t(--cellStart_[cellIndex(x, y) + 1])] = i;
+      const int ya = std::max(y0, r0), yb = std::min(y1, r1 - 1);
+      if (ya > yb) continue;
+      const std::array<int, 3>& t = tris_[size_t(i)];
+      Vec2 lo = point(t[0]), hi = point(t[0]);
+      for (int v : t) {
+        lo = lo.cwiseMin(point(v));
+        hi = hi.cwiseMax(point(v));
+      }
+      lo -= margin;
+      hi += margin;
+      for (int y = ya; y <= yb; ++y) {
+        const Vec2 o0 = cellOrigin(x0, y);
+        const unsigned fy = unsigned(clampedCell((lo.y() - o0.y()) / sub_.y(), kFilterSide)) << 8 |
+                            unsigned(clampedCell((hi.y() - o0.y()) / sub_.y(), kFilterSide)) << 12;
+        for (int x = x0; x <= x1; ++x) {
+          const Vec2 o = cellOrigin(x, y);
+          const size_t k = size_t(--cellStart_[cellIndex(x, y) + 1]);
+          cellTris_[k] = i;
+          cellFilter_[k] = std::uint16_t(fy | unsigned(clampedCell((lo.x() - o.x()) / sub_.x(), kFilterSide)) |
+                                         unsigned(clampedCell((hi.x() - o.x()) / sub_.x(), kFilterSide)) << 4);
+        }
+      }
     }
   });
   std::vector<std::uint32_t>().swap(ranges);
@@ -265,14 +294,21 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     const double l1 = n1 / det, l2 = n2 / det;
     return l1 >= -1e-12 && l2 >= -1e-12 && 1.0 - l1 - l2 >= -1e-12;
   };
+  // (the triangles whose widened box misses p's sub-cell are skipped: they cannot contain p)
   auto containsIn = [&](int x, int y) {
     if (cellDistance(x, y) > slack) return false;
     const int c = cellIndex(x, y);
-    for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k)
+    const Vec2 o = cellOrigin(x, y);
+    const unsigned sx = unsigned(clampedCell((p.x() - o.x()) / sub_.x(), kFilterSide));
+    const unsigned sy = unsigned(clampedCell((p.y() - o.y()) / sub_.y(), kFilterSide));
+    for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
+      const unsigned f = cellFilter_[size_t(k)];
+      if (sx < (f & 15u) || sx > (f >> 4 & 15u) || sy < (f >> 8 & 15u) || sy > (f >> 12)) continue;
       if (contains(cellTris_[size_t(k)])) {
         best = cellTris_[size_t(k)];
         return true;
       }
+    }
     return false;
   };
   // A cell farther than the nearest point found cannot improve it (a triangle's nearest
