@@ -161,7 +161,7 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
   const double extent =
       std::max({std::abs(box_.lo.x()), std::abs(box_.lo.y()), std::abs(box_.hi.x()), std::abs(box_.hi.y())});
   const Vec2 margin = Vec2::Constant(1e-9 * (cell_.x() + cell_.y() + box_.size().norm()) + 1e-12 * extent);
-  sub_ = cell_ / double(kFilterSide);
+  subScale_ = Vec2(kFilterSide / cell_.x(), kFilterSide / cell_.y());
   perBand([&](int r0, int r1) {
     int x0, x1, y0, y1;
     for (int i = int(triCount_) - 1; i >= 0; --i) {
@@ -178,14 +178,14 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
       hi += margin;
       for (int y = ya; y <= yb; ++y) {
         const Vec2 o0 = cellOrigin(x0, y);
-        const unsigned fy = unsigned(clampedCell((lo.y() - o0.y()) / sub_.y(), kFilterSide)) << 8 |
-                            unsigned(clampedCell((hi.y() - o0.y()) / sub_.y(), kFilterSide)) << 12;
+        const unsigned fy = unsigned(clampedCell((lo.y() - o0.y()) * subScale_.y(), kFilterSide)) << 8 |
+                            unsigned(clampedCell((hi.y() - o0.y()) * subScale_.y(), kFilterSide)) << 12;
         for (int x = x0; x <= x1; ++x) {
           const Vec2 o = cellOrigin(x, y);
           const size_t k = size_t(--cellStart_[cellIndex(x, y) + 1]);
           cellTris_[k] = i;
-          cellFilter_[k] = std::uint16_t(fy | unsigned(clampedCell((lo.x() - o.x()) / sub_.x(), kFilterSide)) |
-                                         unsigned(clampedCell((hi.x() - o.x()) / sub_.x(), kFilterSide)) << 4);
+          cellFilter_[k] = std::uint16_t(fy | unsigned(clampedCell((lo.x() - o.x()) * subScale_.x(), kFilterSide)) |
+                                         unsigned(clampedCell((hi.x() - o.x()) * subScale_.x(), kFilterSide)) << 4);
         }
       }
     }
@@ -299,8 +299,8 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     if (cellDistance(x, y) > slack) return false;
     const int c = cellIndex(x, y);
     const Vec2 o = cellOrigin(x, y);
-    const unsigned sx = unsigned(clampedCell((p.x() - o.x()) / sub_.x(), kFilterSide));
-    const unsigned sy = unsigned(clampedCell((p.y() - o.y()) / sub_.y(), kFilterSide));
+    const unsigned sx = unsigned(clampedCell((p.x() - o.x()) * subScale_.x(), kFilterSide));
+    const unsigned sy = unsigned(clampedCell((p.y() - o.y()) * subScale_.y(), kFilterSide));
     for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
       const unsigned f = cellFilter_[size_t(k)];
       if (sx < (f & 15u) || sx > (f >> 4 & 15u) || sy < (f >> 8 & 15u) || sy > (f >> 12)) continue;

@@ -55,7 +55,7 @@ class TriangleMeshMetricField : public ControlSpace {
   // tolerance, meets; a triangle skipped for it cannot contain the query point. A graded
   // or anisotropic carrier lists hundreds of triangles in its fine cells, few of them near p.
   std::vector<std::uint16_t> cellFilter_;
-  Vec2 sub_{1, 1};  // the filter grid's cell
+  Vec2 subScale_{1, 1};  // filter grid cells per unit length (multiplied: only monotonicity matters)
   Vec2 cellOrigin(int x, int y) const { return Vec2(box_.lo.x() + x * cell_.x(), box_.lo.y() + y * cell_.y()); }
   std::vector<int> coveredSum_;            // (nx + 1) x (ny + 1) summed-area table of the nonempty cells
   std::vector<std::uint16_t> emptyRings_;  // per cell: Chebyshev distance (cells, <= 4098) to the nearest nonempty cell
