@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <exception>
 #include <iostream>
 #include <memory>
 #include <utility>
 
+#include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/medit.h"
@@ -144,17 +146,38 @@ int runRemesh(Args& args) {
   log.start("read");
   Mesh in;  // .mesh, .msh, .vtk or .obj by extension; the .sol read beside it
   SolData solData;
-  // One file after the other (each parsed in parallel chunks): the two texts are never
-  // held at once (the read stage's memory peak).
-  in = readMeshFile(input);
-  // remesh reads the input's points, elements, edges and edge references only.
-  std::vector<int>().swap(in.pointRefs);
-  std::vector<int>().swap(in.triangleRefs);
-  std::vector<int>().swap(in.quadRefs);
-  if (!sol.empty()) solData = readSolFile(sol);
-  std::vector<Metric> metrics = !sol.empty() ? solToMetrics(solData, in.vertexCount())
-                                : hsiz > 0   ? uniformMetrics(in, hsiz)
-                                             : edgeLengthMetrics(in);
+  std::vector<Metric> metrics;
+  std::exception_ptr metricsError;
+  // The two files read concurrently (each parsed in parallel chunks as well): the serial
+  // parts of one (sections' headers, the allocations' page faults) overlap the other's
+  // parsing. A mapped text is released batch by batch as it is parsed; the mesh's error,
+  // if both fail, is the one reported.
+  parallelInvoke(
+      [&] {
+        in = readMeshFile(input);
+        // remesh reads the input's points, elements, edges and edge references only.
+        std::vector<int>().swap(in.pointRefs);
+        std::vector<int>().swap(in.triangleRefs);
+        std::vector<int>().swap(in.quadRefs);
+      },
+      [&] {
+        if (sol.empty()) return;
+        solData = readSolFile(sol);
+        // Converted here too, for the solution's own vertex count: when it is the mesh's,
+        // the metrics (or the first error) are those of solToMetrics(solData, mesh count).
+        try {
+          metrics = solToMetrics(solData, solData.count());
+        } catch (const Error&) {
+          metricsError = std::current_exception();
+        }
+      });
+  if (!sol.empty()) {
+    // A count mismatch is reported first (solToMetrics checks it before the values).
+    if (solData.count() != in.vertexCount()) solToMetrics(solData, in.vertexCount());
+    if (metricsError) std::rethrow_exception(metricsError);
+  } else {
+    metrics = hsiz > 0 ? uniformMetrics(in, hsiz) : edgeLengthMetrics(in);
+  }
   std::vector<double>().swap(solData.values);  // the metrics hold them now
   PipelineReport report;
   std::unique_ptr<AdaptiveControlSpace> cs;

@@ -4,9 +4,12 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/io/medit.h"
 #include "anisomesh/io/report_json.h"
@@ -41,7 +44,60 @@ void layerCarrier(Mesh* m, std::vector<Metric>* metrics) {
     }
 }
 
+// The offset of the start of line `line` (1-based) of text.
+size_t lineStart(const std::string& text, int line) {
+  size_t at = 0;
+  for (int l = 1; l < line; ++l) at = text.find('\n', at) + 1;
+  return at;
+}
+
 }  // namespace
+
+// Sections of many records (read in parallel text blocks of 256 KiB, batches of 4 MiB)
+// give the values of the token-by-token reading for any thread count: one per line, a
+// record split over two lines (the section falls back), no newline after the last record,
+// and an error's message names its line.
+TEST(Parallel, LargeSectionsReadTheSameForAnyThreadCount) {
+  ThreadCountGuard guard;
+  Mesh m;
+  m.dimension = 2;
+  const int n = 200000;  // about 8 MB of vertices: several batches
+  for (int i = 0; i < n; ++i) {
+    m.points.push_back(Vec3(std::sqrt(double(i)) * 1e-3, 1.0 / (i + 1), 0));
+    m.pointRefs.push_back(i % 7);
+  }
+  for (int i = 0; i + 2 < n; i += 3) {
+    m.triangles.push_back({i, i + 1, i + 2});
+    m.triangleRefs.push_back(i % 5);
+  }
+  const std::string text = writeMedit(m);
+  // Vertex i (1-based) is on line 5 + i.
+  std::string split = text;
+  split[split.find(' ', lineStart(split, 5 + 150000))] = '\n';
+  std::string unterminated = text.substr(0, text.rfind("End"));
+  unterminated.pop_back();  // the last triangle's newline
+  std::string broken = text;
+  const size_t at = broken.find(' ', lineStart(broken, 5 + 170001)) + 1;
+  broken.replace(at, broken.find(' ', at) - at, "x");
+  for (int threads : {1, 2, 4}) {
+    setThreadCount(threads);
+    for (const std::string* t :
+         {&text, static_cast<const std::string*>(&split), static_cast<const std::string*>(&unterminated)}) {
+      const Mesh back = parseMedit(*t);
+      ASSERT_EQ(back.points.size(), m.points.size()) << threads;
+      EXPECT_EQ(std::memcmp(back.points.data(), m.points.data(), m.points.size() * sizeof(Vec3)), 0) << threads;
+      EXPECT_EQ(back.pointRefs, m.pointRefs) << threads;
+      EXPECT_EQ(back.triangles, m.triangles) << threads;
+      EXPECT_EQ(back.triangleRefs, m.triangleRefs) << threads;
+    }
+    try {
+      parseMedit(broken);
+      ADD_FAILURE() << "no error, " << threads << " threads";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("line " + std::to_string(5 + 170001) + ":"), std::string::npos) << e.what();
+    }
+  }
+}
 
 TEST(Parallel, ChunksCoverEveryItemOnceForAnyThreadCount) {
   ThreadCountGuard guard;

@@ -81,14 +81,19 @@ void readElements(TokenStream& ts, const char* name, int vertexCount, std::vecto
 constexpr size_t kLinesPerPiece = 16384;
 
 // Appends one piece per chunk of [0, n): line(out, i) formats item i, in parallel.
+// Each chunk formats into a string of its own and moves it into its slot at the end: the
+// slots are adjacent std::string objects (two per cache line), so appending to them in
+// place wrote every character's new length into a cache line the thread formatting the
+// neighbour chunk writes too (false sharing).
 template <class Line>
 void appendPieces(std::vector<std::string>* pieces, size_t n, size_t bytesPerLine, const Line& line) {
   const size_t first = pieces->size();
   pieces->resize(first + chunkCount(n, kLinesPerPiece));
   parallelChunks(n, kLinesPerPiece, [&](size_t chunk, size_t begin, size_t end) {
-    std::string& out = (*pieces)[first + chunk];
+    std::string out;
     out.reserve((end - begin) * bytesPerLine);
     for (size_t i = begin; i < end; ++i) line(&out, i);
+    (*pieces)[first + chunk] = std::move(out);
   });
 }
 
@@ -187,10 +192,12 @@ Mesh parseMeditText(const char* begin, const char* end, TextFileView* view) {
       mesh.dimension = dimension;
       // Fast path: one vertex per line, in parallel chunks (the same values).
       const size_t base = mesh.points.size(), refBase = mesh.pointRefs.size();
-      mesh.points.resize(base + size_t(n), Vec3::Zero());
+      // (not zero-filled here: each record sets its point, in parallel)
+      mesh.points.resize(base + size_t(n));
       mesh.pointRefs.resize(refBase + size_t(n));
       const bool fast = ts.lineRecords(n, [&](size_t i, TokenStream::LineCursor& c) {
         Vec3& p = mesh.points[base + i];
+        p.z() = 0.0;
         for (int k = 0; k < dimension; ++k)
           if (!c.number(&p[k])) return false;
         long long ref = 0;

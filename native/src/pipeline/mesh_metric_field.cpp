@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
@@ -26,6 +27,11 @@ int clampedCell(double t, int n) {
   return int(t);
 }
 
+// Each list entry's filter: its triangle's widened box in a kFilterSide^2 grid of the cell.
+constexpr int kFilterSide = 16;
+// Items per parallel chunk of the index build (fixed: the same index for any thread count).
+constexpr size_t kBuildChunk = 65536;
+
 }  // namespace
 
 TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, const std::vector<Metric>& metrics)
@@ -46,9 +52,14 @@ TriangleMeshMetricField::TriangleMeshMetricField(const Mesh& mesh, std::vector<M
 }
 
 void TriangleMeshMetricField::build(const Mesh& mesh) {
-  for (size_t i = 0; i < mesh.points.size(); ++i)
-    require(mesh.points[i].head<2>().allFinite(), ErrorCode::InvalidDomain,
-            "metric field: vertex " + std::to_string(i + 1) + " has a non-finite coordinate");
+  // In parallel chunks; the lowest chunk's error is rethrown, so the message (formatted
+  // only then) names the first such vertex for any thread count.
+  parallelChunks(mesh.points.size(), kBuildChunk, [&](size_t, size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i)
+      if (!mesh.points[i].head<2>().allFinite())
+        throw Error(ErrorCode::InvalidDomain,
+                    "metric field: vertex " + std::to_string(i + 1) + " has a non-finite coordinate");
+  });
   pts_ = mesh.points.data();
   if (mesh.quads.empty()) {
     tris_ = mesh.triangles.data();
@@ -63,13 +74,24 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
     triCount_ = splitTris_.size();
   }
   require(triCount_ > 0, ErrorCode::InvalidArgument, "metric field: the mesh has no triangles or quadrilaterals");
-  const std::array<int, 3>* const trisEnd = tris_ + triCount_;
-  box_.lo = box_.hi = point(tris_[0][0]);
-  for (const std::array<int, 3>* t = tris_; t != trisEnd; ++t)
-    for (int v : *t) {
-      box_.lo = box_.lo.cwiseMin(point(v));
-      box_.hi = box_.hi.cwiseMax(point(v));
-    }
+  // The box of the triangles' vertices: one per chunk, combined in chunk order (the
+  // coordinates are finite: min and max give the box of the sequential scan).
+  std::vector<Box2> chunkBoxes(chunkCount(triCount_, kBuildChunk));
+  parallelChunks(triCount_, kBuildChunk, [&](size_t chunk, size_t b, size_t e) {
+    Box2 cb;
+    cb.lo = cb.hi = point(tris_[b][0]);
+    for (size_t t = b; t < e; ++t)
+      for (int v : tris_[t]) {
+        cb.lo = cb.lo.cwiseMin(point(v));
+        cb.hi = cb.hi.cwiseMax(point(v));
+      }
+    chunkBoxes[chunk] = cb;
+  });
+  box_ = chunkBoxes[0];
+  for (const Box2& cb : chunkBoxes) {
+    box_.lo = box_.lo.cwiseMin(cb.lo);
+    box_.hi = box_.hi.cwiseMax(cb.hi);
+  }
   // Barycentric determinants are products of two spans: they must stay finite.
   const Vec2 span = box_.size();
   require(std::isfinite(4.0 * span.x() * span.y()) && span.allFinite(), ErrorCode::InvalidDomain,
@@ -91,9 +113,28 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
     *y0 = clampedCell((lo.y() - box_.lo.y()) / cell_.y(), ny_);
     *y1 = clampedCell((hi.y() - box_.lo.y()) / cell_.y(), ny_);
   };
+  // Each triangle's cell range, computed once in parallel chunks and packed in 32 bits
+  // (x0, y0: 12 bits each, nx, ny <= 2049; the widths x1 - x0, y1 - y0: 4 bits each, 15:
+  // wider, recomputed from the points).
+  std::vector<std::uint32_t> ranges(triCount_);
+  parallelChunks(triCount_, kBuildChunk, [&](size_t, size_t b, size_t e) {
+    int x0, x1, y0, y1;
+    for (size_t t = b; t < e; ++t) {
+      range(tris_[t], &x0, &x1, &y0, &y1);
+      ranges[t] = std::uint32_t(x0) | std::uint32_t(y0) << 12 | std::uint32_t(std::min(x1 - x0, 15)) << 24 |
+                  std::uint32_t(std::min(y1 - y0, 15)) << 28;
+    }
+  });
+  auto unpack = [&](size_t t, int* x0, int* x1, int* y0, int* y1) {
+    const std::uint32_t r = ranges[t];
+    const int w = int(r >> 24 & 15u), h = int(r >> 28);
+    if (w == 15 || h == 15) return range(tris_[t], x0, x1, y0, y1);
+    *x0 = int(r & 4095u), *y0 = int(r >> 12 & 4095u);
+    *x1 = *x0 + w, *y1 = *y0 + h;
+  };
   cellStart_.assign(size_t(nx_) * ny_ + 1, 0);
-  // Each thread owns a band of cell rows and scans every triangle for its rows: the lists
-  // (each cell's triangles in increasing order) do not depend on the bands.
+  // Each thread owns a band of cell rows and scans every triangle's range for its rows:
+  // the lists (each cell's triangles in increasing order) do not depend on the bands.
   const int bands = std::max(1, std::min(threadCount(), ny_));
   auto perBand = [&](auto&& f) {
     parallelChunks(size_t(bands), 1, [&](size_t band, size_t, size_t) {
@@ -104,8 +145,8 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
   };
   perBand([&](int r0, int r1) {
     int x0, x1, y0, y1;
-    for (const std::array<int, 3>* t = tris_; t != trisEnd; ++t) {
-      range(*t, &x0, &x1, &y0, &y1);
+    for (size_t t = 0; t < triCount_; ++t) {
+      unpack(t, &x0, &x1, &y0, &y1);
       for (int y = std::max(y0, r0); y <= std::min(y1, r1 - 1); ++y)
         for (int x = x0; x <= x1; ++x) ++cellStart_[cellIndex(x, y) + 1];
     }
@@ -114,14 +155,42 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
   // decreasing order), each ends at its start with the triangles in increasing order.
   for (size_t c = 1; c < cellStart_.size(); ++c) cellStart_[c] += cellStart_[c - 1];
   cellTris_.resize(size_t(cellStart_.back()));
+  cellFilter_.resize(cellTris_.size());
+  // A triangle containing p (barycentric coordinates >= -1e-12) lies within 3e-12 of its
+  // diameter from p, plus the rounding of the coordinates: the margin is far above both.
+  const double extent =
+      std::max({std::abs(box_.lo.x()), std::abs(box_.lo.y()), std::abs(box_.hi.x()), std::abs(box_.hi.y())});
+  const Vec2 margin = Vec2::Constant(1e-9 * (cell_.x() + cell_.y() + box_.size().norm()) + 1e-12 * extent);
+  subScale_ = Vec2(kFilterSide / cell_.x(), kFilterSide / cell_.y());
   perBand([&](int r0, int r1) {
     int x0, x1, y0, y1;
     for (int i = int(triCount_) - 1; i >= 0; --i) {
-      range(tris_[i], &x0, &x1, &y0, &y1);
-      for (int y = std::max(y0, r0); y <= std::min(y1, r1 - 1); ++y)
-        for (int x = x0; x <= x1; ++x) cellTris_[size_t(--cellStart_[cellIndex(x, y) + 1])] = i;
+      unpack(size_t(i), &x0, &x1, &y0, &y1);
+      const int ya = std::max(y0, r0), yb = std::min(y1, r1 - 1);
+      if (ya > yb) continue;
+      const std::array<int, 3>& t = tris_[size_t(i)];
+      Vec2 lo = point(t[0]), hi = point(t[0]);
+      for (int v : t) {
+        lo = lo.cwiseMin(point(v));
+        hi = hi.cwiseMax(point(v));
+      }
+      lo -= margin;
+      hi += margin;
+      for (int y = ya; y <= yb; ++y) {
+        const Vec2 o0 = cellOrigin(x0, y);
+        const unsigned fy = unsigned(clampedCell((lo.y() - o0.y()) * subScale_.y(), kFilterSide)) << 8 |
+                            unsigned(clampedCell((hi.y() - o0.y()) * subScale_.y(), kFilterSide)) << 12;
+        for (int x = x0; x <= x1; ++x) {
+          const Vec2 o = cellOrigin(x, y);
+          const size_t k = size_t(--cellStart_[cellIndex(x, y) + 1]);
+          cellTris_[k] = i;
+          cellFilter_[k] = std::uint16_t(fy | unsigned(clampedCell((lo.x() - o.x()) * subScale_.x(), kFilterSide)) |
+                                         unsigned(clampedCell((hi.x() - o.x()) * subScale_.x(), kFilterSide)) << 4);
+        }
+      }
     }
   });
+  std::vector<std::uint32_t>().swap(ranges);
   // Now cellStart_[c + 1] is the start of cell c: shifted down by one cell.
   for (size_t c = 0; c + 1 < cellStart_.size(); ++c) cellStart_[c] = cellStart_[c + 1];
   cellStart_.back() = int(cellTris_.size());
@@ -208,19 +277,35 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
   };
   // A cell farther than the slack holds no triangle containing p that p's own cell (or a
   // nearer one) does not list: skipped.
+  auto contains = [&](int t) {
+    const auto& tri = tris_[size_t(t)];
+    const Vec2 a = point(tri[0]), b = point(tri[1]), d = point(tri[2]);
+    const double det = (b.x() - a.x()) * (d.y() - a.y()) - (b.y() - a.y()) * (d.x() - a.x());
+    if (det == 0) return false;
+    const double n1 = (p.x() - a.x()) * (d.y() - a.y()) - (p.y() - a.y()) * (d.x() - a.x());
+    const double n2 = (b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x());
+    // Most triangles are refused without the divisions: n / det below -2e-12 (its rounded
+    // quotient is then below -1e-12 too; a tiny det could make the bound lose its precision).
+    const double scale = std::abs(det);
+    if (scale > 1e-280) {
+      const double bound = -2e-12 * scale;
+      if ((det > 0 ? n1 : -n1) < bound || (det > 0 ? n2 : -n2) < bound) return false;
+    }
+    const double l1 = n1 / det, l2 = n2 / det;
+    return l1 >= -1e-12 && l2 >= -1e-12 && 1.0 - l1 - l2 >= -1e-12;
+  };
+  // (the triangles whose widened box misses p's sub-cell are skipped: they cannot contain p)
   auto containsIn = [&](int x, int y) {
     if (cellDistance(x, y) > slack) return false;
     const int c = cellIndex(x, y);
+    const Vec2 o = cellOrigin(x, y);
+    const unsigned sx = unsigned(clampedCell((p.x() - o.x()) * subScale_.x(), kFilterSide));
+    const unsigned sy = unsigned(clampedCell((p.y() - o.y()) * subScale_.y(), kFilterSide));
     for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
-      const int t = cellTris_[size_t(k)];
-      const auto& tri = tris_[size_t(t)];
-      const Vec2 a = point(tri[0]), b = point(tri[1]), d = point(tri[2]);
-      const double det = (b.x() - a.x()) * (d.y() - a.y()) - (b.y() - a.y()) * (d.x() - a.x());
-      if (det == 0) continue;
-      const double l1 = ((p.x() - a.x()) * (d.y() - a.y()) - (p.y() - a.y()) * (d.x() - a.x())) / det;
-      const double l2 = ((b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x())) / det;
-      if (l1 >= -1e-12 && l2 >= -1e-12 && 1.0 - l1 - l2 >= -1e-12) {
-        best = t;
+      const unsigned f = cellFilter_[size_t(k)];
+      if (sx < (f & 15u) || sx > (f >> 4 & 15u) || sy < (f >> 8 & 15u) || sy > (f >> 12)) continue;
+      if (contains(cellTris_[size_t(k)])) {
+        best = cellTris_[size_t(k)];
         return true;
       }
     }
