@@ -13,6 +13,7 @@ import { readFileSync, readdirSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { wrapCore } from '../../wasm/api.js';
+import { surfaceDragCases } from './surface_drag_cases.mjs';
 
 const root = fileURLToPath(new URL('../..', import.meta.url));
 const args = process.argv.slice(2);
@@ -23,17 +24,8 @@ const { default: create } = await import(join(dist, 'anisomesh-core.js'));
 const am = wrapCore(await create({ wasmBinary: readFileSync(join(dist, 'anisomesh-core.wasm')) }));
 
 const surfaceDir = join(root, 'examples/surface');
-const p2 = JSON.parse(readFileSync(join(surfaceDir, 'surface_p2_holes.json'), 'utf8'));
-const withSource = (c, x) => {
-  const out = structuredClone(c);
-  out.patches[0].sources = [{ type: 'radial', center: [x, 0], metric: { alpha: 0, h1: 0.15, h2: 0.15 }, radius: 1.5 }];
-  return out;
-};
-const refined = structuredClone(p2);
-Object.assign(refined.metric, { chordTolerance: 0.0025, hmax: 0.3 });
 const cases = [
-  ['p2 with holes + radial source', (k) => withSource(p2, 0.1 * k)],
-  ['p2 refined + radial source', (k) => withSource(refined, 0.1 * k)],
+  ...surfaceDragCases(root),
   ...readdirSync(surfaceDir).filter((f) => f.endsWith('.json')).sort().map((f) => {
     const c = JSON.parse(readFileSync(join(surfaceDir, f), 'utf8'));
     return [f, () => c];

@@ -16,6 +16,7 @@ import { chromium } from 'playwright-core';
 import { chromiumArgs } from '../../tests/browser/launch.mjs';
 import { startServer } from '../../web/serve.mjs';
 import { wrapCore } from '../../wasm/api.js';
+import { surfaceDragCases } from './surface_drag_cases.mjs';
 
 const root = fileURLToPath(new URL('../..', import.meta.url));
 const args = process.argv.slice(2);
@@ -24,19 +25,7 @@ const runs = Number(opt('--runs', 8));
 const selfCompile = args.includes('--self');
 const dist = join(root, 'wasm/dist');
 
-const surfaceDir = join(root, 'examples/surface');
-const p2 = JSON.parse(readFileSync(join(surfaceDir, 'surface_p2_holes.json'), 'utf8'));
-const withSource = (c, x) => {
-  const out = structuredClone(c);
-  out.patches[0].sources = [{ type: 'radial', center: [x, 0], metric: { alpha: 0, h1: 0.15, h2: 0.15 }, radius: 1.5 }];
-  return out;
-};
-const refined = structuredClone(p2);
-Object.assign(refined.metric, { chordTolerance: 0.0025, hmax: 0.3 });
-const cases = [
-  ['p2 with holes + radial source', (k) => withSource(p2, 0.1 * k)],
-  ['p2 refined + radial source', (k) => withSource(refined, 0.1 * k)],
-];
+const cases = surfaceDragCases(root);
 const options = { measures: true, elementMeasures: false, stats: false, patchParams: true };
 
 // CPU ns of threads from /proc (schedstat's first field: time on the CPU).

@@ -13,7 +13,7 @@
 // Usage: node native/bench/surface_drag_page.mjs [--drags N] [--only small|refined]
 import { readFileSync, readdirSync } from 'node:fs';
 import { chromium } from 'playwright-core';
-import { chromiumArgs, openPage, settle } from '../../tests/browser/launch.mjs';
+import { chromiumArgs, openSurfaceDragPage, settle } from '../../tests/browser/launch.mjs';
 import { startServer } from '../../web/serve.mjs';
 
 const args = process.argv.slice(2);
@@ -53,15 +53,7 @@ const env = { browser, url, close: async () => { await browser.close(); await ne
 const rows = [];
 try {
   for (const [, label, edit] of cases) {
-    const { page, errors } = await openPage(env.browser, env.url);
-    await settle(page, () => window.anisomeshApp.loadPreset('p2-holes'));
-    await settle(page, (e) => {
-      const a = window.anisomeshApp;
-      if (e) Object.assign(a.state.case.metric, e);
-      a.state.case.patches[0].sources = [{ type: 'radial', center: [0, 0], metric: { alpha: 0, h1: 0.15, h2: 0.15 }, radius: 1.5 }];
-      a.state.selected = 0;
-      a.edited(0);
-    }, edit);
+    const { page, errors } = await openSurfaceDragPage(env.browser, env.url, edit);
     await page.evaluate(() => new Promise((r) => setTimeout(r, 500)));  // the spare's warm-up
     // Plain edits: the source moved from the panel (one job on a warm worker).
     const plain = [];

@@ -49,3 +49,18 @@ export async function settle(page, fn = null, arg = undefined) {
   if (fn) await page.evaluate(fn, arg);
   await page.waitForFunction(() => window.anisomeshApp.idle(), null, { timeout: 60000 });
 }
+
+// A page on the "p2 with holes" surface preset with one radial source selected (the
+// surface drag of issue #12), the case's metric first changed by edit when given.
+export async function openSurfaceDragPage(browser, url, edit = null) {
+  const opened = await openPage(browser, url);
+  await settle(opened.page, () => window.anisomeshApp.loadPreset('p2-holes'));
+  await settle(opened.page, (e) => {
+    const a = window.anisomeshApp;
+    if (e) Object.assign(a.state.case.metric, e);
+    a.state.case.patches[0].sources = [{ type: 'radial', center: [0, 0], metric: { alpha: 0, h1: 0.15, h2: 0.15 }, radius: 1.5 }];
+    a.state.selected = 0;
+    a.edited(0);
+  }, edit);
+  return opened;
+}

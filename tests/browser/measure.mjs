@@ -6,7 +6,7 @@
 // ONLY=drag, ONLY=orbit, ONLY=surface or ONLY=shots runs one part; SYNC=1 makes "drawn" wait for the GPU.
 // ONLY=surface: drags of a radial source on "Surface p2 with holes", as is (about 2,845
 // triangles + the source's refinement) and refined to about 50k triangles.
-import { launch, openPage, settle } from './launch.mjs';
+import { launch, openPage, openSurfaceDragPage, settle } from './launch.mjs';
 import { sphereMesh } from './fixtures.mjs';
 import { fileURLToPath } from 'node:url';
 import { stat } from 'node:fs/promises';
@@ -111,15 +111,7 @@ try {
     ['p2 with holes, a radial source', null],
     ['p2 with holes refined (chord tolerance 0.0025, hmax 0.3), a radial source', { chordTolerance: 0.0025, hmax: 0.3 }],
   ]) {
-    const { page, errors } = await openPage(env.browser, env.url);
-    await settle(page, () => window.anisomeshApp.loadPreset('p2-holes'));
-    await settle(page, (e) => {
-      const a = window.anisomeshApp;
-      if (e) Object.assign(a.state.case.metric, e);
-      a.state.case.patches[0].sources = [{ type: 'radial', center: [0, 0], metric: { alpha: 0, h1: 0.15, h2: 0.15 }, radius: 1.5 }];
-      a.state.selected = 0;
-      a.edited(0);
-    }, edit);
+    const { page, errors } = await openSurfaceDragPage(env.browser, env.url, edit);
     const base = await page.evaluate(() => ({ tris: window.anisomeshApp.views.mesh.triangles.length / 3, job: window.anisomeshApp.state.lastJob }));
     const drags = Number(process.env.DRAGS ?? 12);
     const samples = [], breakdowns = [];
