@@ -13,7 +13,7 @@
 // Usage: node native/bench/surface_drag_page.mjs [--drags N] [--only small|refined]
 import { readFileSync, readdirSync } from 'node:fs';
 import { chromium } from 'playwright-core';
-import { chromiumArgs, openSurfaceDragPage, settle } from '../../tests/browser/launch.mjs';
+import { chromiumArgs, dragSourceOnce, openSurfaceDragPage, settle } from '../../tests/browser/launch.mjs';
 import { startServer } from '../../web/serve.mjs';
 
 const args = process.argv.slice(2);
@@ -69,16 +69,9 @@ try {
     }
     const samples = [];
     for (let rep = 0; rep < drags; rep++) {
-      const h = await page.evaluate(() => window.anisomeshApp.handleClientPosition(0, 'center'));
       const before = await page.evaluate(() => window.anisomeshApp.meshRunner.restarts);
       const n0 = workerCpuNs();
-      await page.mouse.move(h.x, h.y);
-      await page.mouse.down();
-      const dir = rep % 2 ? 1 : -1;
-      for (let k = 1; k <= 6; k++) await page.mouse.move(h.x + dir * 6 * k, h.y + 2 * k);
-      await page.evaluate(() => { window.anisomeshApp.state.dragToMeshMs = null; });
-      await page.mouse.up();
-      await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
+      await dragSourceOnce(page, rep);
       const r = await page.evaluate(() => {
         const a = window.anisomeshApp, s = a.state;
         return { total: s.dragInputToMeshMs, up: s.dragToMeshMs, b: s.breakdowns.filter((x) => x.drag).at(-1) ?? null, job: s.lastJob, restarts: a.meshRunner.restarts, tris: a.views.mesh.triangles.length / 3 };

@@ -64,3 +64,16 @@ export async function openSurfaceDragPage(browser, url, edit = null) {
   }, edit);
   return opened;
 }
+
+// One drag of the selected source's centre handle (6 mouse moves, then release); resolves
+// when the released drag's mesh is drawn and the page is idle.
+export async function dragSourceOnce(page, rep) {
+  const h = await page.evaluate(() => window.anisomeshApp.handleClientPosition(0, 'center'));
+  await page.mouse.move(h.x, h.y);
+  await page.mouse.down();
+  const dir = rep % 2 ? 1 : -1;
+  for (let k = 1; k <= 6; k++) await page.mouse.move(h.x + dir * 6 * k, h.y + 2 * k);
+  await page.evaluate(() => { window.anisomeshApp.state.dragToMeshMs = null; });
+  await page.mouse.up();
+  await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
+}

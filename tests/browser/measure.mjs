@@ -6,7 +6,7 @@
 // ONLY=drag, ONLY=orbit, ONLY=surface or ONLY=shots runs one part; SYNC=1 makes "drawn" wait for the GPU.
 // ONLY=surface: drags of a radial source on "Surface p2 with holes", as is (about 2,845
 // triangles + the source's refinement) and refined to about 50k triangles.
-import { launch, openPage, openSurfaceDragPage, settle } from './launch.mjs';
+import { dragSourceOnce, launch, openPage, openSurfaceDragPage, settle } from './launch.mjs';
 import { sphereMesh } from './fixtures.mjs';
 import { fileURLToPath } from 'node:url';
 import { stat } from 'node:fs/promises';
@@ -44,14 +44,7 @@ try {
   const moveSamples = [];
   const samples = [], inputSamples = [], breakdowns = [];
   for (let rep = 0; rep < drags; rep++) {
-    const h = await page.evaluate(() => window.anisomeshApp.handleClientPosition(0, 'center'));
-    await page.mouse.move(h.x, h.y);
-    await page.mouse.down();
-    const dir = rep % 2 ? 1 : -1;
-    for (let k = 1; k <= 6; k++) await page.mouse.move(h.x + dir * 6 * k, h.y + 2 * k);
-    await page.evaluate(() => { window.anisomeshApp.state.dragToMeshMs = null; });
-    await page.mouse.up();
-    await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
+    await dragSourceOnce(page, rep);
     const r = await page.evaluate(() => {
       const s = window.anisomeshApp.state;
       const b = (s.breakdowns ?? []).filter((x) => x.drag).at(-1) ?? null;
@@ -116,14 +109,7 @@ try {
     const drags = Number(process.env.DRAGS ?? 12);
     const samples = [], breakdowns = [];
     for (let rep = 0; rep < drags; rep++) {
-      const h = await page.evaluate(() => window.anisomeshApp.handleClientPosition(0, 'center'));
-      await page.mouse.move(h.x, h.y);
-      await page.mouse.down();
-      const dir = rep % 2 ? 1 : -1;
-      for (let k = 1; k <= 6; k++) await page.mouse.move(h.x + dir * 6 * k, h.y + 2 * k);
-      await page.evaluate(() => { window.anisomeshApp.state.dragToMeshMs = null; });
-      await page.mouse.up();
-      await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
+      await dragSourceOnce(page, rep);
       const r = await page.evaluate(() => {
         const s = window.anisomeshApp.state;
         return { ms: s.dragInputToMeshMs, tris: window.anisomeshApp.views.mesh.triangles.length / 3, b: (s.breakdowns ?? []).filter((x) => x.drag).at(-1) ?? null };
