@@ -252,6 +252,8 @@ const haveBamg = spawnSync('which', ['ffbamg']).status === 0;
 const knows = (bin, ...opt) => !(spawnSync(bin, ['remesh', ...opt], { encoding: 'utf8' }).stderr || '').includes('unknown option');
 const cliThreads = knows(cli, '-threads', '1');
 const cliVerbose = knows(cli, '-v', '1');
+// The 3e6 carriers pass the CLI's default input limit (512 MiB): raised where it can be.
+const cliInputLimit = knows(cli, '--max-input-bytes', '1');
 
 const stageNames = ['read', 'boundary', 'control space', 'discretization', 'meshing', 'write', 'report'];
 const rows = [];
@@ -273,17 +275,16 @@ for (const kind of cases)
     const carrier = writeCarrier(c, dir);
     if (generateOnly) continue;
     const label = `${kind} ${size.toExponential(0)} (carrier ${(carrier.triangles / 1e6).toFixed(2)}M tri)`;
-    const tools = threads.map((t) => ({ tool: `anisomesh ${t}t`, bin: cli, t, v: cliVerbose, threads: cliThreads }));
+    const tools = threads.map((t) => ({ tool: `anisomesh ${t}t`, bin: cli, t, v: cliVerbose, threads: cliThreads, inputLimit: cliInputLimit }));
     if (baseline) {
-      tools.unshift({ tool: 'baseline 1t', bin: baseline, t: 1, v: knows(baseline, '-v', '1'), threads: knows(baseline, '-threads', '1') });
+      tools.unshift({ tool: 'baseline 1t', bin: baseline, t: 1, v: knows(baseline, '-v', '1'), threads: knows(baseline, '-threads', '1'), inputLimit: knows(baseline, '--max-input-bytes', '1') });
     }
-    for (const { tool, bin, t, v, threads: hasThreads } of tools) {
+    for (const { tool, bin, t, v, threads: hasThreads, inputLimit } of tools) {
       if (t > 1 && !hasThreads) { pushRow({ label, tool, note: 'no -threads option' }); continue; }
       const args = ['remesh', 'in.mesh', '-sol', 'in.sol', '-o', 'out.mesh', '--stats'];
       if (v) args.push('-v', '1');
       if (hasThreads) args.push('-threads', String(t));
-      // The 3e6 carriers pass the CLI's default input limit (512 MiB): raise it.
-      if (knows(bin, '--max-input-bytes', '1')) args.push('--max-input-bytes', '4000000000');
+      if (inputLimit) args.push('--max-input-bytes', '4000000000');
       rmSync(join(dir, 'out.mesh'), { force: true });
       const r = timed(bin, args, dir);
       if (r.failed) { pushRow({ label, tool, note: r.failed }); continue; }

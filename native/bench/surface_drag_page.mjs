@@ -14,6 +14,7 @@
 import { readFileSync, readdirSync } from 'node:fs';
 import { chromium } from 'playwright-core';
 import { chromiumArgs, dragSourceOnce, openSurfaceDragPage, settle } from '../../tests/browser/launch.mjs';
+import { refinedP2Metric } from '../../tests/browser/fixtures.mjs';
 import { startServer } from '../../web/serve.mjs';
 
 const args = process.argv.slice(2);
@@ -39,7 +40,7 @@ function workerCpuNs() {
 
 const cases = [
   ['small', 'p2 with holes + radial source', null],
-  ['refined', 'p2 refined (chord 0.0025, hmax 0.3) + radial source', { chordTolerance: 0.0025, hmax: 0.3 }],
+  ['refined', 'p2 refined (chord 0.0025, hmax 0.3) + radial source', refinedP2Metric],
 ].filter(([id]) => !only || only === id);
 
 // CHROMIUM_JS_FLAGS="--no-wasm-dynamic-tiering" passes V8 flags (e.g. to see what tier-up costs).

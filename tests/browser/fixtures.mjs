@@ -1,5 +1,10 @@
 // Page-side fixtures (passed to page.evaluate, so they must be self-contained).
 
+// The surface drag of issue #12 ("Surface p2 with holes"): the radial source dragged, at
+// (u, 0), and the metric edit that refines the preset to about 50k triangles.
+export const dragSource = (u) => ({ type: 'radial', center: [u, 0], metric: { alpha: 0, h1: 0.15, h2: 0.15 }, radius: 1.5 });
+export const refinedP2Metric = { chordTolerance: 0.0025, hmax: 0.3 };
+
 // Runs in the page: a UV sphere with about `target` triangles as a dimension-3 mesh.
 export function sphereMesh(target) {
   const nu = Math.round(Math.sqrt(target / 2) * 1.4), nv = Math.max(3, Math.round(target / (2 * nu)));

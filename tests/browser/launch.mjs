@@ -2,6 +2,7 @@
 // demo server on a free loopback port. Never downloads a browser.
 import { chromium } from 'playwright-core';
 import { startServer } from '../../web/serve.mjs';
+import { dragSource } from './fixtures.mjs';
 
 export const chromiumArgs = [
   '--no-sandbox',
@@ -55,13 +56,13 @@ export async function settle(page, fn = null, arg = undefined) {
 export async function openSurfaceDragPage(browser, url, edit = null) {
   const opened = await openPage(browser, url);
   await settle(opened.page, () => window.anisomeshApp.loadPreset('p2-holes'));
-  await settle(opened.page, (e) => {
+  await settle(opened.page, ({ e, source }) => {
     const a = window.anisomeshApp;
     if (e) Object.assign(a.state.case.metric, e);
-    a.state.case.patches[0].sources = [{ type: 'radial', center: [0, 0], metric: { alpha: 0, h1: 0.15, h2: 0.15 }, radius: 1.5 }];
+    a.state.case.patches[0].sources = [source];
     a.state.selected = 0;
     a.edited(0);
-  }, edit);
+  }, { e: edit, source: dragSource(0) });
   return opened;
 }
 

@@ -7,7 +7,7 @@
 // ONLY=surface: drags of a radial source on "Surface p2 with holes", as is (about 2,845
 // triangles + the source's refinement) and refined to about 50k triangles.
 import { dragSourceOnce, launch, openPage, openSurfaceDragPage, settle } from './launch.mjs';
-import { sphereMesh } from './fixtures.mjs';
+import { refinedP2Metric, sphereMesh } from './fixtures.mjs';
 import { fileURLToPath } from 'node:url';
 import { stat } from 'node:fs/promises';
 
@@ -102,7 +102,7 @@ try {
   // --- 1c. drag a source on a surface (p2 with holes) -----------------------------------
   for (const [label, edit] of [
     ['p2 with holes, a radial source', null],
-    ['p2 with holes refined (chord tolerance 0.0025, hmax 0.3), a radial source', { chordTolerance: 0.0025, hmax: 0.3 }],
+    ['p2 with holes refined (chord tolerance 0.0025, hmax 0.3), a radial source', refinedP2Metric],
   ]) {
     const { page, errors } = await openSurfaceDragPage(env.browser, env.url, edit);
     const base = await page.evaluate(() => ({ tris: window.anisomeshApp.views.mesh.triangles.length / 3, job: window.anisomeshApp.state.lastJob }));
