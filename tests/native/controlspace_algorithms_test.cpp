@@ -302,6 +302,60 @@ TEST(ControlSpaceGradation, SizeGrowsNoFasterThanTheBoundAlongEveryEdge) {
   }
 }
 
+// resmoothGradation() after a local change to a smooth space: the full smoothing's result
+// (to its idempotence tolerance), the bound on every edge, from the changed nodes only.
+// Two changes: a finer source (nodes shrink) and a coarser spot (nodes grow: their unchanged
+// neighbours must be taken again, or the bound breaks next to them).
+TEST(ControlSpaceGradation, ResmoothAfterALocalChangeGivesTheFullSmoothing) {
+  for (int kind : {0, 1, 2}) {  // quadtree bilinear, quadtree serendipity, background mesh
+    std::unique_ptr<AdaptiveControlSpace> smooth;
+    if (kind == 1) {
+      QuadtreeOptions o;
+      o.maxLevel = 7;
+      o.interpolation = QuadtreeInterpolation::Serendipity;
+      smooth = std::make_unique<QuadtreeControlSpace>(unitBox(), o);
+    } else {
+      smooth = makeSpace(kind == 0, 7);
+    }
+    insertMetricFunction(*smooth, sharpField, insertion());
+    GradationOptions g;
+    g.ratio = 1.5;
+    smoothGradation(*smooth, g);
+    for (int change : {0, 1}) {
+      auto full = smooth->clone(), part = smooth->clone();
+      const AdaptiveControlSpace::NodeState before = part->nodeState();
+      for (AdaptiveControlSpace* cs : {full.get(), part.get()}) {
+        if (change == 0)
+          insertSources(*cs, {RadialSource{{0.7, 0.75}, Metric::fromSizes(0.5, 0.004, 0.02), 0.03}});
+        else  // the spot coarsened: its nodes grow
+          for (int i = 0; i < cs->nodeCount(); ++i)
+            if (cs->nodeIsFree(i) && (cs->nodePosition(i) - Vec2(0.25, 0.25)).norm() < 0.02)
+              cs->setNodeMetric(i, Metric::isotropic(0.05));
+        cs->applyConstraints();
+      }
+      const std::vector<int> changed = part->nodesChangedSince(before);
+      EXPECT_GT(changed.size(), 0u) << kind << change;
+      EXPECT_LT(changed.size(), size_t(part->nodeCount()) / 2) << kind << change;  // a local change
+      EXPECT_GT(smoothGradation(*full, g), 0) << kind << change;
+      resmoothGradation(*part, changed, g);
+      ASSERT_EQ(part->nodeCount(), full->nodeCount());
+      for (int i = 0; i < part->nodeCount(); ++i)
+        ASSERT_LT(relDiff(part->nodeMetric(i), full->nodeMetric(i)), 1e-9) << kind << change << " node " << i;
+      const double amax = gradationSlope(g.ratio);
+      for (const auto& e : part->structureEdges()) {
+        const Vec2 u = part->nodePosition(e[1]) - part->nodePosition(e[0]);
+        const double hi = part->nodeMetric(e[0]).sizeAlong(u), hj = part->nodeMetric(e[1]).sizeAlong(u);
+        const double tol = 1e-7 * (std::max(hi, hj) + amax * u.norm());
+        ASSERT_LE(hj, hi + amax * u.norm() + tol) << kind << change;
+        ASSERT_LE(hi, hj + amax * u.norm() + tol) << kind << change;
+      }
+    }
+    // Nothing changed: nothing to do.
+    auto same = smooth->clone();
+    EXPECT_EQ(resmoothGradation(*same, same->nodesChangedSince(smooth->nodeState()), g), 0);
+  }
+}
+
 TEST(ControlSpaceGradation, KeepsAnisotropy) {
   const Metric stretched = Metric::fromSizes(0.3, 0.002, 0.1);  // aspect ratio 50
   for (bool quadtree : {true, false}) {

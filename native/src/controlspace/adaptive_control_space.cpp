@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -50,6 +51,17 @@ void AdaptiveControlSpace::edgeGraph(bool structure, std::vector<int>& start, st
   }
   start[n] = out;
   nbr.resize(out);
+}
+
+std::vector<int> AdaptiveControlSpace::nodesChangedSince(const NodeState& before) const {
+  std::vector<int> out;
+  const int kept = static_cast<int>(std::min(before.mt.size(), before.flags.size()));
+  for (int i = 0; i < nodeCount(); ++i) {
+    // Bits, not values: a NaN that stayed NaN is unchanged, -0 against 0 is a change.
+    if (i >= kept || flags_[i] != before.flags[i] || std::memcmp(&mt_[i], &before.mt[i], sizeof(SymMt)) != 0)
+      out.push_back(i);
+  }
+  return out;
 }
 
 std::vector<ControlNode> AdaptiveControlSpace::controlNodes() const {

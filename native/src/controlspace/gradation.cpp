@@ -227,20 +227,37 @@ SymMt interpolateHanging(const AdaptiveControlSpace& cs, const AdaptiveControlSp
   return r;
 }
 
-}  // namespace
-
-int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
+// smoothGradation() with the work-set started from the nodes `only` holds (increasing),
+// or from every node when it is null.
+int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const GradationOptions& options) {
   const double slope = gradationSlope(options.ratio);
   require(options.tolerance >= 0.0, ErrorCode::InvalidArgument, "gradation tolerance must be >= 0");
   const int n = cs.nodeCount();
   const double tol = options.tolerance;
+  if (only && only->empty()) {  // nothing changed: the bound still holds everywhere
+    cs.applyConstraints();
+    return 0;
+  }
   const auto hanging =
       options.throughHangingNodes ? cs.hangingNodes() : std::vector<AdaptiveControlSpace::HangingNode>{};
   std::vector<int> start, nbr;
   cs.edgeGraph(!hanging.empty(), start, nbr);
   std::vector<int> seeds;
-  for (int i = 0; i < n; ++i)
-    if (!hanging.empty() || cs.nodeIsFree(i)) seeds.push_back(i);
+  if (only) {
+    // The changed nodes and their neighbours: a node that grew (clampSizes) may now break
+    // the bound its unchanged neighbour sets, and that neighbour must be taken to restore it.
+    std::vector<char> mark(n, 0);
+    for (int i : *only) {
+      if (i < 0 || i >= n) continue;
+      mark[i] = 1;
+      for (int k = start[i]; k < start[i + 1]; ++k) mark[nbr[k]] = 1;
+    }
+    for (int i = 0; i < n; ++i)
+      if (mark[i] && (!hanging.empty() || cs.nodeIsFree(i))) seeds.push_back(i);
+  } else {
+    for (int i = 0; i < n; ++i)
+      if (!hanging.empty() || cs.nodeIsFree(i)) seeds.push_back(i);
+  }
   std::vector<char> changed(n, 0);
   NodeHeap heap(n);
   int updates = gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed, heap);
@@ -359,6 +376,16 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
   }
   cs.applyConstraints();
   return updates;
+}
+
+}  // namespace
+
+int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options) {
+  return smoothFrom(cs, nullptr, options);
+}
+
+int resmoothGradation(AdaptiveControlSpace& cs, const std::vector<int>& changed, const GradationOptions& options) {
+  return smoothFrom(cs, &changed, options);
 }
 
 }  // namespace anisomesh

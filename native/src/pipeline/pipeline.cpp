@@ -73,14 +73,15 @@ void hausdorffRounds(const Domain& domain, const RemeshOptions& options, const D
     r.updateRounds = round + 1;
     DiscreteInsertionOptions o;
     o.source.sizeFactor = 0.25;  // as the case sources (case_control_space.cpp)
+    const AdaptiveControlSpace::NodeState before = cs.nodeState();
     insertSources(cs, sources, o);
     if (options.hmin > 0 || options.hmax > 0)
       clampSizes(cs, options.hmin > 0 ? options.hmin : std::numeric_limits<double>::min(),
                  options.hmax > 0 ? options.hmax : std::numeric_limits<double>::infinity());
-    if (options.hgrad > 0) {
+    if (options.hgrad > 0) {  // smooth before this round: only the chords' region again
       GradationOptions g;
       g.ratio = options.hgrad;
-      smoothGradation(cs, g);
+      resmoothGradation(cs, cs.nodesChangedSince(before), g);
     }
     loops =
         throughCache(cs, options.queryCache, r, [&](const ControlSpace& q) { return discretizeDomain(domain, q, d); });

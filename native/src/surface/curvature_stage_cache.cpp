@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <mutex>
+#include "anisomesh/core/error.h"
 #include "anisomesh/core/number_text.h"
 
 namespace anisomesh {
@@ -39,12 +40,12 @@ Cache& cache() {
 
 std::string curvatureStageKey(const Surface& surface, const SurfaceMetricOptions& sizing,
                               const std::vector<Source3D>& sources3d, const QuadtreeOptions& quadtree,
-                              double refineThreshold, std::int64_t maxNodes) {
+                              double refineThreshold, std::int64_t maxNodes, double gradation) {
   const std::string id = surface.identity();
   if (id.empty() || quadtree.initialMetric) return "";
   std::string key = id + "|";
-  for (double x :
-       {sizing.chordTolerance, sizing.angleTolerance, sizing.hmin, sizing.hmax, sizing.maxAspectRatio, refineThreshold})
+  for (double x : {sizing.chordTolerance, sizing.angleTolerance, sizing.hmin, sizing.hmax, sizing.maxAspectRatio,
+                   refineThreshold, gradation})
     appendDoubleBits(key, x);
   key += std::to_string(quadtree.initialLevel) + ' ' + std::to_string(quadtree.maxLevel) + ' ' +
          std::to_string(int(quadtree.interpolation)) + ' ' + std::to_string(maxNodes) + '|';
@@ -54,6 +55,16 @@ std::string curvatureStageKey(const Surface& surface, const SurfaceMetricOptions
     appendDoubleBits(key, s.radius);
   }
   return key;
+}
+
+void appendSourceBits(std::string& key, const std::vector<MetricSource>& sources) {
+  key += '|';
+  for (const MetricSource& source : sources) {
+    const auto* s = std::get_if<SegmentSource>(&source);
+    require(s != nullptr, ErrorCode::InvalidArgument, "appendSourceBits: only segment sources have a key");
+    const SymMt m = toSymMt(s->metric);
+    for (double x : {s->a.x(), s->a.y(), s->b.x(), s->b.y(), m.a, m.b, m.c, s->radius}) appendDoubleBits(key, x);
+  }
 }
 
 CurvatureStage findCurvatureStage(const std::string& key) {

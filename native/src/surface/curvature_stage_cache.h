@@ -1,10 +1,12 @@
 #pragma once
 // Surface meshing (internal): the control space of a patch after its curvature stage
-// (main-level grid and refinement on the surface's curvature and the 3D sources, before
-// the 2D sources, contour curvature and gradation) kept from earlier runs. While a 2D
-// source is dragged on a patch, the surface and its sizing stay the same, so every run
-// after the first starts from a copy instead of evaluating the curvature again. The key
-// holds everything the stage reads, as exact bits: a hit gives the same bits as a build.
+// (main-level grid and refinement on the surface's curvature and the 3D sources, the
+// contours' curvature, then smoothed to the gradation ratio; before the 2D sources) kept from
+// earlier runs. While a 2D source is dragged on a patch, the surface and its sizing stay
+// the same, so every run after the first starts from a copy instead of evaluating the
+// curvature and smoothing the whole structure again (then only the region the 2D sources
+// change is smoothed). The key holds everything the stage reads, as exact bits: a hit
+// gives the same bits as a build.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -26,7 +28,9 @@ struct CurvatureStage {
 // The key of the stage, or "" when the surface has no identity (then nothing is kept).
 std::string curvatureStageKey(const Surface& surface, const SurfaceMetricOptions& sizing,
                               const std::vector<Source3D>& sources3d, const QuadtreeOptions& quadtree,
-                              double refineThreshold, std::int64_t maxNodes);
+                              double refineThreshold, std::int64_t maxNodes, double gradation);
+// Appends the exact bits of segment sources (the contour curvature sources) to a key.
+void appendSourceBits(std::string& key, const std::vector<MetricSource>& sources);
 // A copy of the stage stored under key (limits cleared: the caller sets its own), if any.
 CurvatureStage findCurvatureStage(const std::string& key);
 // Keeps a copy of cs (without its limits' progress callback) under key; the last few keys only.

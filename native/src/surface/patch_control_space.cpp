@@ -148,11 +148,20 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
   limits.maxNodes = o.maxControlNodes > 0 ? o.maxControlNodes : controlSpaceNodeBudget(o.mesher.maxElements);
   limits.progress = o.mesher.progress;
   const Metric fallback = Metric::isotropic(0.1 * surf.domain().size().norm());
-  // The curvature stage (below) reads only the surface, the sizing and the 3D sources: a
-  // run with the same ones (a 2D source dragged) starts from a copy of its result.
-  const std::string stageKey = curvatureStageKey(surf, sizing, sources3d, qo, o.refineThreshold, limits.maxNodes);
+  GradationOptions g;
+  g.ratio = o.gradation;
+  // The curvature stage (the surface's, then the contours' in 3D), smoothed, reads only the
+  // surface, the sizing, the 3D sources, the contour sources and the gradation: a run with
+  // the same ones (a 2D source dragged) starts from a copy of its result.
+  const std::vector<MetricSource> contour =
+      o.contourCurvature ? contourCurvatureSources(patch, sizing) : std::vector<MetricSource>{};
+  std::string stageKey =
+      curvatureStageKey(surf, sizing, sources3d, qo, o.refineThreshold, limits.maxNodes, o.gradation);
+  if (!stageKey.empty()) appendSourceBits(stageKey, contour);
   CurvatureStage stage = findCurvatureStage(stageKey);
   std::unique_ptr<AdaptiveControlSpace> cs;
+  DiscreteInsertionOptions io;
+  io.fallbackMetric = fallback;
   if (stage.space) {
     cs = std::move(stage.space);
     cs->setLimits(limits);
@@ -160,22 +169,16 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
   } else {
     const long long before = counters.curvature;
     cs = buildCurvatureStage(patch, sources3d, o, sizing, qo, limits, fallback, counters);
+    if (!contour.empty()) insertSources(*cs, contour, io);
+    if (o.gradation > 0.0) smoothGradation(*cs, g);
     storeCurvatureStage(stageKey, *cs, counters.curvature - before);
   }
-  std::vector<MetricSource> sources = patch.sources;
-  if (o.contourCurvature) {
-    const auto contour = contourCurvatureSources(patch, sizing);
-    sources.insert(sources.end(), contour.begin(), contour.end());
-  }
-  if (!sources.empty()) {
-    DiscreteInsertionOptions io;
-    io.fallbackMetric = fallback;
-    insertSources(*cs, sources, io);
-  }
-  if (o.gradation > 0.0) {
-    GradationOptions g;
-    g.ratio = o.gradation;
-    smoothGradation(*cs, g);
+  if (!patch.sources.empty()) {
+    const AdaptiveControlSpace::NodeState smooth = cs->nodeState();
+    insertSources(*cs, patch.sources, io);
+    // The stage held the bound: the 2D sources' region is smoothed again, not the whole
+    // structure (the stage's sizes limit the sources' ones as the sources' limit the stage's).
+    if (o.gradation > 0.0) resmoothGradation(*cs, cs->nodesChangedSince(smooth), g);
   }
   // Before any contour is discretized: the metric area of the patch (pulled back, so 3D
   // area over h^2) against the element budget.
@@ -186,11 +189,12 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
 void ModelMesher::flushSources() {
   for (size_t p = 0; p < ps_.size(); ++p) {
     if (pending_[p].empty()) continue;
+    const AdaptiveControlSpace::NodeState before = ps_[p].cs->nodeState();
     insertSources(*ps_[p].cs, pending_[p]);
-    if (o_.gradation > 0.0) {
+    if (o_.gradation > 0.0) {  // smooth before the sources: only their region again
       GradationOptions g;
       g.ratio = o_.gradation;
-      smoothGradation(*ps_[p].cs, g);
+      resmoothGradation(*ps_[p].cs, ps_[p].cs->nodesChangedSince(before), g);
     }
     pending_[p].clear();
     ps_[p].modified = true;

@@ -134,6 +134,17 @@ class AdaptiveControlSpace : public ControlSpace {
   // A deep copy (the minimum keeps the original field while it refines).
   virtual std::unique_ptr<AdaptiveControlSpace> clone() const = 0;
 
+  // The node values and flags at one moment (nodesChangedSince() compares against it).
+  struct NodeState {
+    std::vector<SymMt> mt;
+    std::vector<std::uint8_t> flags;
+  };
+  // A copy of the node values and flags now.
+  NodeState nodeState() const { return {mt_, flags_}; }
+  // Nodes (increasing) whose Mt bits or flags differ from `before`, and every node added
+  // since (structures only append nodes): what a later resmoothGradation() starts from.
+  std::vector<int> nodesChangedSince(const NodeState& before) const;
+
   // All nodes with their metrics and local element sizes (free nodes only: hanging ones
   // carry no information of their own). Used as discrete sources by the minimum.
   std::vector<ControlNode> controlNodes() const;

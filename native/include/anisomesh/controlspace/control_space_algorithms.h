@@ -121,6 +121,15 @@ bool limitGradation(const Metric& mi, const Vec2& pi, Metric& mj, const Vec2& pj
 // number of node updates. Throws InvalidArgument for dr < 1.
 int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options = {});
 
+// smoothGradation() of a control space that held the bound (smoothGradation() left it so)
+// until the nodes `changed` (AdaptiveControlSpace::nodesChangedSince(): values, flags, new
+// nodes) changed: the work-set starts from those nodes and their neighbours only. An edge
+// between two unchanged nodes still holds the bound, so a node the full work-set would take
+// and this one does not limits nothing: the nodes that act are taken in the same (key,
+// index) order, and the result is the one smoothGradation() gives (but where its hanging
+// node rounds hit their cap), at the cost of the changed region only.
+int resmoothGradation(AdaptiveControlSpace& cs, const std::vector<int>& changed, const GradationOptions& options = {});
+
 // The metric with the same directions and sizes clamped to [hmin, hmax].
 Metric clampMetricSizes(const Metric& m, double hmin, double hmax);
 // Clamps every free node's sizes to [hmin, hmax] (0 < hmin <= hmax, hmax may be infinite).
