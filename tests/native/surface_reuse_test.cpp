@@ -90,11 +90,12 @@ TEST(SurfaceReuse, IdentitiesTellSurfacesApart) {
             ExpressionSurface("u", "v", "u*v", Box2{{0, 0}, {1, 1}}).identity());
 }
 
-std::string p2WithSource(double x, double chordTolerance = 0.05) {
+std::string p2WithSource(double x, double chordTolerance = 0.05, double holeU = -4.0) {
   return R"({"metric": {"chordTolerance": )" + std::to_string(chordTolerance) +
          R"(, "hmin": 0.02, "hmax": 1.5, "maxAspectRatio": 6, "gradation": 2.0},
   "patches": [{"surface": {"type": "p2", "domain": [[-10, -10], [10, 10]]},
-    "holes": [[{"type": "circle", "center": [-4, 3], "radius": 1.5}]],
+    "holes": [[{"type": "circle", "center": [)" +
+         std::to_string(holeU) + R"(, 3], "radius": 1.5}]],
     "sources": [{"type": "radial", "center": [)" +
          std::to_string(x) + R"(, 0], "metric": {"alpha": 0, "h1": 0.15, "h2": 0.15}, "radius": 1.5}]}]})";
 }
@@ -135,6 +136,18 @@ TEST(SurfaceReuse, RepeatedRunsWithAMovedSourceGiveTheBitsOfFreshOnes) {
   EXPECT_GT(fine.report.curvatureEvaluations, a.report.curvatureEvaluations);
   EXPECT_GT(fine.mesh.triangles.size(), a.mesh.triangles.size());
   expectSameRun(a, run(p2WithSource(0.0)));
+}
+
+// The kept stage holds the contours' curvature: a moved hole is another stage. A run after
+// another hole's run gives what a fresh run gives (the cache emptied of that sizing by
+// runs at other sizings first), not the other hole's stage.
+TEST(SurfaceReuse, AMovedHoleIsAnotherStage) {
+  const double chord = 0.045;  // a sizing no other test uses: the first run of each key is fresh
+  (void)run(p2WithSource(0.0, chord, -4.0));
+  const SurfaceRun afterOther = run(p2WithSource(0.0, chord, -1.0));
+  for (double other : {0.044, 0.043, 0.042, 0.041, 0.040}) (void)run(p2WithSource(0.0, other, -1.0));
+  const SurfaceRun fresh = run(p2WithSource(0.0, chord, -1.0));
+  expectSameRun(afterOther, fresh);
 }
 
 }  // namespace
