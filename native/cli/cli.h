@@ -44,6 +44,13 @@ Command meshCommand();
 Command remeshCommand();
 Command metricCommand();
 
+// Starts this process again (same arguments) with glibc's malloc on transparent huge pages
+// (GLIBC_TUNABLES glibc.malloc.hugetlb=1), unless the tunable is already set or the kernel
+// offers none; returns when it does not restart.
+void restartWithHugePages(char** argv);
+// "on" when the process started with glibc.malloc.hugetlb set (not 0), else "off" (-v prints it).
+const char* hugePagesState();
+
 // A nonnegative finite number (UsageError naming option otherwise).
 double parseNumber(const std::string& option, const char* text);
 // Any finite number.

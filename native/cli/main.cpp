@@ -35,6 +35,7 @@ int usage(std::ostream& os, int code) {
 
 int main(int argc, char** argv) {
   if (argc < 2) return usage(std::cerr, 2);
+  restartWithHugePages(argv);
   const std::string cmd = argv[1];
   try {
     if (cmd == "--version") {

@@ -143,6 +143,8 @@ int runRemesh(Args& args) {
 
   setThreadCount(int(std::min<long long>(threads, 256)));
   StageLog log(verbosity >= 1);
+  if (verbosity >= 1)
+    std::fprintf(stderr, "anisomesh: %d threads, transparent huge pages %s\n", threadCount(), hugePagesState());
   log.start("read");
   Mesh in;  // .mesh, .msh, .vtk or .obj by extension; the .sol read beside it
   SolData solData;

@@ -106,6 +106,29 @@ TEST(CliPipeline, RemeshBadSolutions) {
   std::remove(out.c_str());
 }
 
+// The CLI starts itself again with glibc's malloc on transparent huge pages (where the
+// kernel offers them) unless GLIBC_TUNABLES already names the tunable; -v 1 says which.
+// The mesh is the same bytes either way.
+TEST(CliPipeline, RemeshRunsOnHugePagesUnlessTold) {
+  const std::string mesh = tmp("in.mesh"), sol = tmp("in.sol"), out = tmp("out.mesh");
+  writeFile(mesh,
+            "MeshVersionFormatted 2\nDimension 2\nVertices\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+            "Triangles\n2\n1 2 3 0\n1 3 4 0\nEnd\n");
+  writeFile(sol, "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n4\n1 1\n0.05\n0.05\n0.05\n0.02\nEnd\n");
+  std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string mode;
+  const bool offered = std::getline(thp, mode) && mode.find("[never]") == std::string::npos;
+  CliRun r = run("remesh " + mesh + " -sol " + sol + " -o " + out + " -v 1", "env -u GLIBC_TUNABLES");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find(std::string("transparent huge pages ") + (offered ? "on" : "off")), std::string::npos) << r.err;
+  const std::string onPages = slurp(out);
+  r = run("remesh " + mesh + " -sol " + sol + " -o " + out + " -v 1", "GLIBC_TUNABLES=glibc.malloc.hugetlb=0");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("transparent huge pages off"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(out), onPages);
+  EXPECT_GT(onPages.size(), 100u);
+}
+
 TEST(CliPipeline, StatsAndSvg) {
   const std::string out = tmp("dr2.svg");
   const CliRun r = run("mesh " + example("fig7_rect_holes_dr2.json") + " -o " + out + " --stats");

@@ -41,10 +41,11 @@ inline void writeFile(const std::string& path, const std::string& text) { std::o
 
 inline bool exists(const std::string& path) { return std::ifstream(path).good(); }
 
-// Runs the CLI with the given arguments, capturing exit code, stdout and stderr.
-inline CliRun run(const std::string& args) {
+// Runs the CLI with the given arguments, capturing exit code, stdout and stderr; `env`
+// goes in front of the command (e.g. "env -u NAME" or "NAME=value").
+inline CliRun run(const std::string& args, const std::string& env = "") {
   const std::string out = tmp("stdout.txt"), err = tmp("stderr.txt");
-  const std::string cmd = std::string("\"") + ANISOMESH_CLI_PATH + "\" " + args + " >\"" + out + "\" 2>\"" + err + "\"";
+  const std::string cmd = env + " \"" + ANISOMESH_CLI_PATH + "\" " + args + " >\"" + out + "\" 2>\"" + err + "\"";
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
