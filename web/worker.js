@@ -140,12 +140,14 @@ const ops = {
       core: timings,
     };
   },
-  // Builds the initial control space of every patch of a surface case and drops it: the
-  // core keeps each patch's curvature stage (native/src/surface/curvature_stage_cache.h),
-  // so this worker, a spare until a cancellation swaps it in, meshes the case without
-  // evaluating the surface's curvature again. Posted by JobRunner.warmSpare().
+  // Meshes a surface case as a drag does and drops the result: the core keeps each patch's
+  // curvature stage (native/src/surface/curvature_stage_cache.h) and the instance's memory
+  // has grown to the size of such a run, so this worker, a spare until a cancellation swaps
+  // it in, meshes the case without evaluating the surface's curvature or growing its memory
+  // again (a first run in a fresh instance took twice a warm one's time). Posted by
+  // JobRunner.warmSpare().
   warm({ case: c }) {
-    for (let patch = 0; patch < (c?.patches?.length ?? 0); patch++) am.createControlSpace(c, { patch }).dispose();
+    am.meshCase(c, { patchParams: true, measures: true, elementMeasures: false, stats: false }).dispose();
     return null;
   },
   // One iteration of the adaptation loop (the page runs them one at a time and draws each):

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -53,14 +54,26 @@ void AdaptiveControlSpace::edgeGraph(bool structure, std::vector<int>& start, st
   nbr.resize(out);
 }
 
+namespace {
+
+std::uint64_t bitsOf(double x) {
+  std::uint64_t b = 0;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+
+// Bits, not values: a NaN that stayed NaN is the same, -0 against 0 is a change.
+bool sameBits(const SymMt& x, const SymMt& y) {
+  return bitsOf(x.a) == bitsOf(y.a) && bitsOf(x.b) == bitsOf(y.b) && bitsOf(x.c) == bitsOf(y.c);
+}
+
+}  // namespace
+
 std::vector<int> AdaptiveControlSpace::nodesChangedSince(const NodeState& before) const {
   std::vector<int> out;
   const int kept = static_cast<int>(std::min(before.mt.size(), before.flags.size()));
-  for (int i = 0; i < nodeCount(); ++i) {
-    // Bits, not values: a NaN that stayed NaN is unchanged, -0 against 0 is a change.
-    if (i >= kept || flags_[i] != before.flags[i] || std::memcmp(&mt_[i], &before.mt[i], sizeof(SymMt)) != 0)
-      out.push_back(i);
-  }
+  for (int i = 0; i < nodeCount(); ++i)
+    if (i >= kept || flags_[i] != before.flags[i] || !sameBits(mt_[i], before.mt[i])) out.push_back(i);
   return out;
 }
 
