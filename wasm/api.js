@@ -358,20 +358,29 @@ export function wrapCore(core) {
       const out = unwrap(core.writeMesh(mesh, String(format)));
       return out.bytes ?? out.text;
     },
-    /** Parses mesh text ('mesh', 'vtk', 'obj', 'msh') or the bytes of a 'meshb' (a Uint8Array). */
+    /**
+     * Parses mesh text ('mesh', 'vtk', 'obj', 'msh'), as a string or as its UTF-8 bytes (a
+     * Uint8Array, e.g. a file read without decoding: no string round trip), or the bytes of
+     * a 'meshb'.
+     */
     readMesh(text, format = 'mesh') {
       if (String(format) === 'meshb') {
         if (!(text instanceof Uint8Array)) throw argError('bytes: expected a Uint8Array for the meshb format');
-      } else if (typeof text !== 'string') {
-        throw argError('text: expected a string');
+      } else if (typeof text !== 'string' && !(text instanceof Uint8Array)) {
+        throw argError('text: expected a string or its UTF-8 bytes (a Uint8Array)');
       }
       return unwrap(core.readMesh(typeof text === 'string' ? utf8(text) : text, String(format))).mesh;
     },
-    /** Parses a Medit .sol (scalar sizes or tensors) for vertexCount vertices: Float64Array m11, m12, m22 per vertex. */
+    /**
+     * Parses a Medit .sol (scalar sizes or tensors; a string or its UTF-8 bytes) for
+     * vertexCount vertices: Float64Array m11, m12, m22 per vertex.
+     */
     readSol(text, vertexCount) {
-      if (typeof text !== 'string') throw argError('text: expected a string');
+      if (typeof text !== 'string' && !(text instanceof Uint8Array)) {
+        throw argError('text: expected a string or its UTF-8 bytes (a Uint8Array)');
+      }
       if (!Number.isInteger(vertexCount) || vertexCount < 0) throw argError('vertexCount: expected a non-negative integer');
-      return unwrap(core.readSol(utf8(text), vertexCount)).metrics;
+      return unwrap(core.readSol(typeof text === 'string' ? utf8(text) : text, vertexCount)).metrics;
     },
     /** Writes per-vertex tensors (m11, m12, m22) as a Medit .sol. */
     writeSol(metrics) {

@@ -510,12 +510,12 @@ export interface Anisomesh {
   writeMesh(mesh: MeshArrays, format?: MeshFormat | 'svg'): string;
   /** The mesh as a binary Medit .meshb file. */
   writeMesh(mesh: MeshArrays, format: BinaryMeshFormat): Uint8Array;
-  /** Parses mesh text. */
-  readMesh(text: string, format?: MeshFormat): MeshArrays;
+  /** Parses mesh text, as a string or as its UTF-8 bytes (a file read without decoding). */
+  readMesh(text: string | Uint8Array, format?: MeshFormat): MeshArrays;
   /** Parses the bytes of a binary Medit .meshb file. */
   readMesh(bytes: Uint8Array, format: BinaryMeshFormat): MeshArrays;
   /** Parses a Medit .sol (scalar sizes or tensors): m11, m12, m22 per vertex. */
-  readSol(text: string, vertexCount: number): Float64Array;
+  readSol(text: string | Uint8Array, vertexCount: number): Float64Array;
   /** Writes per-vertex tensors (m11, m12, m22 each) as a Medit .sol. */
   writeSol(metrics: Float64Array): string;
   /** Evaluates an expression in u, v or in options.variables (throws PARSE_ERROR naming the column on bad input). */

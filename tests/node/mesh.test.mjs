@@ -92,6 +92,24 @@ test('Medit, VTK and OBJ round trips keep counts', () => {
   assert.match(am.writeMesh(mesh, 'svg'), /^<svg/);
 });
 
+test('text formats and .sol also read from their UTF-8 bytes (a file read without decoding)', () => {
+  const { mesh } = am.meshCase(example('point_source'));
+  const n = mesh.vertices.length / 2;
+  const utf8 = (s) => new TextEncoder().encode(s);
+  for (const format of ['mesh', 'vtk', 'obj', 'msh']) {
+    const text = am.writeMesh(mesh, format);
+    const fromBytes = am.readMesh(utf8(text), format), fromText = am.readMesh(text, format);
+    assert.deepEqual(fromBytes.vertices, fromText.vertices, format);
+    assert.deepEqual(fromBytes.triangles, fromText.triangles, format);
+  }
+  const metrics = new Float64Array(3 * n).map((_, i) => (i % 3 === 1 ? 0 : 400 + i));
+  const sol = am.writeSol(metrics);
+  assert.deepEqual(am.readSol(Buffer.from(sol), n), am.readSol(sol, n));  // a Node Buffer is a Uint8Array
+  assert.throws(() => am.readSol(utf8(sol), n + 1), { code: 'PARSE_ERROR' });
+  assert.throws(() => am.readMesh(12), { code: 'INVALID_ARGUMENT', message: /string or its UTF-8 bytes/ });
+  assert.throws(() => am.readSol([1, 2], n), { code: 'INVALID_ARGUMENT', message: /string or its UTF-8 bytes/ });
+});
+
 test('binary Medit .meshb: bytes as the native writer writes them, read back identical', () => {
   const { mesh } = am.meshCase(example('point_source'));
   const bytes = am.writeMesh(mesh, 'meshb');

@@ -2,7 +2,7 @@
 // compile against real use, and every declared field of the reports must be what the
 // functions return (same keys, same JS types), for planar, surface and remesh runs.
 import { loadAnisomesh, AnisomeshError } from 'anisomesh';
-import type { Case, PlanarCase, SurfaceCase, PlanarMeshStats, SurfaceMeshStats, MeshStats, AnisomeshErrorCode } from 'anisomesh';
+import type { Case, PlanarCase, SurfaceCase, PlanarMeshStats, SurfaceMeshStats, MeshStats, AnisomeshErrorCode, MeshArrays } from 'anisomesh';
 import { readFileSync } from 'node:fs';
 
 type Kind = 'number' | 'boolean' | 'object' | 'string';
@@ -111,6 +111,8 @@ const fromMeshb = am.readMesh(meshb, 'meshb');
 if (fromMeshb.triangles?.length !== planar.mesh.triangles?.length) problems.push('meshb: triangles differ');
 const medit: string = am.writeMesh(planar.mesh, 'mesh');
 if (typeof medit !== 'string') problems.push('mesh: not a string');
+const fromBytes: MeshArrays = am.readMesh(new TextEncoder().encode(medit));
+if (fromBytes.triangles?.length !== planar.mesh.triangles?.length) problems.push('mesh bytes: triangles differ');
 
 let code: AnisomeshErrorCode | null = null;
 try {
