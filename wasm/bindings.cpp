@@ -218,6 +218,7 @@ Mesh meshFromJs(const val& js) {
   mesh.dimension = js["dimension"].as<int>();
   const auto v = numbers<double>(js, "vertices");
   const size_t n = v.size() / mesh.dimension;
+  mesh.points.reserve(n);
   for (size_t i = 0; i < n; ++i)
     mesh.points.emplace_back(v[mesh.dimension * i], v[mesh.dimension * i + 1],
                              mesh.dimension == 3 ? v[mesh.dimension * i + 2] : 0.0);
@@ -227,12 +228,15 @@ Mesh meshFromJs(const val& js) {
   auto cells = [&](const char* key, auto& into) {
     const auto c = numbers<std::uint32_t>(js, key);
     const size_t k = std::tuple_size<typename std::decay_t<decltype(into)>::value_type>::value;
+    into.reserve(c.size() / k);
     for (size_t i = 0; i + k <= c.size(); i += k) {
       typename std::decay_t<decltype(into)>::value_type cell;
       for (size_t j = 0; j < k; ++j) {
-        require(c[i + j] < n, ErrorCode::InvalidArgument,
-                std::string(key) + ": vertex index " + std::to_string(c[i + j]) + " out of range (" +
-                    std::to_string(n) + " vertices)");
+        // The message only for the bad index: formatting it for every index took 40 % of a
+        // 1e6-triangle remesh call (3.6 s of 8.9 s under the profiler).
+        if (!(c[i + j] < n))
+          throw Error(ErrorCode::InvalidArgument, std::string(key) + ": vertex index " + std::to_string(c[i + j]) +
+                                                      " out of range (" + std::to_string(n) + " vertices)");
         cell[j] = static_cast<int>(c[i + j]);
       }
       into.push_back(cell);

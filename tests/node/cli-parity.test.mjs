@@ -80,8 +80,10 @@ function run(cli, args, folder) {
   return { status: r.status, stdout: local(r.stdout), stderr: local(r.stderr), files };
 }
 
-// Timings in text lines ("(0.03 s)", "wall 0.000 s cpu 0.000 s", "peak RSS 12.5 MiB"): masked.
-const untimedText = (text) => text.replace(/\d+(\.\d+)?(e-?\d+)? s\b/g, 'T s').replace(/\b(RSS|rss|peak) [\d.]+ MiB/g, '$1 M MiB');
+// Timings in text lines ("(0.03 s)", "wall 0.000 s cpu 0.000 s", "peak RSS 12.5 MiB") and the
+// platform's page size ("transparent huge pages on": glibc natively, never in wasm): masked.
+const untimedText = (text) => text.replace(/\d+(\.\d+)?(e-?\d+)? s\b/g, 'T s').replace(/\b(RSS|rss|peak) [\d.]+ MiB/g, '$1 M MiB')
+  .replace(/transparent huge pages (on|off)/g, 'transparent huge pages P');
 // stdout as a value, without the timings (wall clock, different on every run).
 const untimed = (v) => {
   if (Array.isArray(v)) return v.map(untimed);
