@@ -265,18 +265,38 @@ TEST(ControlSpaceMinimum, BackgroundAndCrossStructureMinimum) {
   }
 }
 
+// The sharp field on structure kind 0 (quadtree bilinear), 1 (quadtree serendipity) or 2
+// (background mesh).
+std::unique_ptr<AdaptiveControlSpace> sharpSpace(int kind, int maxLevel) {
+  std::unique_ptr<AdaptiveControlSpace> field;
+  if (kind == 1) {
+    QuadtreeOptions o;
+    o.maxLevel = maxLevel;
+    o.interpolation = QuadtreeInterpolation::Serendipity;
+    field = std::make_unique<QuadtreeControlSpace>(unitBox(), o);
+  } else {
+    field = makeSpace(kind == 0, maxLevel);
+  }
+  insertMetricFunction(*field, sharpField, insertion());
+  return field;
+}
+
+// h_j <= h_i + a_max d both ways on every side edge of the structure, hanging nodes included
+// (to the smoothing tolerance 1e-10).
+void expectGradationBound(const AdaptiveControlSpace& cs, double dr) {
+  const double amax = gradationSlope(dr);
+  for (const auto& e : cs.structureEdges()) {
+    const Vec2 u = cs.nodePosition(e[1]) - cs.nodePosition(e[0]);
+    const double hi = cs.nodeMetric(e[0]).sizeAlong(u), hj = cs.nodeMetric(e[1]).sizeAlong(u);
+    const double tol = 1e-7 * (std::max(hi, hj) + amax * u.norm());
+    ASSERT_LE(hj, hi + amax * u.norm() + tol) << dr;
+    ASSERT_LE(hi, hj + amax * u.norm() + tol) << dr;
+  }
+}
+
 TEST(ControlSpaceGradation, SizeGrowsNoFasterThanTheBoundAlongEveryEdge) {
-  for (int kind : {0, 1, 2}) {  // quadtree bilinear, quadtree serendipity, background mesh
-    std::unique_ptr<AdaptiveControlSpace> field;
-    if (kind == 1) {
-      QuadtreeOptions o;
-      o.maxLevel = 6;
-      o.interpolation = QuadtreeInterpolation::Serendipity;
-      field = std::make_unique<QuadtreeControlSpace>(unitBox(), o);
-    } else {
-      field = makeSpace(kind == 0, 6);
-    }
-    insertMetricFunction(*field, sharpField, insertion());
+  for (int kind : {0, 1, 2}) {
+    const auto field = sharpSpace(kind, 6);
     for (double dr : {1.5, 2.0, 8.0}) {
       auto cs = field->clone();
       GradationOptions g;
@@ -284,16 +304,7 @@ TEST(ControlSpaceGradation, SizeGrowsNoFasterThanTheBoundAlongEveryEdge) {
       const int updates = smoothGradation(*cs, g);
       EXPECT_GT(updates, 0);
       expectBalanced(*cs);
-      const double amax = gradationSlope(dr);
-      // Every side edge of the structure, hanging nodes included.
-      for (const auto& e : cs->structureEdges()) {
-        const Vec2 pi = cs->nodePosition(e[0]), pj = cs->nodePosition(e[1]);
-        const Vec2 u = pj - pi;
-        const double hi = cs->nodeMetric(e[0]).sizeAlong(u), hj = cs->nodeMetric(e[1]).sizeAlong(u);
-        const double tol = 1e-7 * (std::max(hi, hj) + amax * u.norm());  // smoothing tolerance 1e-10
-        ASSERT_LE(hj, hi + amax * u.norm() + tol) << dr;
-        ASSERT_LE(hi, hj + amax * u.norm() + tol) << dr;
-      }
+      expectGradationBound(*cs, dr);
       // Idempotent.
       const auto once = cs->clone();
       smoothGradation(*cs, g);
@@ -307,17 +318,8 @@ TEST(ControlSpaceGradation, SizeGrowsNoFasterThanTheBoundAlongEveryEdge) {
 // Two changes: a finer source (nodes shrink) and a coarser spot (nodes grow: their unchanged
 // neighbours must be taken again, or the bound breaks next to them).
 TEST(ControlSpaceGradation, ResmoothAfterALocalChangeGivesTheFullSmoothing) {
-  for (int kind : {0, 1, 2}) {  // quadtree bilinear, quadtree serendipity, background mesh
-    std::unique_ptr<AdaptiveControlSpace> smooth;
-    if (kind == 1) {
-      QuadtreeOptions o;
-      o.maxLevel = 7;
-      o.interpolation = QuadtreeInterpolation::Serendipity;
-      smooth = std::make_unique<QuadtreeControlSpace>(unitBox(), o);
-    } else {
-      smooth = makeSpace(kind == 0, 7);
-    }
-    insertMetricFunction(*smooth, sharpField, insertion());
+  for (int kind : {0, 1, 2}) {
+    const auto smooth = sharpSpace(kind, 7);
     GradationOptions g;
     g.ratio = 1.5;
     smoothGradation(*smooth, g);
@@ -341,14 +343,7 @@ TEST(ControlSpaceGradation, ResmoothAfterALocalChangeGivesTheFullSmoothing) {
       ASSERT_EQ(part->nodeCount(), full->nodeCount());
       for (int i = 0; i < part->nodeCount(); ++i)
         ASSERT_LT(relDiff(part->nodeMetric(i), full->nodeMetric(i)), 1e-9) << kind << change << " node " << i;
-      const double amax = gradationSlope(g.ratio);
-      for (const auto& e : part->structureEdges()) {
-        const Vec2 u = part->nodePosition(e[1]) - part->nodePosition(e[0]);
-        const double hi = part->nodeMetric(e[0]).sizeAlong(u), hj = part->nodeMetric(e[1]).sizeAlong(u);
-        const double tol = 1e-7 * (std::max(hi, hj) + amax * u.norm());
-        ASSERT_LE(hj, hi + amax * u.norm() + tol) << kind << change;
-        ASSERT_LE(hi, hj + amax * u.norm() + tol) << kind << change;
-      }
+      expectGradationBound(*part, g.ratio);
     }
     // Nothing changed: nothing to do.
     auto same = smooth->clone();
