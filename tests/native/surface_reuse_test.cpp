@@ -140,7 +140,8 @@ TEST(SurfaceReuse, RepeatedRunsWithAMovedSourceGiveTheBitsOfFreshOnes) {
 
 // The kept stage holds the contours' curvature: a moved hole is another stage. A run after
 // another hole's run gives what a fresh run gives (the cache emptied of that sizing by
-// runs at other sizings first), not the other hole's stage.
+// runs at 5 other sizings first: it keeps 4 stages, kEntries in curvature_stage_cache.cpp),
+// not the other hole's stage.
 TEST(SurfaceReuse, AMovedHoleIsAnotherStage) {
   const double chord = 0.045;  // a sizing no other test uses: the first run of each key is fresh
   (void)run(p2WithSource(0.0, chord, -4.0));

@@ -72,8 +72,9 @@ void hausdorffRounds(const Domain& domain, const RemeshOptions& options, const D
     r.chordSources += int(sources.size());
     r.updateRounds = round + 1;
     DiscreteInsertionOptions o;
-    o.source.sizeFactor = 0.25;  // as the case sources (case_control_space.cpp)
-    const AdaptiveControlSpace::NodeState before = cs.nodeState();
+    o.source.sizeFactor = 0.25;              // as the case sources (case_control_space.cpp)
+    AdaptiveControlSpace::NodeState before;  // the smooth space, when it is smoothed again below
+    if (options.hgrad > 0) before = cs.nodeState();
     insertSources(cs, sources, o);
     if (options.hmin > 0 || options.hmax > 0)
       clampSizes(cs, options.hmin > 0 ? options.hmin : std::numeric_limits<double>::min(),

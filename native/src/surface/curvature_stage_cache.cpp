@@ -61,7 +61,7 @@ void appendSourceBits(std::string& key, const std::vector<MetricSource>& sources
   key += '|';
   for (const MetricSource& source : sources) {
     const auto* s = std::get_if<SegmentSource>(&source);
-    require(s != nullptr, ErrorCode::InvalidArgument, "appendSourceBits: only segment sources have a key");
+    require(s != nullptr, ErrorCode::Internal, "appendSourceBits: only segment sources have a key");
     const SymMt m = toSymMt(s->metric);
     for (double x : {s->a.x(), s->a.y(), s->b.x(), s->b.y(), m.a, m.b, m.c, s->radius}) appendDoubleBits(key, x);
   }

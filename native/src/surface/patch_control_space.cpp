@@ -174,7 +174,8 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
     storeCurvatureStage(stageKey, *cs, counters.curvature - before);
   }
   if (!patch.sources.empty()) {
-    const AdaptiveControlSpace::NodeState smooth = cs->nodeState();
+    AdaptiveControlSpace::NodeState smooth;  // the stage, when it is smoothed again below
+    if (o.gradation > 0.0) smooth = cs->nodeState();
     insertSources(*cs, patch.sources, io);
     // The stage held the bound: the 2D sources' region is smoothed again, not the whole
     // structure (the stage's sizes limit the sources' ones as the sources' limit the stage's).
@@ -189,7 +190,8 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
 void ModelMesher::flushSources() {
   for (size_t p = 0; p < ps_.size(); ++p) {
     if (pending_[p].empty()) continue;
-    const AdaptiveControlSpace::NodeState before = ps_[p].cs->nodeState();
+    AdaptiveControlSpace::NodeState before;  // the smooth space, when it is smoothed again below
+    if (o_.gradation > 0.0) before = ps_[p].cs->nodeState();
     insertSources(*ps_[p].cs, pending_[p]);
     if (o_.gradation > 0.0) {  // smooth before the sources: only their region again
       GradationOptions g;

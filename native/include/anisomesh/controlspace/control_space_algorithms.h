@@ -126,8 +126,10 @@ int smoothGradation(AdaptiveControlSpace& cs, const GradationOptions& options = 
 // nodes) changed: the work-set starts from those nodes and their neighbours only. An edge
 // between two unchanged nodes still holds the bound, so a node the full work-set would take
 // and this one does not limits nothing: the nodes that act are taken in the same (key,
-// index) order, and the result is the one smoothGradation() gives (but where its hanging
-// node rounds hit their cap), at the cost of the changed region only.
+// index) order, and the result is the one smoothGradation() gives to its own idempotence
+// (~1e-9 relative: smoothing a smooth space again moves some nodes that much; and not where
+// its hanging-node rounds hit their cap), at the cost of the changed region only (but the
+// edge graph of the whole structure is still built).
 int resmoothGradation(AdaptiveControlSpace& cs, const std::vector<int>& changed, const GradationOptions& options = {});
 
 // The metric with the same directions and sizes clamped to [hmin, hmax].
