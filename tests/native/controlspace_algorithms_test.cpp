@@ -394,3 +394,32 @@ TEST(ControlSpaceGradation, RatioBelowOneIsRejected) {
     }
   }
 }
+
+// The edge graph is kept with the structure (and its clones) while the topology stays, and
+// follows every split: it always equals the graph of the edges listed afresh.
+TEST(ControlSpaceGraph, KeptGraphFollowsSplits) {
+  auto expectFresh = [](const AdaptiveControlSpace& cs, bool structure, const char* when) {
+    const AdaptiveControlSpace::EdgeGraph& g = cs.edgeGraph(structure);
+    ASSERT_EQ(g.start.size(), size_t(cs.nodeCount()) + 1) << when;
+    std::vector<std::array<int, 2>> listed;
+    for (int i = 0; i < cs.nodeCount(); ++i)
+      for (int k = g.start[i]; k < g.start[i + 1]; ++k)
+        if (i < g.nbr[k]) listed.push_back({i, g.nbr[k]});
+    EXPECT_EQ(listed, structure ? cs.structureEdges() : cs.controlEdges()) << when;
+  };
+  for (bool quadtree : {true, false}) {
+    auto cs = makeSpace(quadtree, 7, Metric::isotropic(0.2));
+    for (bool structure : {false, true}) expectFresh(*cs, structure, "new");
+    const AdaptiveControlSpace::EdgeGraph* kept = &cs->edgeGraph(false);
+    EXPECT_EQ(&cs->edgeGraph(false), kept);  // not rebuilt while nothing splits
+    insertSources(*cs, {RadialSource{{0.3, 0.6}, Metric::isotropic(0.01), 0.05}});
+    for (bool structure : {false, true}) expectFresh(*cs, structure, "after the source's splits");
+    auto copy = cs->clone();
+    EXPECT_EQ(&copy->edgeGraph(false), &cs->edgeGraph(false));  // a clone shares it
+    copy->refine([](const ControlElement& e) { return e.box.center().x() > 0.7 && e.size > 0.05; }, nullptr);
+    for (bool structure : {false, true}) {
+      expectFresh(*copy, structure, "clone refined");
+      expectFresh(*cs, structure, "original after its clone's splits");
+    }
+  }
+}

@@ -20,7 +20,12 @@ std::vector<std::array<int, 2>> AdaptiveControlSpace::sortedEdges(bool structure
   return edges;
 }
 
-void AdaptiveControlSpace::edgeGraph(bool structure, std::vector<int>& start, std::vector<int>& nbr) const {
+const AdaptiveControlSpace::EdgeGraph& AdaptiveControlSpace::edgeGraph(bool structure) const {
+  std::shared_ptr<const EdgeGraph>& kept = graphs_[structure ? 1 : 0];
+  if (kept) return *kept;
+  auto graph = std::make_shared<EdgeGraph>();
+  std::vector<int>& start = graph->start;
+  std::vector<int>& nbr = graph->nbr;
   const std::vector<std::array<int, 2>> edges = rawEdges(structure);
   const int n = nodeCount();
   start.assign(n + 1, 0);
@@ -52,6 +57,8 @@ void AdaptiveControlSpace::edgeGraph(bool structure, std::vector<int>& start, st
   }
   start[n] = out;
   nbr.resize(out);
+  kept = std::move(graph);
+  return *kept;
 }
 
 namespace {

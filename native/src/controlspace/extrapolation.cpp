@@ -23,8 +23,8 @@ int extrapolateMetric(AdaptiveControlSpace& cs, const Metric& fallback) {
   // (Every free node known, as after sources that reach the whole structure: nothing to
   // fill, so the edge graph, a fifth of a surface drag's gradation cost, is not built.)
   if (any && unknown) {
-    std::vector<int> start, nbr;
-    cs.edgeGraph(false, start, nbr);
+    const AdaptiveControlSpace::EdgeGraph& graph = cs.edgeGraph(false);
+    const std::vector<int>&start = graph.start, &nbr = graph.nbr;
     // Breadth-first fronts: the unknown free neighbours of the nodes known so far.
     std::vector<int> front, next;
     std::vector<char> inFront(n, 0);

@@ -155,12 +155,30 @@ inline double sizeKey(const SymMt& m) {
   return 0.5 * (m.a + m.c) + std::sqrt(half * half + m.b * m.b);
 }
 
+// Nodes a work-set pass changed: a flag per node and their list, so the rounds at hanging
+// nodes cost what they change, not the node count.
+struct ChangedNodes {
+  explicit ChangedNodes(int n) : flag(n, 0) {}
+  void add(int i) {
+    if (!flag[i]) {
+      flag[i] = 1;
+      list.push_back(i);
+    }
+  }
+  void clear() {
+    for (int i : list) flag[i] = 0;
+    list.clear();
+  }
+  std::vector<char> flag;
+  std::vector<int> list;
+};
+
 // One work-set pass over the graph (start, nbr) from `seeds` (see smoothGradation);
-// nodes it changes get changed[i] = 1. `heap` (empty, sized for the node count) is
+// nodes it changes join `changed`. `heap` (empty, sized for the node count) is
 // reused across passes: the later passes of smoothGradation() take a few nodes each, so
 // allocating and clearing a node-count heap per pass would cost more than the pass.
 int gradationWorkSet(AdaptiveControlSpace& cs, const std::vector<int>& start, const std::vector<int>& nbr,
-                     const std::vector<int>& seeds, double slope, double tolerance, std::vector<char>& changed,
+                     const std::vector<int>& seeds, double slope, double tolerance, ChangedNodes& changed,
                      NodeHeap& heap) {
   // Ordered by the node's smallest requested size (smallest first, as in Dijkstra): a
   // node is mostly final when it is taken, so few nodes are re-queued.
@@ -174,7 +192,7 @@ int gradationWorkSet(AdaptiveControlSpace& cs, const std::vector<int>& start, co
     for (int i : seeds) heap.set(i, sizeKey(cs.nodeMt(i)));
   int updates = 0;
   auto enqueue = [&](int j, const SymMt& mj) {
-    changed[j] = 1;
+    changed.add(j);
     heap.set(j, sizeKey(mj));
   };
   while (!heap.empty()) {
@@ -240,8 +258,8 @@ int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const Gra
   }
   const auto hanging =
       options.throughHangingNodes ? cs.hangingNodes() : std::vector<AdaptiveControlSpace::HangingNode>{};
-  std::vector<int> start, nbr;
-  cs.edgeGraph(!hanging.empty(), start, nbr);
+  const AdaptiveControlSpace::EdgeGraph& graph = cs.edgeGraph(!hanging.empty());
+  const std::vector<int>&start = graph.start, &nbr = graph.nbr;
   std::vector<int> seeds;
   if (only) {
     // The changed nodes and their neighbours: a node that grew (clampSizes) may now break
@@ -258,7 +276,7 @@ int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const Gra
     for (int i = 0; i < n; ++i)
       if (!hanging.empty() || cs.nodeIsFree(i)) seeds.push_back(i);
   }
-  std::vector<char> changed(n, 0);
+  ChangedNodes changed(n);
   NodeHeap heap(n);
   int updates = gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed, heap);
   if (hanging.empty()) {
@@ -298,12 +316,13 @@ int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const Gra
     // reaches free masters within the round.
     std::vector<int> dirty;
     std::vector<char> inDirty(hanging.size(), 0);
-    for (int i = 0; i < n; ++i)
-      if (changed[i] && hangingOf[i] >= 0) {
+    // (Popped largest first: the order does not depend on the list's.)
+    for (int i : changed.list)
+      if (hangingOf[i] >= 0) {
         dirty.push_back(hangingOf[i]);
         inDirty[hangingOf[i]] = 1;
       }
-    std::fill(changed.begin(), changed.end(), 0);
+    changed.clear();
     std::make_heap(dirty.begin(), dirty.end());
     std::vector<int> movedMasters;
     while (!dirty.empty()) {
@@ -334,8 +353,8 @@ int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const Gra
     // masters changed) must limit their neighbours and be limited by them once more.
     for (size_t k = 0; k < hanging.size(); ++k) before[k] = cs.nodeMt(hanging[k].node);
     cs.applyConstraints();
+    for (int i : seeds) seeded[i] = 0;  // (seeds holds every node marked)
     seeds.clear();
-    std::fill(seeded.begin(), seeded.end(), 0);
     for (size_t k = 0; k < hanging.size(); ++k) {
       const SymMt& now = cs.nodeMt(hanging[k].node);
       const SymMt& was = before[k];
@@ -367,12 +386,11 @@ int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const Gra
     updates += gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed, heap);
   }
   if (!settled) {
-    std::vector<int> fstart, fnbr;
-    cs.edgeGraph(false, fstart, fnbr);
+    const AdaptiveControlSpace::EdgeGraph& free = cs.edgeGraph(false);
     seeds.clear();
     for (int i = 0; i < n; ++i)
       if (cs.nodeIsFree(i)) seeds.push_back(i);
-    updates += gradationWorkSet(cs, fstart, fnbr, seeds, slope, tol, changed, heap);
+    updates += gradationWorkSet(cs, free.start, free.nbr, seeds, slope, tol, changed, heap);
   }
   cs.applyConstraints();
   return updates;

@@ -18,6 +18,7 @@
 #include <fast_float/fast_float.h>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/number_text.h"
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/core/types.h"
 
@@ -337,15 +338,14 @@ class TokenStream {
 };
 
 // Appends v with round-trip precision: the bytes of printf's %.17g (std::to_chars with
-// precision 17 is specified to match it; snprintf where the library lacks floating to_chars).
+// precision 17 is specified to match it; formatG17 where the library lacks floating to_chars).
 inline void appendNumber(std::string* out, double v) {
   char buf[32];
 #if defined(__cpp_lib_to_chars)
   const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 17);
   out->append(buf, size_t(r.ptr - buf));
 #else
-  const int n = std::snprintf(buf, sizeof buf, "%.17g", v);
-  out->append(buf, size_t(n));
+  out->append(buf, size_t(formatG17(v, buf)));
 #endif
 }
 

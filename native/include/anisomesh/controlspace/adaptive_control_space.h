@@ -99,7 +99,14 @@ class AdaptiveControlSpace : public ControlSpace {
   virtual std::vector<std::array<int, 2>> rawEdges(bool structure) const = 0;
   // Adjacency (CSR) of controlEdges() or structureEdges(): the neighbours of node i are
   // nbr[start[i]] .. nbr[start[i + 1] - 1], increasing (no global sort of the edges).
-  void edgeGraph(bool structure, std::vector<int>& start, std::vector<int>& nbr) const;
+  struct EdgeGraph {
+    std::vector<int> start, nbr;
+  };
+  // The graph of controlEdges() (structure false) or structureEdges() (true), built once and
+  // kept (clones share it) until the topology changes: every split adds a node, so a
+  // re-smoothing after sources that split nothing (a dragged source) does not rebuild it.
+  // Not for concurrent calls on one structure (it fills the cache).
+  const EdgeGraph& edgeGraph(bool structure) const;
   // A hanging node: Mt(node) = sum_k weights[k] Mt(masters[k]).
   struct HangingNode {
     int node;
@@ -165,8 +172,11 @@ class AdaptiveControlSpace : public ControlSpace {
   static constexpr std::uint8_t kInitialized = 1;
   static constexpr std::uint8_t kDependent = 2;
 
-  // Appends a node; returns its index.
+  // Appends a node; returns its index. (Every change of topology appends nodes: the
+  // cached edge graphs go.)
   int addNode(const Vec2& p, const SymMt& mt, bool initialized) {
+    graphs_[0].reset();
+    graphs_[1].reset();
     pos_.push_back(p);
     mt_.push_back(mt);
     flags_.push_back(initialized ? kInitialized : 0);
@@ -178,6 +188,8 @@ class AdaptiveControlSpace : public ControlSpace {
   std::vector<SymMt> mt_;
   std::vector<std::uint8_t> flags_;
   ControlSpaceLimits limits_;
+  // edgeGraph(false), edgeGraph(true) while the topology stays (immutable: clones share them).
+  mutable std::shared_ptr<const EdgeGraph> graphs_[2];
   mutable std::uint32_t ticks_ = 0;
   mutable std::int64_t lastTickNs_ = 0;
 };
