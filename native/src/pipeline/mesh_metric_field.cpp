@@ -12,12 +12,13 @@ namespace anisomesh {
 namespace {
 
 // Triangles per grid cell: coarser cells list each (thin) triangle in fewer cells, finer
-// ones test fewer triangles per query. The lists' memory only matters on large carriers:
-// 1 per cell up to 2^18 triangles, growing to 8 at 2^21 and more (the 1e6 front of
-// native/bench/remesh_throughput.mjs, a 4M-triangle carrier: 228 MiB peak instead of 340
-// with 1 per cell; its 2,000-triangle case on 80k is fastest with 1). The answers do not
-// depend on it (metricAt's search is exact).
-double trianglesPerCell(size_t triangles) { return std::min(8.0, std::max(1.0, double(triangles) / 262144.0)); }
+// ones test fewer triangles per query (the sub-cell filter refuses most of them unread).
+// The lists' memory only matters on large carriers: 1 per cell up to 2^18 triangles,
+// growing to 16 at 2^22 and more (the 1e6 front of native/bench/remesh_throughput.mjs, a
+// 4M-triangle carrier: its remesh peaks at 237.6 MiB with 16, 253 with 8, 340 with 1, for
+// the same control-space time within the noise; its 2,000-triangle case on 80k is fastest
+// with 1). The answers do not depend on it (metricAt's search is exact).
+double trianglesPerCell(size_t triangles) { return std::min(16.0, std::max(1.0, double(triangles) / 262144.0)); }
 
 // The cell index floor(t) clamped to [0, n - 1], decided in double so that NaN, infinite
 // and huge t never reach an int conversion.
