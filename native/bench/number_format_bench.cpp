@@ -35,6 +35,7 @@ void BM_SnprintfG17(benchmark::State& state) {
 }
 BENCHMARK(BM_SnprintfG17);
 
+#if defined(__cpp_lib_to_chars)  // (floating to_chars: libstdc++ 11, libc++ 14 and later)
 void BM_ToCharsG17(benchmark::State& state) {
   const auto xs = coordinates();
   char buf[32];
@@ -43,5 +44,6 @@ void BM_ToCharsG17(benchmark::State& state) {
     benchmark::DoNotOptimize(std::to_chars(buf, buf + sizeof buf, xs[i++ & 1023], std::chars_format::general, 17));
 }
 BENCHMARK(BM_ToCharsG17);
+#endif
 
 }  // namespace

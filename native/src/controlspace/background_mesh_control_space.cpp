@@ -402,7 +402,7 @@ std::vector<double> BackgroundMeshControlSpace::nodeElementSizes() const {
 
 size_t BackgroundMeshControlSpace::memoryBytes() const {
   return tri_.capacity() * sizeof(tri_[0]) + nbr_.capacity() * sizeof(nbr_[0]) + grid_.capacity() * 4 +
-         pos_.capacity() * sizeof(Vec2) + mt_.capacity() * sizeof(SymMt) + flags_.capacity();
+         pos_.capacity() * sizeof(Vec2) + mt_.capacity() * sizeof(SymMt) + flags_.capacity() + edgeGraphBytes();
 }
 
 }  // namespace anisomesh

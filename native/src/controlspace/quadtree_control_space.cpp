@@ -550,7 +550,7 @@ size_t QuadtreeControlSpace::memoryBytes() const {
   return child_.capacity() * 4 + level_.capacity() + ix_.capacity() * 4 + iy_.capacity() * 4 +
          cellNodes_.capacity() * 4 + rootGrid_.capacity() * 4 + mapKeys_.capacity() * 8 + mapVals_.capacity() * 4 +
          pos_.capacity() * sizeof(Vec2) + mt_.capacity() * sizeof(SymMt) + flags_.capacity() +
-         constraints_.capacity() * sizeof(Constraint);
+         constraints_.capacity() * sizeof(Constraint) + edgeGraphBytes();
 }
 
 }  // namespace anisomesh

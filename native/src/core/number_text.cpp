@@ -61,7 +61,7 @@ int formatG17(double v, char* buf) {
   const std::uint64_t fraction = bits & ((std::uint64_t{1} << 52) - 1);
   const double a = std::fabs(v);
   // Zero, subnormals, inf, NaN and magnitudes outside the exact range: the C library.
-  if (biased == 0 || biased == 0x7ff || !(a >= 1e-5 && a < 1e19)) return std::snprintf(buf, 32, "%.17g", v);
+  if (biased == 0 || biased == 0x7ff || !(a >= 1e-5 && a < 1e17)) return std::snprintf(buf, 32, "%.17g", v);
   const std::uint64_t m = fraction | (std::uint64_t{1} << 52);
   const int e = biased - 1075;  // v = m * 2^e
   // 17 significant digits: N = round(a * 10^p) in [10^16, 10^17), decimal exponent 16 - p.

@@ -172,6 +172,13 @@ class AdaptiveControlSpace : public ControlSpace {
   static constexpr std::uint8_t kInitialized = 1;
   static constexpr std::uint8_t kDependent = 2;
 
+  // Bytes held by the kept edge graphs (they stay with the structure: memoryBytes() counts them).
+  size_t edgeGraphBytes() const {
+    size_t bytes = 0;
+    for (const auto& g : graphs_)
+      if (g) bytes += (g->start.capacity() + g->nbr.capacity()) * sizeof(int);
+    return bytes;
+  }
   // Appends a node; returns its index. (Every change of topology appends nodes: the
   // cached edge graphs go.)
   int addNode(const Vec2& p, const SymMt& mt, bool initialized) {
