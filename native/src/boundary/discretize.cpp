@@ -60,6 +60,13 @@ struct Piece {
   int segments = 1;
 };
 
+// |c'(t)| in the metric at c(t): the integrand of the metric length.
+double metricSpeed(const Curve& c, const ControlSpace& cs, double t) {
+  Vec2 p, d;
+  c.pointAndDerivative(t, p, d);
+  return cs.metricAt(p).length(d);
+}
+
 // Parameter bounds of the smooth pieces of c: 0, its increasing breakpoints inside (0, 1), 1.
 std::vector<double> pieceBounds(const Curve& c) {
   std::vector<double> bounds{0.0};
@@ -72,12 +79,12 @@ std::vector<double> pieceBounds(const Curve& c) {
 }  // namespace
 
 double metricLength(const Curve& c, const ControlSpace& cs, double a, double b, double tolerance) {
-  return integrateAdaptive([&](double t) { return cs.metricAt(c.point(t)).length(c.derivative(t)); }, a, b, tolerance);
+  return integrateAdaptive([&](double t) { return metricSpeed(c, cs, t); }, a, b, tolerance);
 }
 
 std::vector<double> discretizeCurve(const Curve& c, const ControlSpace& cs, int minSegments,
                                     const DiscretizeOptions& options) {
-  const Integrand f = [&](double t) { return cs.metricAt(c.point(t)).length(c.derivative(t)); };
+  const Integrand f = [&](double t) { return metricSpeed(c, cs, t); };
   const std::vector<double> bounds = pieceBounds(c);
 
   std::vector<Piece> pieces;

@@ -94,6 +94,14 @@ Vec2 ArcCurve::derivative(double t) const {
   return radius_ * w * Vec2(-pm::sin(a), pm::cos(a));
 }
 
+void ArcCurve::pointAndDerivative(double t, Vec2& p, Vec2& d) const {
+  const double a = a0_ + t * (a1_ - a0_), w = a1_ - a0_;
+  double s, c;
+  pm::sincos(a, s, c);  // the bits of pm::sin(a), pm::cos(a)
+  p = center_ + radius_ * Vec2(c, s);
+  d = radius_ * w * Vec2(-s, c);
+}
+
 Vec2 ArcCurve::secondDerivative(double t) const {
   const double a = a0_ + t * (a1_ - a0_), w = a1_ - a0_;
   return -radius_ * w * w * Vec2(pm::cos(a), pm::sin(a));

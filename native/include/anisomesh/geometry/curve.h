@@ -19,6 +19,12 @@ class Curve {
   virtual Vec2 derivative(double t) const = 0;
   // Second derivative d2c/dt2 at t.
   virtual Vec2 secondDerivative(double t) const = 0;
+  // point(t) and derivative(t) at once, bit for bit (an arc shares its sine and cosine: the
+  // metric-length integrands of contour discretization ask for both at every node).
+  virtual void pointAndDerivative(double t, Vec2& p, Vec2& d) const {
+    p = point(t);
+    d = derivative(t);
+  }
   // Euclidean length (closed form where one exists, adaptive Gauss-Legendre otherwise).
   virtual double length() const;
   // Interior parameters where the curve has a corner (polyline vertices, B-spline knots
@@ -66,6 +72,7 @@ class ArcCurve : public Curve {
   static ArcCurve circle(const Vec2& center, double radius, int ref = 0);
   Vec2 point(double t) const override;
   Vec2 derivative(double t) const override;
+  void pointAndDerivative(double t, Vec2& p, Vec2& d) const override;
   Vec2 secondDerivative(double t) const override;
   double length() const override;
   const char* typeName() const override { return "arc"; }
