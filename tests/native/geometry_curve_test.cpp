@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/geometry/curve.h"
@@ -111,4 +112,23 @@ TEST(GeometryCurve, BSplineClampedInterpolatesEndsAndMatchesBezier) {
   expectConsistentDerivatives(longer);
   EXPECT_GT(longer.length(), 5.0);
   EXPECT_THROW(BSplineCurve({{0, 0}, {1, 0}, {2, 0}}), Error);
+}
+
+// pointAndDerivative(t) gives the bits of point(t) and derivative(t) (an arc shares one
+// sine/cosine pair; other curves call both): discretization may use either.
+TEST(GeometryCurve, PointAndDerivativeAreThoseOfPointAndDerivative) {
+  const ArcCurve arcs[] = {ArcCurve(Vec2(0.3, -1.2), 0.7, -2.0, 9.5), ArcCurve::circle(Vec2(1e3, 2.0), 1e-3),
+                           ArcCurve(Vec2(0, 0), 5.0, 3.0, -40.0)};
+  const LineCurve line(Vec2(0.1, 0.2), Vec2(-3.0, 4.0));
+  std::vector<const Curve*> curves{&line};
+  for (const ArcCurve& a : arcs) curves.push_back(&a);
+  for (const Curve* c : curves)
+    for (int k = 0; k <= 1000; ++k) {
+      const double t = k / 1000.0 + (k % 7) * 1e-9;
+      Vec2 p, d;
+      c->pointAndDerivative(t, p, d);
+      const Vec2 p0 = c->point(t), d0 = c->derivative(t);
+      ASSERT_TRUE(p.x() == p0.x() && p.y() == p0.y() && d.x() == d0.x() && d.y() == d0.y())
+          << c->typeName() << " at t = " << t;
+    }
 }
