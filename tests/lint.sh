@@ -27,7 +27,7 @@ tidy() {
   # Only files whose key (tests/tidy_keys.mjs: clang-tidy's version, .clang-tidy, the compile
   # command and the preprocessed text) has not passed before are checked: a whole run took
   # 5-8 minutes of the test run on the 2-core machine. ANISOMESH_TIDY_CACHE=off checks all.
-  local cache="${ANISOMESH_TIDY_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/anisomesh-clang-tidy}"
+  local cache="${ANISOMESH_TIDY_CACHE:-${XDG_CACHE_HOME:-${HOME:-/tmp}/.cache}/anisomesh-clang-tidy}"
   local files=() todo=() f k
   mapfile -t files < <(git ls-files 'native/src/*.cpp' 'native/cli/*.cpp')
   declare -A keyOf=()
