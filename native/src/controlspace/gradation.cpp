@@ -386,11 +386,11 @@ int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const Gra
     updates += gradationWorkSet(cs, start, nbr, seeds, slope, tol, changed, heap);
   }
   if (!settled) {
-    const AdaptiveControlSpace::EdgeGraph& free = cs.edgeGraph(false);
+    const AdaptiveControlSpace::EdgeGraph& freeGraph = cs.edgeGraph(false);
     seeds.clear();
     for (int i = 0; i < n; ++i)
       if (cs.nodeIsFree(i)) seeds.push_back(i);
-    updates += gradationWorkSet(cs, free.start, free.nbr, seeds, slope, tol, changed, heap);
+    updates += gradationWorkSet(cs, freeGraph.start, freeGraph.nbr, seeds, slope, tol, changed, heap);
   }
   cs.applyConstraints();
   return updates;

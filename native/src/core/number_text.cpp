@@ -1,6 +1,7 @@
 // Shortest round-trip number text for messages (see number_text.h).
 #include "anisomesh/core/number_text.h"
 
+#include <array>
 #include <cinttypes>
 #include <cmath>
 #include <cstdint>
@@ -23,11 +24,15 @@ std::string numberText(double v) {
 
 namespace {
 
-// 10^k for k in [0, 21] (exact in 70 bits).
+// 10^k for k in [0, 21] (exact in 70 bits), made once.
 unsigned __int128 pow10u128(int k) {
-  unsigned __int128 r = 1;
-  for (int i = 0; i < k; ++i) r *= 10;
-  return r;
+  static const auto table = [] {
+    std::array<unsigned __int128, 22> t{};
+    t[0] = 1;
+    for (size_t i = 1; i < t.size(); ++i) t[i] = t[i - 1] * 10;
+    return t;
+  }();
+  return table[size_t(k)];
 }
 
 // round(m * 2^e * 10^p) to nearest, ties to even, when exact in 128 bits; false otherwise.

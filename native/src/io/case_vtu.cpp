@@ -3,23 +3,18 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <utility>
 #include <vector>
 
-#include "anisomesh/core/number_text.h"
 #include "anisomesh/mesh/quality.h"
+#include "tokens.h"
 
 namespace anisomesh {
 namespace {
 
-// printf's %.17g bytes (formatG17: without printf's cost in the wasm build).
-void appendNumber(std::string* out, double v) {
-  char buf[32];
-  out->append(buf, size_t(formatG17(v, buf)));
-}
+using io_detail::appendNumber;  // the Medit writers' %.17g
 
 // A DataArray of numbers, components values per item.
 void appendArray(std::string* out, const char* type, const char* name, int components, const std::vector<double>& v) {
