@@ -150,3 +150,35 @@ TEST(ControlSpaceBackground, AdaptsToAnisotropicBoundaryLayer) {
     expectValidTriangulation(bg);
   }
 }
+
+// The refinement predicate's sample metrics (elementSampleMetric): with linear
+// interpolation taken in the element itself, the same bits as metricAt at the centroid
+// (inside one triangle only) and the same value up to rounding on the element's sides (the
+// field is continuous there); with inverse distance weights, metricAt's answer itself.
+TEST(ControlSpaceBackground, ElementSampleMetricIsTheQueryAtTheSample) {
+  for (auto interp : {BackgroundInterpolation::Linear, BackgroundInterpolation::InverseSquaredDistance}) {
+    BackgroundMeshOptions o;
+    o.interpolation = interp;
+    BackgroundMeshControlSpace bg(box(-1.0, 0.0, 1.0, 1.0), o);
+    bg.refine([&](const ControlElement& e) { return e.box.contains(Vec2(0.2, 0.4)) && e.size > 0.004; }, nullptr);
+    for (int i = 0; i < bg.nodeCount(); ++i) {
+      const Vec2 p = bg.nodePosition(i);
+      bg.setNodeMetric(i, Metric::fromSizes(3.0 * p.x() + p.y(), 0.001 + 0.05 * std::fabs(p.y() - 0.4), 1.2 + p.x()));
+    }
+    int checked = 0;
+    bg.refine(
+        [&](const ControlElement& e) {
+          for (int k = 0; k < e.sampleCount; ++k) {
+            const Mat2 a = bg.elementSampleMetric(e, k).transform(), b = bg.metricAt(e.samples[size_t(k)]).transform();
+            if (k == 0 || interp == BackgroundInterpolation::InverseSquaredDistance)
+              EXPECT_EQ(a, b) << "element " << e.id << " sample " << k;
+            else
+              EXPECT_LT((a - b).norm(), 1e-12 * b.norm()) << "element " << e.id << " sample " << k;
+            ++checked;
+          }
+          return false;
+        },
+        nullptr);
+    EXPECT_EQ(checked, 4 * bg.elementCount());
+  }
+}

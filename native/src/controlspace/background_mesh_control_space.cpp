@@ -224,7 +224,18 @@ int BackgroundMeshControlSpace::locateTriangle(const Vec2& p) const {
 
 SymMt BackgroundMeshControlSpace::mtAt(const Vec2& p) const {
   const Vec2 q = p.allFinite() ? Vec2(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) : box_.lo;
-  const int t = locateTriangle(q);
+  return mtIn(locateTriangle(q), q);
+}
+
+Metric BackgroundMeshControlSpace::elementSampleMetric(const ControlElement& e, int k) const {
+  const Vec2& p = e.samples[size_t(k)];
+  if (options_.interpolation != BackgroundInterpolation::Linear || e.id < 0 || e.id >= elementCount())
+    return metricAt(p);
+  const Vec2 q = p.allFinite() ? Vec2(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) : box_.lo;
+  return toMetric(mtIn(e.id, q));
+}
+
+SymMt BackgroundMeshControlSpace::mtIn(int t, const Vec2& q) const {
   const auto& v = tri_[t];
   double w[3];
   if (options_.interpolation == BackgroundInterpolation::Linear) {

@@ -84,7 +84,7 @@ void insertMetricFunction(AdaptiveControlSpace& cs, const MetricFunction& f,
     if (elementNodesDiffer(cs, e, options.threshold)) return true;
     if (!options.checkSamples) return false;
     for (int k = 0; k < e.sampleCount; ++k)
-      if (difference(cs.metricAt(e.samples[k]), target(e.samples[k])) > sampleThreshold) return true;
+      if (difference(cs.elementSampleMetric(e, k), target(e.samples[k])) > sampleThreshold) return true;
     return false;
   };
   // A concurrent f on a fresh structure: the predicate only reads (f, cs's queries, the

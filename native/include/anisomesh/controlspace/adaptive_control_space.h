@@ -129,6 +129,10 @@ class AdaptiveControlSpace : public ControlSpace {
   virtual void refineConcurrently(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) {
     refine(pred, onNewNodes);
   }
+  // The metric at sample k of element e (an element of this structure as refine() passes
+  // it): metricAt(e.samples[k]) by default; a structure whose field is continuous across
+  // elements answers from e itself, without locating the point.
+  virtual Metric elementSampleMetric(const ControlElement& e, int k) const { return metricAt(e.samples[size_t(k)]); }
   // Size of the smallest element touching each node.
   virtual std::vector<double> nodeElementSizes() const = 0;
   // The nodes and weights metricAt(p) interpolates Mt from (section 4.3 interpolates the

@@ -43,6 +43,10 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
   // Interpolated Mt entries at p (the allocation-free core of metricAt).
   SymMt mtAt(const Vec2& p) const;
   InterpolationStencil stencilAt(const Vec2& p) const override;
+  // Linear interpolation (continuous): interpolated in e's own triangle, which holds its
+  // samples (the centroid inside, the edge midpoints on its sides), with no walk; the other
+  // interpolation differs across edges, so it locates the point as metricAt does.
+  Metric elementSampleMetric(const ControlElement& e, int k) const override;
   // Triangle containing p (clamped onto the box), by walking.
   int locateTriangle(const Vec2& p) const;
   // True when p lies in the closed triangle t.
@@ -79,6 +83,7 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
   void refineImpl(const ElementPredicate& pred, const NewNodesCallback& onNewNodes, bool concurrent);
   ControlElement elementOf(int t) const;
   double orient(int a, int b, const Vec2& p) const;
+  SymMt mtIn(int t, const Vec2& q) const;  // Mt interpolated in triangle t at q (in the box)
 
   BackgroundMeshOptions options_;
   double minSize_ = 0.0;
