@@ -16,7 +16,8 @@
 //   triangle output on an 80k-triangle carrier).
 //   --baseline CLI: also runs another anisomesh build (e.g. the one before a change) on the
 //   same files, one thread; a CLI without -v reports the wall seconds of --stats only.
-//   Every row is also printed as JSON on stderr as soon as it is measured.
+//   Every row is also printed as JSON on stderr as soon as it is measured. With several sizes
+//   the table is followed by the time growth exponents per case and tool (CPU and wall).
 import { spawnSync } from 'node:child_process';
 import { closeSync, existsSync, mkdirSync, mkdtempSync, openSync, readFileSync, rmSync, writeSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -334,4 +335,27 @@ for (const label of [...new Set(rows.map((r) => r.label))]) {
   const parts = rows.filter((r) => r.label === label && r.tool !== 'ffbamg' && !r.note)
     .map((r) => `${r.tool}: ${(b.wall / r.wall).toFixed(1)}x wall`);
   console.log(`${label}: ffbamg ${b.wall.toFixed(2)} s; ${parts.join(', ')}`);
+}
+// Growth exponents (issue #14: <= 1.02 from 1e5 to 3e6): time ∝ triangles^k, k the
+// log-log slope between the smallest and the largest size of a case run by one tool (and
+// between consecutive sizes), for CPU and wall seconds; the mesher kernel's share follows
+// from the stage columns.
+{
+  const kindOf = (label) => label.split(' ')[0];
+  const ok = rows.filter((r) => !r.note && r.triangles !== undefined);
+  const slope = (a, b, key) => Math.log(b[key] / a[key]) / Math.log(b.triangles / a.triangles);
+  const lines = [];
+  for (const kind of [...new Set(ok.map((r) => kindOf(r.label)))])
+    for (const tool of [...new Set(ok.map((r) => r.tool))]) {
+      const runs = ok.filter((r) => kindOf(r.label) === kind && r.tool === tool).sort((a, b) => a.triangles - b.triangles);
+      if (runs.length < 2) continue;
+      const steps = runs.slice(1).map((r, i) => `${runs[i].triangles.toExponential(1)}->${r.triangles.toExponential(1)}: ${slope(runs[i], r, 'cpu').toFixed(3)}`);
+      lines.push(`${kind} ${tool}: CPU exponent ${slope(runs[0], runs.at(-1), 'cpu').toFixed(3)}, wall ${slope(runs[0], runs.at(-1), 'wall').toFixed(3)}` +
+        ` over ${runs[0].triangles.toExponential(1)}..${runs.at(-1).triangles.toExponential(1)} triangles (CPU by step: ${steps.join('; ')})`);
+    }
+  if (lines.length) {
+    console.log('');
+    console.log('time growth exponents (seconds ∝ triangles^k):');
+    for (const l of lines) console.log(l);
+  }
 }
