@@ -505,7 +505,7 @@ async function remesh() {
     return;
   }
   state.jobsStarted++;
-  const before = meshRunner.restarts;
+  const before = meshRunner.restarts, cancelsBefore = meshRunner.cancellations;
   const overlay = wantOverlay();
   state.runningVersion = version;
   // A surface mesh while a handle is held, and the one its release asks for, comes without
@@ -513,7 +513,7 @@ async function remesh() {
   // 50k-triangle run), so the mesh is drawn sooner.
   const dragging = Boolean(state.surface && (views.dragging || state.dragEndAt));
   const job = meshRunner.run('mesh', { case: state.case, surface: state.surface, overlay, dragging });
-  state.cancelled += meshRunner.restarts - before;
+  state.cancelled += meshRunner.cancellations - cancelsBefore;
   if (meshRunner.restarts > before) {
     const t0 = performance.now();
     meshRunner.ready.then(() => state.workerRestartMs.push(Math.round(performance.now() - t0)));

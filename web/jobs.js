@@ -1,10 +1,15 @@
-// Worker client: jobs with ids, progress messages, and cancellation by replacing the worker.
+// Worker client: jobs with ids, progress messages, and cancellation.
 //
-// The wasm core cannot be interrupted from JS (it is synchronous inside the worker), so a
-// job that is still running when a newer one arrives is cancelled by terminating the
-// worker. The page compiles the wasm once and posts the WebAssembly.Module to each new
-// worker, and a superseding runner keeps a spare worker instantiated ahead of time: a
-// cancellation swaps the spare in at once, so the new job does not wait for a start-up.
+// The wasm core is synchronous inside the worker, so a job still running when a newer one
+// arrives is cancelled in one of two ways:
+// - cooperatively, on a cross-origin isolated page (SharedArrayBuffer): the runner raises a
+//   flag shared with the worker, whose progress callback tells the core to stop (it throws
+//   CANCELLED within a progress step, a few ms); the worker, its instance and the core's
+//   caches (a surface's curvature stages) stay, so nothing is started or warmed again;
+// - otherwise (and for jobs without progress, such as a report) by terminating the worker.
+//   The page compiles the wasm once and posts the WebAssembly.Module to each new worker, and
+//   a superseding runner keeps a spare worker instantiated ahead of time: a cancellation
+//   swaps the spare in at once, so the new job does not wait for a start-up.
 
 const workerUrl = new URL('./worker.js', import.meta.url);
 const wasmUrl = new URL('../wasm/dist/anisomesh-core.wasm', import.meta.url);
@@ -45,7 +50,11 @@ export class JobRunner {
     this.onProgress = onProgress;
     this.pending = new Map();  // id -> { resolve, reject, op, started }
     this.nextId = 1;
-    this.restarts = 0;
+    this.restarts = 0;         // cancellations that terminated the worker
+    this.cancellations = 0;    // all cancellations (cooperative ones keep the worker)
+    this.stoppedInWorker = 0;  // cancelled jobs the core stopped (their late CANCELLED results)
+    // A flag shared with each worker: jobs with ids below its value are cancelled.
+    this.cooperative = supersede && globalThis.crossOriginIsolated === true && typeof SharedArrayBuffer === 'function';
     this.spareSwaps = 0;       // cancellations served by the spare worker (no start-up wait)
     this.lastStartMs = null;   // time from creating a worker to its 'ready' message
     this.version = null;
@@ -60,7 +69,9 @@ export class JobRunner {
   #spawn() {
     const t0 = performance.now();
     const worker = new Worker(workerUrl, { type: 'module' });
-    const slot = { worker, isReady: false, startMs: null };
+    const slot = { worker, isReady: false, startMs: null, cancelFlag: null };
+    if (this.cooperative) slot.cancelFlag = new Int32Array(new SharedArrayBuffer(4));
+    const cancelFlag = slot.cancelFlag;
     slot.ready = new Promise((resolve, reject) => {
       worker.onmessage = ({ data }) => {
         if (data.type === 'ready') {
@@ -77,11 +88,11 @@ export class JobRunner {
       worker.onerror = (e) => reject(new Error(e.message || 'worker failed to start'));
     });
     slot.ready.catch(() => {});  // reported through this.ready when the slot is in use
-    if (!this.precompiled) worker.postMessage({ type: 'init' });
+    if (!this.precompiled) worker.postMessage({ type: 'init', cancelFlag });
     else {
       compileCore().then(
-        (module) => worker.postMessage({ type: 'init', module }),
-        () => worker.postMessage({ type: 'init' }),  // no precompiled module: the worker fetches itself
+        (module) => worker.postMessage({ type: 'init', module, cancelFlag }),
+        () => worker.postMessage({ type: 'init', cancelFlag }),  // no precompiled module: the worker fetches itself
       );
     }
     return slot;
@@ -98,7 +109,10 @@ export class JobRunner {
 
   #message(data) {
     const p = this.pending.get(data.id);
-    if (!p) return;
+    if (!p) {
+      if (data.type === 'result' && !data.ok && data.error?.code === 'CANCELLED') this.stoppedInWorker++;
+      return;
+    }
     if (data.type === 'progress') {
       this.onProgress({ id: data.id, op: p.op, stage: data.stage, fraction: data.fraction ?? null, elapsedMs: performance.now() - p.started });
     } else if (data.type === 'result') {
@@ -146,9 +160,22 @@ export class JobRunner {
     return true;
   }
 
-  /** Cancels every pending job: the worker is replaced by the spare (or a fresh one). */
+  /**
+   * Cancels every pending job: cooperatively when every one reports progress (meshing) on an
+   * isolated page, else the worker is replaced by the spare (or a fresh one).
+   */
   cancelAll() {
     if (this.pending.size === 0) return;
+    this.cancellations++;
+    if (this.slot.cancelFlag && [...this.pending.values()].every((p) => p.op === 'mesh')) {
+      // The running job stops at its next progress step and the queued ones are skipped; their
+      // late messages match no pending job. The next job queues behind them in this worker.
+      Atomics.store(this.slot.cancelFlag, 0, this.nextId);
+      for (const p of this.pending.values()) p.reject(new CancelledError());
+      this.pending.clear();
+      this.#busyChanged();
+      return;
+    }
     this.worker.terminate();
     this.restarts++;
     for (const p of this.pending.values()) p.reject(new CancelledError());

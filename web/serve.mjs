@@ -37,9 +37,16 @@ async function handle(req, res) {
     const info = await stat(file);
     if (!info.isFile()) throw new Error('not a file');
     const body = await readFile(file);
+    // Cross-origin isolation (COOP + COEP): SharedArrayBuffer, which lets the page cancel a
+    // stale mesh job inside its worker instead of replacing the worker (web/jobs.js). Every
+    // resource is served from here, so require-corp blocks nothing; ?isolation=off on the
+    // page leaves it out (the page then cancels by terminating workers, as on hosts
+    // without these headers).
+    const isolate = url.searchParams.get('isolation') !== 'off';
     res.writeHead(200, {
       'Content-Type': types[extname(file)] ?? 'application/octet-stream',
       'Cache-Control': 'no-cache',
+      ...(isolate ? { 'Cross-Origin-Opener-Policy': 'same-origin', 'Cross-Origin-Embedder-Policy': 'require-corp' } : {}),
     });
     res.end(body);
   } catch {

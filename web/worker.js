@@ -1,7 +1,7 @@
 // Web Worker: all anisomesh work runs here so the page never freezes.
 //
 // Protocol (see jobs.js):
-//   in : { type: 'init', module?: WebAssembly.Module }         once, right after start
+//   in : { type: 'init', module?: WebAssembly.Module, cancelFlag?: Int32Array }  once, right after start
 //        { type: 'job', id, op, args, postedAt }
 //   out: { type: 'ready', version, initMs }
 //        { type: 'progress', id, stage, fraction }             during a job (fraction in [0, 1] or null)
@@ -9,13 +9,19 @@
 // Typed arrays in results are transferred, not copied. marks: wall-clock times
 // (performance.timeOrigin + now, comparable with the page's) of the job's steps.
 //
-// The core is synchronous, so a job cannot be interrupted from inside: the page cancels
-// a stale job by terminating this worker and starting a fresh one (cheap because the
-// page compiles the wasm once and posts the compiled WebAssembly.Module here).
+// The core is synchronous, so a job is interrupted from inside only through its progress
+// callback: on a cross-origin isolated page the page raises cancelFlag (shared memory) and
+// the mesh job's callback tells the core to stop; elsewhere the page cancels a stale job by
+// terminating this worker and starting a fresh one (cheap because the page compiles the
+// wasm once and posts the compiled WebAssembly.Module here).
 import createAnisomeshCore from '../wasm/dist/anisomesh-core.js';
 import { wrapCore } from '../wasm/api.js';
 
 let am = null;
+// Int32Array on a SharedArrayBuffer from the page (cross-origin isolated pages only): the
+// jobs with ids below its value are cancelled (see jobs.js).
+let cancelFlag = null;
+const cancelled = (id) => cancelFlag !== null && id < Atomics.load(cancelFlag, 0);
 let readyResolve;
 const ready = new Promise((r) => { readyResolve = r; });
 const queue = [];
@@ -117,7 +123,7 @@ const ops = {
         lastAt = now;
         progress(stageOf(fraction), fraction);
       }
-      return true;
+      return !cancelled(id);  // false: the core stops with CANCELLED
     };
     marks.coreStart = wallNow();
     const run = am.meshCase(c, {
@@ -226,6 +232,7 @@ async function runJob({ id, op, args, postedAt }) {
   const t0 = performance.now();
   try {
     if (!(op in ops)) throw Object.assign(new Error(`unknown operation '${op}'`), { code: 'INVALID_ARGUMENT' });
+    if (cancelled(id)) throw Object.assign(new Error('superseded by a newer job'), { code: 'CANCELLED' });
     const hooks = {
       id,
       marks,
@@ -242,6 +249,7 @@ async function runJob({ id, op, args, postedAt }) {
 
 self.onmessage = ({ data }) => {
   if (data.type === 'init') {
+    cancelFlag = data.cancelFlag ?? null;
     init(data.module).catch((e) => self.postMessage({ type: 'fatal', message: e.message }));
   } else if (data.type === 'job') {
     queue.push(data);

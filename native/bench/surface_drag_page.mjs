@@ -10,7 +10,9 @@
 // the spare's warm-up, the page's drawing). Also a plain edit of the source (no drag: a warm worker, no
 // cancellation). Prints a table of medians (no timed assertions; a measurement).
 //
-// Usage: node native/bench/surface_drag_page.mjs [--drags N] [--only small|refined]
+// Usage: node native/bench/surface_drag_page.mjs [--drags N] [--only small|refined] [--no-isolation]
+//   --no-isolation: the page without COOP / COEP (?isolation=off): stale jobs are cancelled by
+//   terminating the worker (the spare takes over) instead of inside the worker.
 import { readFileSync, readdirSync } from 'node:fs';
 import { chromium } from 'playwright-core';
 import { chromiumArgs, dragSourceOnce, openSurfaceDragPage, settle } from '../../tests/browser/launch.mjs';
@@ -20,6 +22,7 @@ import { startServer } from '../../web/serve.mjs';
 const args = process.argv.slice(2);
 const opt = (name, fallback) => (args.includes(name) ? args[args.indexOf(name) + 1] : fallback);
 const drags = Number(opt('--drags', 11));
+const pageQuery = process.argv.includes('--no-isolation') ? '?isolation=off' : '';
 const only = opt('--only', null);
 const median = (a) => (a.length ? [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)] : NaN);
 
@@ -54,7 +57,7 @@ const env = { browser, url, close: async () => { await browser.close(); await ne
 const rows = [];
 try {
   for (const [, label, edit] of cases) {
-    const { page, errors } = await openSurfaceDragPage(env.browser, env.url, edit);
+    const { page, errors } = await openSurfaceDragPage(env.browser, env.url + pageQuery, edit);
     await page.evaluate(() => new Promise((r) => setTimeout(r, 500)));  // the spare's warm-up
     // Plain edits: the source moved from the panel (one job on a warm worker).
     const plain = [];
@@ -70,12 +73,12 @@ try {
     }
     const samples = [];
     for (let rep = 0; rep < drags; rep++) {
-      const before = await page.evaluate(() => window.anisomeshApp.meshRunner.restarts);
+      const before = await page.evaluate(() => window.anisomeshApp.meshRunner.cancellations);
       const n0 = workerCpuNs();
       await dragSourceOnce(page, rep);
       const r = await page.evaluate(() => {
         const a = window.anisomeshApp, s = a.state;
-        return { total: s.dragInputToMeshMs, up: s.dragToMeshMs, b: s.breakdowns.filter((x) => x.drag).at(-1) ?? null, job: s.lastJob, restarts: a.meshRunner.restarts, tris: a.views.mesh.triangles.length / 3 };
+        return { total: s.dragInputToMeshMs, up: s.dragToMeshMs, b: s.breakdowns.filter((x) => x.drag).at(-1) ?? null, job: s.lastJob, restarts: a.meshRunner.cancellations, tris: a.views.mesh.triangles.length / 3 };
       });
       await page.evaluate(() => new Promise((res) => setTimeout(res, 300)));
       samples.push({ ...r, cancelled: r.restarts - before, cpu: (workerCpuNs() - n0) / 1e6 });

@@ -227,7 +227,10 @@ test('the state is kept in the URL and a shared link restores it', async () => {
 });
 
 test('a new job supersedes a running one (the worker is replaced) and the last input wins', async () => {
-  const { page, errors } = await openPage(env.browser, env.url);
+  // Without cross-origin isolation (as on a host that does not send COOP / COEP): the
+  // worker is terminated and the spare takes over.
+  const { page, errors } = await openPage(env.browser, env.url + '?isolation=off');
+  assert.equal(await page.evaluate(() => globalThis.crossOriginIsolated), false);
   await settle(page, () => window.anisomeshApp.loadPreset('point-source'));
   const r = await page.evaluate(async () => {
     const a = window.anisomeshApp;
@@ -259,6 +262,44 @@ test('a new job supersedes a running one (the worker is replaced) and the last i
   // ...and a new spare is ready for the next cancellation.
   assert.ok(r.spareAgain, 'a new spare worker after the cancellation');
   console.log(`# worker restart (precompiled module): ${r.restartMs.join(', ')} ms`);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('on an isolated page a superseded mesh job is stopped inside its worker, which stays, and the last input wins', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('point-source'));
+  const r = await page.evaluate(async () => {
+    const a = window.anisomeshApp;
+    const before = { cancelled: a.state.cancelled, restarts: a.meshRunner.restarts, stopped: a.meshRunner.stoppedInWorker };
+    const worker = a.meshRunner.worker;
+    // A heavy job (~80k triangles, several hundred ms in the worker), superseded as soon as it has started.
+    a.state.case.sources[0].h0 = 0.0005;
+    a.state.case.controlSpace.hmin = 0.0005;
+    a.edited(0);
+    const spinner = document.querySelector('#status .spinner');
+    while (spinner.hidden) await new Promise((res) => setTimeout(res, 5));
+    await new Promise((res) => setTimeout(res, 30));  // inside the core by now
+    a.state.case.sources[0].h0 = 0.01;
+    a.state.case.controlSpace.hmin = 0.002;
+    a.edited(0);
+    await a.whenIdle();
+    return {
+      isolated: globalThis.crossOriginIsolated, sameWorker: a.meshRunner.worker === worker,
+      cancelled: a.state.cancelled - before.cancelled, restarts: a.meshRunner.restarts - before.restarts,
+      stopped: a.meshRunner.stoppedInWorker - before.stopped, meshed: a.state.meshedVersion, version: a.state.caseVersion,
+      error: a.state.lastError, tris: a.state.lastStats.triangles,
+    };
+  });
+  assert.equal(r.isolated, true, 'the dev server sends COOP / COEP');
+  assert.equal(r.error, null);
+  assert.ok(r.cancelled >= 1, `cancelled ${r.cancelled}`);
+  // The core stopped the heavy job (its CANCELLED result came back) in the same worker.
+  assert.ok(r.stopped >= 1, `jobs stopped in the worker: ${r.stopped}`);
+  assert.equal(r.restarts, 0, 'no worker was terminated');
+  assert.ok(r.sameWorker, 'the same worker ran the last input');
+  assert.equal(r.meshed, r.version, 'the mesh on screen is the latest input');
+  assert.ok(r.tris < 20000, `the coarse (last) input is on screen: ${r.tris} triangles`);
   assert.deepEqual(errors, []);
   await page.close();
 });
