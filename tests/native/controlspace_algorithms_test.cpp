@@ -313,6 +313,46 @@ TEST(ControlSpaceGradation, SizeGrowsNoFasterThanTheBoundAlongEveryEdge) {
   }
 }
 
+// Gradation smoothing reports progress (so a superseded run, a dragged source's, stops
+// within a few ms): a callback that returns false ends it with Cancelled; one that returns
+// true is called and changes nothing.
+TEST(ControlSpaceGradation, SmoothingIsCancellable) {
+  for (int kind : {0, 1, 2}) {
+    const auto field = sharpSpace(kind, 7);
+    ASSERT_GT(field->nodeCount(), 256) << kind;
+    GradationOptions g;
+    g.ratio = 1.5;
+    auto stop = field->clone(), go = field->clone(), plain = field->clone();
+    int calls = 0;
+    ControlSpaceLimits limits;
+    limits.progress = [&](double) {
+      ++calls;
+      return false;
+    };
+    stop->setLimits(limits);
+    try {
+      smoothGradation(*stop, g);
+      ADD_FAILURE() << "not cancelled, kind " << kind;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::Cancelled) << kind;
+    }
+    EXPECT_EQ(calls, 1) << kind;
+    int goCalls = 0;
+    limits.progress = [&](double) {
+      ++goCalls;
+      return true;
+    };
+    go->setLimits(limits);
+    smoothGradation(*go, g);
+    smoothGradation(*plain, g);
+    EXPECT_GE(goCalls, 1) << kind;
+    for (int i = 0; i < go->nodeCount(); ++i) {
+      const SymMt a = go->nodeMt(i), b = plain->nodeMt(i);
+      ASSERT_TRUE(a.a == b.a && a.b == b.b && a.c == b.c) << kind << " node " << i;
+    }
+  }
+}
+
 // resmoothGradation() after a local change to a smooth space: the full smoothing's result
 // (to its idempotence tolerance), the bound on every edge, from the changed nodes only.
 // Two changes: a finer source (nodes shrink) and a coarser spot (nodes grow: their unchanged

@@ -30,7 +30,7 @@ void AdaptiveControlSpace::refinementTick() const {
   if (!limits_.progress || (++ticks_ & 255u) != 0) return;
   const std::int64_t now =
       std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
-  if (lastTickNs_ != 0 && now - lastTickNs_ < 50000000) return;
+  if (lastTickNs_ != 0 && now - lastTickNs_ < 5000000) return;
   lastTickNs_ = now;
   require(limits_.progress(0.0), ErrorCode::Cancelled, "control-space construction cancelled");
 }

@@ -75,6 +75,7 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
   std::vector<SymMt> sum(slots, SymMt{0.0, 0.0, 0.0});
   std::vector<double> wsum(slots, 0.0);
   for (const SourcePiece& p : pieces) {
+    cs.refinementTick();  // cancellable between pieces
     const double reach = std::max(p.targetSize, minSize);
     const double soft = 0.25 * reach;
     const double limit = p.radius + reach;
@@ -101,6 +102,7 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
     }
   }
   for (size_t k = 0; k < slots; ++k) {
+    cs.refinementTick();
     if (wsum[k] <= 0.0) continue;
     const int i = freeNodes[slotItem[k]];
     const SymMt avg{sum[k].a / wsum[k], sum[k].b / wsum[k], sum[k].c / wsum[k]};

@@ -196,6 +196,7 @@ int gradationWorkSet(AdaptiveControlSpace& cs, const std::vector<int>& start, co
     heap.set(j, sizeKey(mj));
   };
   while (!heap.empty()) {
+    cs.refinementTick();  // cancellable: a drag's stale run stops within a few ms
     const int i = heap.pop();
     // The walk goes in size order, so node i and its neighbours lie anywhere in memory:
     // request their data (and the next candidate's adjacency) together instead of

@@ -53,7 +53,8 @@ struct ControlSpaceLimits {
   // Node budget: refine() estimates each batch of splits first and throws
   // ElementBudgetExceeded (naming the estimate) when it would pass this many nodes.
   std::int64_t maxNodes = 6315000;  // standalone structures; pipelines set controlSpaceNodeBudget()
-  // Called with 0 at least every ~50 ms of refinement work; returning false throws Cancelled.
+  // Called with 0 about every 5 ms of refinement, smoothing or source insertion work (at most
+  // every 256 steps); returning false throws Cancelled.
   std::function<bool(double)> progress;
 };
 
@@ -165,8 +166,8 @@ class AdaptiveControlSpace : public ControlSpace {
   // Throws ElementBudgetExceeded when splits more splits, each adding about nodesPerSplit
   // nodes, would take the node count past limits().maxNodes (estimated before the work).
   void checkRefinementEstimate(std::int64_t splits, double nodesPerSplit) const;
-  // Reports progress every ~50 ms (cheap to call per element); throws Cancelled when the
-  // callback returns false.
+  // Reports progress about every 5 ms (cheap to call per element or node: a counter, then a
+  // clock read every 256 calls); throws Cancelled when the callback returns false.
   void refinementTick() const;
 
  private:
