@@ -226,32 +226,39 @@ test('the state is kept in the URL and a shared link restores it', async () => {
   await page2.close();
 });
 
+// Runs in the page: a heavy job (~80k triangles, several hundred ms in the worker) on the
+// point-source preset, superseded once the worker has started it (after `waitMs` more) by a
+// coarse input; resolves when the app is idle again.
+async function supersedeHeavyJob(waitMs) {
+  const a = window.anisomeshApp;
+  a.state.case.sources[0].h0 = 0.0005;
+  a.state.case.controlSpace.hmin = 0.0005;
+  a.edited(0);
+  const spinner = document.querySelector('#status .spinner');
+  while (spinner.hidden) await new Promise((res) => setTimeout(res, 5));
+  await new Promise((res) => setTimeout(res, waitMs));
+  a.state.case.sources[0].h0 = 0.01;
+  a.state.case.controlSpace.hmin = 0.002;
+  a.edited(0);
+  await a.whenIdle();
+}
+
 test('a new job supersedes a running one (the worker is replaced) and the last input wins', async () => {
   // Without cross-origin isolation (as on a host that does not send COOP / COEP): the
   // worker is terminated and the spare takes over.
   const { page, errors } = await openPage(env.browser, env.url + '?isolation=off');
   assert.equal(await page.evaluate(() => globalThis.crossOriginIsolated), false);
   await settle(page, () => window.anisomeshApp.loadPreset('point-source'));
-  const r = await page.evaluate(async () => {
+  const cancelledBefore = await page.evaluate(() => window.anisomeshApp.state.cancelled);
+  await page.evaluate(supersedeHeavyJob, 0);
+  const r = await page.evaluate(async (cancelledBefore) => {
     const a = window.anisomeshApp;
-    const cancelledBefore = a.state.cancelled;
-    // A heavy job (~80k triangles, several hundred ms in the worker)...
-    a.state.case.sources[0].h0 = 0.0005;
-    a.state.case.controlSpace.hmin = 0.0005;
-    a.edited(0);
-    // ...superseded as soon as the worker has started it.
-    const spinner = document.querySelector('#status .spinner');
-    while (spinner.hidden) await new Promise((res) => setTimeout(res, 5));
-    a.state.case.sources[0].h0 = 0.01;
-    a.state.case.controlSpace.hmin = 0.002;
-    a.edited(0);
-    await a.whenIdle();
     // The cancellation's replacement spare starts once the runner is idle (a task later).
     const t0 = performance.now();
     while (!a.meshRunner.spare && performance.now() - t0 < 5000) await new Promise((res) => setTimeout(res, 10));
     await a.meshRunner.spare?.ready;
     return { spareAgain: Boolean(a.meshRunner.spare?.isReady), spareSwaps: a.meshRunner.spareSwaps, cancelled: a.state.cancelled - cancelledBefore, meshed: a.state.meshedVersion, version: a.state.caseVersion, restartMs: a.state.workerRestartMs, error: a.state.lastError, tris: a.state.lastStats.triangles };
-  });
+  }, cancelledBefore);
   assert.equal(r.error, null);
   assert.ok(r.cancelled >= 1, `cancelled ${r.cancelled}`);
   assert.equal(r.meshed, r.version, 'the mesh on screen is the latest input');
@@ -269,21 +276,13 @@ test('a new job supersedes a running one (the worker is replaced) and the last i
 test('on an isolated page a superseded mesh job is stopped inside its worker, which stays, and the last input wins', async () => {
   const { page, errors } = await openPage(env.browser, env.url);
   await settle(page, () => window.anisomeshApp.loadPreset('point-source'));
-  const r = await page.evaluate(async () => {
+  await page.evaluate(() => {
     const a = window.anisomeshApp;
-    const before = { cancelled: a.state.cancelled, restarts: a.meshRunner.restarts, stopped: a.meshRunner.stoppedInWorker };
-    const worker = a.meshRunner.worker;
-    // A heavy job (~80k triangles, several hundred ms in the worker), superseded as soon as it has started.
-    a.state.case.sources[0].h0 = 0.0005;
-    a.state.case.controlSpace.hmin = 0.0005;
-    a.edited(0);
-    const spinner = document.querySelector('#status .spinner');
-    while (spinner.hidden) await new Promise((res) => setTimeout(res, 5));
-    await new Promise((res) => setTimeout(res, 30));  // inside the core by now
-    a.state.case.sources[0].h0 = 0.01;
-    a.state.case.controlSpace.hmin = 0.002;
-    a.edited(0);
-    await a.whenIdle();
+    window.before = { cancelled: a.state.cancelled, restarts: a.meshRunner.restarts, stopped: a.meshRunner.stoppedInWorker, worker: a.meshRunner.worker };
+  });
+  await page.evaluate(supersedeHeavyJob, 30);  // superseded inside the core
+  const r = await page.evaluate(() => {
+    const a = window.anisomeshApp, before = window.before, worker = before.worker;
     return {
       isolated: globalThis.crossOriginIsolated, sameWorker: a.meshRunner.worker === worker,
       cancelled: a.state.cancelled - before.cancelled, restarts: a.meshRunner.restarts - before.restarts,
