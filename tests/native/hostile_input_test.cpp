@@ -14,11 +14,14 @@
 #include <fstream>
 #include <limits>
 #include <new>
+#include <string>
+#include <vector>
 
 #include "anisomesh/boundary/discretize.h"
 #include "anisomesh/controlspace/background_mesh_control_space.h"
 #include "anisomesh/controlspace/quadtree_control_space.h"
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/parallel.h"
 #include "anisomesh/geometry/curve.h"
 #include "anisomesh/geometry/domain.h"
 #include "anisomesh/io/file_io.h"
@@ -215,6 +218,33 @@ TEST(FileLimits, DevicesDirectoriesAndLargeFilesAreRefusedUpFront) {
   EXPECT_EQ(codeOf([&] { readTextFile(path); }), ErrorCode::IoError);
   setDefaultMaxInputBytes(before);
   EXPECT_EQ(readTextFile(path).size(), 100u);
+  std::remove(path.c_str());
+}
+
+// Outputs are written in slices of at most 1 MiB at their offsets, in parallel chunks: the
+// file holds the pieces in order, whole, for any thread count (pieces of every size: empty,
+// small, across slice boundaries, several slices long; and one large string).
+TEST(FileLimits, LargeOutputsAreWrittenWholeAndInOrderOnAnyThreadCount) {
+  const std::string path = ::testing::TempDir() + "anisomesh_large_write.txt";
+  std::vector<std::string> pieces;
+  std::string joined;
+  unsigned x = 12345u;
+  for (size_t size : {size_t(0), size_t(7), size_t(1) << 20, (size_t(1) << 20) + 3, size_t(3) << 20, size_t(999),
+                      (size_t(5) << 20) / 2}) {
+    std::string p(size, ' ');
+    for (char& c : p) c = char('a' + (x = x * 1103515245u + 12345u) % 26);
+    joined += p;
+    pieces.push_back(std::move(p));
+  }
+  const int threadsBefore = threadCount();
+  for (int threads : {1, 2, 4}) {
+    setThreadCount(threads);
+    writeTextFileAtomic(path, pieces);
+    EXPECT_EQ(readTextFile(path), joined) << threads << " threads, pieces";
+    writeTextFileAtomic(path, joined);
+    EXPECT_EQ(readTextFile(path), joined) << threads << " threads, one string";
+  }
+  setThreadCount(threadsBefore);
   std::remove(path.c_str());
 }
 

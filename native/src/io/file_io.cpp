@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -18,6 +20,7 @@
 #include <unistd.h>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/parallel.h"
 
 namespace anisomesh {
 namespace {
@@ -155,11 +158,14 @@ int removeStaleTemporaries(const std::string& path) {
   return removed;
 }
 
-void writeTextFileAtomic(const std::string& path, const std::string& contents) {
-  writeTextFileAtomic(path, std::vector<std::string>{contents});
-}
+namespace {
 
-void writeTextFileAtomic(const std::string& path, const std::vector<std::string>& pieces) {
+// Bytes at most per pwrite: the slices are written in parallel chunks, so the kernel's copy
+// into the page cache (half of a 1e6-triangle output's write time here) runs on every thread.
+constexpr size_t kWriteSlice = size_t(1) << 20;
+
+// The text [data, data + size) of each view, one after another, to path (see writeTextFileAtomic).
+void writeViewsAtomic(const std::string& path, const std::vector<std::pair<const char*, size_t>>& views) {
   require(!path.empty(), ErrorCode::IoError, "empty output path");
   removeStaleTemporaries(path);
   // A unique sibling name, so the rename stays on one file system; the process id first,
@@ -168,12 +174,38 @@ void writeTextFileAtomic(const std::string& path, const std::vector<std::string>
   const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
   const std::string tmp =
       path + ".tmp-" + std::to_string(long(getpid())) + "-" + std::to_string(rd()) + "-" + std::to_string(stamp);
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  require(f != nullptr, ErrorCode::IoError,
-          "cannot create '" + tmp + "' to write '" + path + "': " + std::strerror(errno));
-  bool written = true;
-  for (const std::string& p : pieces) written = written && std::fwrite(p.data(), 1, p.size(), f) == p.size();
-  const bool closed = std::fclose(f) == 0;
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  require(fd >= 0, ErrorCode::IoError, "cannot create '" + tmp + "' to write '" + path + "': " + std::strerror(errno));
+  // Slices of at most kWriteSlice bytes at their file offsets, written in parallel chunks.
+  struct Slice {
+    const char* data;
+    size_t size;
+    off_t offset;
+  };
+  std::vector<Slice> slices;
+  off_t offset = 0;
+  for (const auto& [data, size] : views)
+    for (size_t at = 0; at < size; at += kWriteSlice) {
+      const size_t n = std::min(kWriteSlice, size - at);
+      slices.push_back({data + at, n, offset});
+      offset += off_t(n);
+    }
+  std::atomic<bool> written{true};
+  parallelChunks(slices.size(), 1, [&](size_t, size_t b, size_t e) {
+    for (size_t k = b; k < e && written.load(std::memory_order_relaxed); ++k) {
+      const Slice& sl = slices[k];
+      for (size_t done = 0; done < sl.size;) {
+        const ssize_t w = ::pwrite(fd, sl.data + done, sl.size - done, sl.offset + off_t(done));
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) {
+          written = false;
+          return;
+        }
+        done += size_t(w);
+      }
+    }
+  });
+  const bool closed = ::close(fd) == 0;
   if (!written || !closed) {
     std::remove(tmp.c_str());
     throw Error(ErrorCode::IoError, "cannot write '" + path + "' (disk full or I/O error)");
@@ -183,6 +215,19 @@ void writeTextFileAtomic(const std::string& path, const std::vector<std::string>
     std::remove(tmp.c_str());
     throw Error(ErrorCode::IoError, "cannot move the output into '" + path + "': " + why);
   }
+}
+
+}  // namespace
+
+void writeTextFileAtomic(const std::string& path, const std::string& contents) {
+  writeViewsAtomic(path, {{contents.data(), contents.size()}});
+}
+
+void writeTextFileAtomic(const std::string& path, const std::vector<std::string>& pieces) {
+  std::vector<std::pair<const char*, size_t>> views;
+  views.reserve(pieces.size());
+  for (const std::string& p : pieces) views.emplace_back(p.data(), p.size());
+  writeViewsAtomic(path, views);
 }
 
 std::string fileExtension(const std::string& path) {
