@@ -78,10 +78,10 @@ try {
       await dragSourceOnce(page, rep);
       const r = await page.evaluate(() => {
         const a = window.anisomeshApp, s = a.state;
-        return { total: s.dragInputToMeshMs, up: s.dragToMeshMs, b: s.breakdowns.filter((x) => x.drag).at(-1) ?? null, job: s.lastJob, restarts: a.meshRunner.cancellations, tris: a.views.mesh.triangles.length / 3 };
+        return { total: s.dragInputToMeshMs, up: s.dragToMeshMs, b: s.breakdowns.filter((x) => x.drag).at(-1) ?? null, job: s.lastJob, cancellations: a.meshRunner.cancellations, tris: a.views.mesh.triangles.length / 3 };
       });
       await page.evaluate(() => new Promise((res) => setTimeout(res, 300)));
-      samples.push({ ...r, cancelled: r.restarts - before, cpu: (workerCpuNs() - n0) / 1e6 });
+      samples.push({ ...r, cancelled: r.cancellations - before, cpu: (workerCpuNs() - n0) / 1e6 });
     }
     if (errors.length) console.log('page errors:', errors);
     rows.push({ label, plain, samples });

@@ -278,11 +278,11 @@ test('on an isolated page a superseded mesh job is stopped inside its worker, wh
   await settle(page, () => window.anisomeshApp.loadPreset('point-source'));
   await page.evaluate(() => {
     const a = window.anisomeshApp;
-    window.before = { cancelled: a.state.cancelled, restarts: a.meshRunner.restarts, stopped: a.meshRunner.stoppedInWorker, worker: a.meshRunner.worker };
+    window.beforeSupersede = { cancelled: a.state.cancelled, restarts: a.meshRunner.restarts, stopped: a.meshRunner.stoppedInWorker, worker: a.meshRunner.worker };
   });
   await page.evaluate(supersedeHeavyJob, 30);  // superseded inside the core
   const r = await page.evaluate(() => {
-    const a = window.anisomeshApp, before = window.before, worker = before.worker;
+    const a = window.anisomeshApp, before = window.beforeSupersede, worker = before.worker;
     return {
       isolated: globalThis.crossOriginIsolated, sameWorker: a.meshRunner.worker === worker,
       cancelled: a.state.cancelled - before.cancelled, restarts: a.meshRunner.restarts - before.restarts,

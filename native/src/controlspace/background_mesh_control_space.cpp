@@ -61,6 +61,10 @@ BackgroundMeshControlSpace::BackgroundMeshControlSpace(const Box2& box, const Ba
   rebuildLocator();
 }
 
+Vec2 BackgroundMeshControlSpace::clampedToBox(const Vec2& p) const {
+  return p.allFinite() ? Vec2(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) : box_.lo;
+}
+
 double BackgroundMeshControlSpace::orient(int a, int b, const Vec2& p) const {
   const Vec2& pa = pos_[a];
   const Vec2& pb = pos_[b];
@@ -197,7 +201,7 @@ int BackgroundMeshControlSpace::locateTriangle(const Vec2& p) const {
   // Stale only inside refine() (exclusive access): the first query of a batch rebuilds
   // the grid exactly as an eager rebuild after the batch would have.
   if (locatorStale_) const_cast<BackgroundMeshControlSpace*>(this)->rebuildLocator();
-  const Vec2 q = p.allFinite() ? Vec2(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) : box_.lo;
+  const Vec2 q = clampedToBox(p);
   const int gi = std::clamp(static_cast<int>((q.x() - box_.lo.x()) * gridInv_.x()), 0, gridSide_ - 1);
   const int gj = std::clamp(static_cast<int>((q.y() - box_.lo.y()) * gridInv_.y()), 0, gridSide_ - 1);
   int t = grid_[static_cast<size_t>(gj) * gridSide_ + gi];
@@ -223,7 +227,7 @@ int BackgroundMeshControlSpace::locateTriangle(const Vec2& p) const {
 }
 
 SymMt BackgroundMeshControlSpace::mtAt(const Vec2& p) const {
-  const Vec2 q = p.allFinite() ? Vec2(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) : box_.lo;
+  const Vec2 q = clampedToBox(p);
   return mtIn(locateTriangle(q), q);
 }
 
@@ -231,7 +235,7 @@ Metric BackgroundMeshControlSpace::elementSampleMetric(const ControlElement& e, 
   const Vec2& p = e.samples[size_t(k)];
   if (options_.interpolation != BackgroundInterpolation::Linear || e.id < 0 || e.id >= elementCount())
     return metricAt(p);
-  const Vec2 q = p.allFinite() ? Vec2(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) : box_.lo;
+  const Vec2 q = clampedToBox(p);
   return toMetric(mtIn(e.id, q));
 }
 
@@ -269,7 +273,7 @@ SymMt BackgroundMeshControlSpace::mtIn(int t, const Vec2& q) const {
 }
 
 InterpolationStencil BackgroundMeshControlSpace::stencilAt(const Vec2& p) const {
-  const Vec2 q = p.allFinite() ? Vec2(p.cwiseMax(box_.lo).cwiseMin(box_.hi)) : box_.lo;
+  const Vec2 q = clampedToBox(p);
   const auto& v = tri_[locateTriangle(q)];
   InterpolationStencil s;
   s.count = 3;

@@ -84,6 +84,7 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
   ControlElement elementOf(int t) const;
   double orient(int a, int b, const Vec2& p) const;
   SymMt mtIn(int t, const Vec2& q) const;  // Mt interpolated in triangle t at q (in the box)
+  Vec2 clampedToBox(const Vec2& p) const;  // p clamped onto the box; a non-finite p: its corner
 
   BackgroundMeshOptions options_;
   double minSize_ = 0.0;
