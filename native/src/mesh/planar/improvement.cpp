@@ -28,8 +28,11 @@ void Mesher::improve() {
   };
   // Triangles whose edges changed since the last length scan (collapse/split candidates).
   std::vector<int> scan, changed;
-  auto swaps = [&](int sweeps) {
-    for (int k = 0; k < sweeps && !work.empty(); ++k) {
+  // Sweeps until no swap is left (each sweep visits only the triangles the last one flipped,
+  // so the cost follows the swaps made): a chain of improving swaps cut short leaves its
+  // slivers for good, since later passes revisit only what they changed.
+  auto swaps = [&] {
+    for (int k = 0; k < kMaxSwapSweeps && !work.empty(); ++k) {
       next.clear();
       swapSweep(work, next);
       changed.insert(changed.end(), next.begin(), next.end());
@@ -40,13 +43,13 @@ void Mesher::improve() {
   // Adaptation loop: swaps, collapse of short edges and split of long ones, swaps, smoothing;
   // the first pass looks at every edge, the later ones at the edges that changed.
   for (int pass = 0; pass < opt_.improvementPasses; ++pass) {
-    swaps(6);
+    swaps();
     work.clear();
     const std::vector<int>* list = pass == 0 ? nullptr : &scan;
     const int resized = lengthPass(list, work);
     dedupe(work);
     changed.insert(changed.end(), work.begin(), work.end());
-    swaps(6);
+    swaps();
     work.clear();
     const int moved = smoothPass(work);
     // The ball triangles of moved vertices are reconsidered for swaps (the vertex metric
@@ -60,7 +63,7 @@ void Mesher::improve() {
     checkProgress(0.8 + 0.15 * (pass + 1) / opt_.improvementPasses);
     if (resized == 0 && moved == 0) break;  // converged
   }
-  if (opt_.improvementPasses > 0) swaps(6);
+  if (opt_.improvementPasses > 0) swaps();
   // Final short-edge rounds, each followed by swaps and a smoothing of the changed balls;
   // the first round scans every edge, the next ones the edges that changed.
   for (int round = 0; round < kFinalCollapseRounds && opt_.improvementPasses > 0; ++round) {
@@ -70,13 +73,13 @@ void Mesher::improve() {
     if (collapsed == 0) break;
     dedupe(work);
     changed.insert(changed.end(), work.begin(), work.end());
-    swaps(6);
+    swaps();
     work.clear();
     smoothPass(work);
     dedupe(work);
     for (const int t : work) tq_[t] = triQuality(tri_[t].v[0], tri_[t].v[1], tri_[t].v[2]);
     changed.insert(changed.end(), work.begin(), work.end());
-    swaps(6);
+    swaps();
     scan.swap(changed);
     dedupe(scan);
   }
