@@ -13,19 +13,7 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
   if (vbnd_[a]) return false;
   std::vector<int>& ball = colBall_;
   std::vector<int>& ring = colRing_;
-  ball.clear();
-  ring.clear();
-  const int t0 = vtri_[a];
-  int t = t0;
-  for (int guard = 0; guard < 1000; ++guard) {
-    const auto& tv = tri_[t].v;
-    const int i = tv[0] == a ? 0 : (tv[1] == a ? 1 : 2);
-    ball.push_back(t);
-    ring.push_back(tv[next3(i)]);
-    t = tri_[t].n[next3(i)];
-    if (t < 0 || t == t0) break;
-  }
-  if (t != t0) return false;
+  if (!closedBall(a, ball, ring)) return false;
   const int deg = static_cast<int>(ring.size());
   if (deg < 4) return false;
   int kb = -1;

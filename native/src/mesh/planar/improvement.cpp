@@ -83,6 +83,13 @@ void Mesher::improve() {
     scan.swap(changed);
     dedupe(scan);
   }
+  // The worst triangles left: their free vertices searched for a better place.
+  for (int round = 0; round < kPolishRounds && opt_.improvementPasses > 0; ++round) {
+    work.clear();
+    if (polishPass(work) == 0) break;
+    dedupe(work);
+    swaps();
+  }
 }
 
 }  // namespace planar

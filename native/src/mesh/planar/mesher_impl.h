@@ -60,6 +60,16 @@ constexpr double kSmoothMinGain = 0.005;              // smaller gains of the wo
 // 1/sqrt2, as the vertex-averaged Mt overestimates the length integral in a graded metric.
 constexpr double kSmoothMinLength = 0.715;
 
+// Polishing (polish.cpp): vertices of triangles below kPolishQuality after the adaptation
+// loop get a compass search in metric space, steps from kPolishFirstStep down to
+// kPolishLastStep metric units, for kPolishRounds rounds (each followed by swaps).
+constexpr double kPolishQuality = 0.8;
+constexpr double kPolishFirstStep = 0.25;
+constexpr double kPolishLastStep = 1.0 / 64.0;
+constexpr int kPolishRounds = 2;
+constexpr double kPolishMinLength = 0.74, kPolishMaxLength = 1.36;
+constexpr double kPolishSumSlack = 0.01;
+
 // Swap sweeps per call, a bound only: chains along a boundary that crosses a stretched layer
 // obliquely took 11 to 18 sweeps (6 left fans of slivers, min Q 0.02).
 constexpr int kMaxSwapSweeps = 256;
@@ -117,6 +127,9 @@ class Mesher {
 
   // ---- triangle storage ----
   int allocTri();
+  // The triangles around v counter-clockwise and, for each, its vertex after v; false when
+  // v's ball is open (a boundary vertex) or longer than 1000 triangles.
+  bool closedBall(int v, std::vector<int>& tris, std::vector<int>& ring) const;
   void setNbrAcross(int tri, int a, int b, int newNbr);  // in tri, edge (b, a) now borders newNbr
   bool cons(int t, int i) const { return (tri_[t].c >> i) & 1; }
   int findEdge(int a, int b, int* idx) const;  // triangle holding directed edge a->b, opposite index
@@ -141,6 +154,7 @@ class Mesher {
   void improve();
   int swapSweep(const std::vector<int>& work, std::vector<int>& next);
   int smoothPass(std::vector<int>& touched);
+  int polishPass(std::vector<int>& touched);
   template <class EdgeOp>
   int scanEdges(const std::vector<int>* list, EdgeOp&& op);
   int lengthPass(const std::vector<int>* list, std::vector<int>& touched);

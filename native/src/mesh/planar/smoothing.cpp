@@ -14,19 +14,7 @@ int Mesher::smoothPass(std::vector<int>& touched) {
   for (int v = kSuper; v < nv; ++v) {
     tickProgress();
     if (vbnd_[v] || !vdirty_[v]) continue;  // clean: nothing around it changed since its last visit
-    ring.clear();
-    ballTri.clear();
-    const int t0 = vtri_[v];
-    int t = t0;
-    for (int guard = 0; guard < 1000; ++guard) {
-      const auto& tv = tri_[t].v;
-      const int i = tv[0] == v ? 0 : (tv[1] == v ? 1 : 2);
-      ballTri.push_back(t);
-      ring.push_back(tv[next3(i)]);
-      t = tri_[t].n[next3(i)];
-      if (t < 0 || t == t0) break;
-    }
-    if (t != t0) continue;
+    if (!closedBall(v, ballTri, ring)) continue;
     double before = std::numeric_limits<double>::infinity();
     for (const int bt : ballTri) before = std::min(before, tq_[bt]);
     vdirty_[v] = 0;

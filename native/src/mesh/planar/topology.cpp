@@ -40,6 +40,22 @@ void Mesher::checkProgress(double fraction) {
     throw Error(ErrorCode::Cancelled, "meshPlanarBoundary: cancelled by the progress callback");
 }
 
+bool Mesher::closedBall(int v, std::vector<int>& tris, std::vector<int>& ring) const {
+  tris.clear();
+  ring.clear();
+  const int t0 = vtri_[v];
+  int t = t0;
+  for (int guard = 0; guard < 1000; ++guard) {
+    const auto& tv = tri_[t].v;
+    const int i = tv[0] == v ? 0 : (tv[1] == v ? 1 : 2);
+    tris.push_back(t);
+    ring.push_back(tv[next3(i)]);
+    t = tri_[t].n[next3(i)];
+    if (t < 0 || t == t0) break;
+  }
+  return t == t0;
+}
+
 int Mesher::allocTri() {
   if (!freeTris_.empty()) {
     const int t = freeTris_.back();

@@ -1,0 +1,134 @@
+// Planar mesher: the worst triangles polished by a pattern search on their free vertices.
+#include "mesher_impl.h"
+
+namespace anisomesh {
+namespace planar {
+
+namespace {
+
+// Eight unit directions (metric space), every 45 degrees.
+constexpr double kDiag = 0.70710678118654752;
+constexpr double kDirs[8][2] = {{1, 0},  {kDiag, kDiag},   {0, 1},  {-kDiag, kDiag},
+                                {-1, 0}, {-kDiag, -kDiag}, {0, -1}, {kDiag, -kDiag}};
+
+}  // namespace
+
+// The smoothing pass tries four fixed candidates per vertex; a free vertex of a triangle
+// still below kPolishQuality after the adaptation loop gets a compass search instead: steps
+// of kPolishFirstStep metric units in eight directions, halved down to kPolishLastStep, each
+// move taken when the worst triangle of the ball improves, its ring edges stay within
+// [kPolishMinLength, kPolishMaxLength] (or within their present extremes) and the ball's
+// quality sum loses at most kPolishSumSlack per triangle; the place found is kept when it
+// still wins under the metric queried there. Returns the vertices moved; their balls go to
+// touched (with their qualities refreshed).
+int Mesher::polishPass(std::vector<int>& touched) {
+  std::vector<int> candidates;
+  ++epoch_;
+  if (vmark_.size() < vx_.size()) vmark_.resize(vx_.size() + 1024, 0);
+  for (int t = 0; t < static_cast<int>(tri_.size()); ++t) {
+    if (tri_[t].v[0] < 0 || !(tq_[t] < kPolishQuality)) continue;
+    for (const int v : tri_[t].v)
+      if (!vbnd_[v] && vmark_[v] != epoch_) {
+        vmark_[v] = epoch_;
+        candidates.push_back(v);
+      }
+  }
+  std::sort(candidates.begin(), candidates.end());  // vertex order: the same for any triangle order
+  int moved = 0;
+  std::vector<int> ring, ballTri;
+  std::vector<SymMt> edgeM, triM;
+  for (const int v : candidates) {
+    tickProgress();
+    if (!closedBall(v, ballTri, ring)) continue;
+    const size_t deg = ring.size();
+    double before = std::numeric_limits<double>::infinity();
+    for (const int bt : ballTri) before = std::min(before, tq_[bt]);
+    if (!(before < kPolishQuality)) continue;  // an earlier move in this pass fixed it
+    edgeM.resize(deg);
+    triM.resize(deg);
+    const Vec2 p0 = vx_[v].p;
+    // Search bounds a little inside [1/sqrt2, sqrt2]: the final check under the new metric
+    // then rarely refuses the place found.
+    double longest = kPolishMaxLength, shortest = kPolishMinLength;
+    for (size_t k = 0; k < deg; ++k) {
+      const int r1 = ring[k], r2 = ring[k + 1 == deg ? 0 : k + 1];
+      edgeM[k] = SymMt::average2(vx_[v].m, vx_[r1].m);
+      triM[k] = SymMt::average3(vx_[v].m, vx_[r1].m, vx_[r2].m);
+      const double len = edgeM[k].length(p0 - vx_[r1].p);
+      longest = std::max(longest, len);
+      shortest = std::min(shortest, len);
+    }
+    // The ball's worst quality with v at x under the fixed metrics, or -1 when x inverts a
+    // triangle or puts a ring edge out of bounds.
+    double sumFloor = -std::numeric_limits<double>::infinity();
+    auto ballQuality = [&](const Vec2& x, double* sumOut = nullptr) {
+      double q = std::numeric_limits<double>::infinity(), sum = 0.0;
+      for (size_t k = 0; k < deg; ++k) {
+        const Vec2& a = vx_[ring[k]].p;
+        const Vec2& b = vx_[ring[k + 1 == deg ? 0 : k + 1]].p;
+        if (!(orient(x, a, b) > 0.0)) return -1.0;
+        const double l = edgeM[k].length(x - a);
+        if (!(l <= longest && l >= shortest)) return -1.0;
+        const double qk = metricTriangleQuality(triM[k], x, a, b);
+        q = std::min(q, qk);
+        sum += qk;
+      }
+      if (sumOut) *sumOut = sum;
+      return sum < sumFloor ? -1.0 : q;
+    };
+    Vec2 best = p0;
+    double sum0 = 0.0;
+    double bestQ = ballQuality(p0, &sum0);
+    if (!(bestQ >= 0.0)) continue;
+    // The ball's other triangles pay for its worst one, within kPolishSumSlack each.
+    sumFloor = sum0 - kPolishSumSlack * static_cast<double>(deg);
+    const SymMt& m = vx_[v].m;
+    for (double step = kPolishFirstStep; step >= kPolishLastStep; step *= 0.5) {
+      bool improved = true;
+      for (int moves = 0; improved && moves < 32; ++moves) {  // 32: a bound only
+        improved = false;
+        for (const auto& d : kDirs) {
+          const Vec2 x = best + m.solve(Vec2(step * d[0], step * d[1]));
+          const double q = ballQuality(x);
+          if (q > bestQ + 1e-9) {
+            bestQ = q;
+            best = x;
+            improved = true;
+          }
+        }
+      }
+    }
+    if (!(bestQ > before + kSmoothMinGain)) continue;
+    // Judged again under the metric at the new place, as the next passes and the quality
+    // report see it: the worst triangle better, no ring edge newly outside [1/sqrt2, sqrt2].
+    const SymMt mNew = queryMetric(best);
+    double after = std::numeric_limits<double>::infinity(), sumBefore = 0.0, sumAfter = 0.0;
+    bool lengthsKept = true;
+    for (size_t k = 0; k < deg && lengthsKept; ++k) {
+      const int r1 = ring[k], r2 = ring[k + 1 == deg ? 0 : k + 1];
+      const double q = metricTriangleQuality(SymMt::average3(mNew, vx_[r1].m, vx_[r2].m), best, vx_[r1].p, vx_[r2].p);
+      after = std::min(after, q);
+      sumAfter += q;
+      sumBefore += tq_[ballTri[k]];
+      const double l = SymMt::average2(mNew, vx_[r1].m).length(best - vx_[r1].p);
+      lengthsKept = l <= std::max(kSplitLength, edgeM[k].length(p0 - vx_[r1].p)) &&
+                    l >= std::min(kCollapseLength, edgeM[k].length(p0 - vx_[r1].p));
+    }
+    if (!lengthsKept || !(after > before + kSmoothMinGain) ||
+        sumAfter < sumBefore - kPolishSumSlack * static_cast<double>(deg))
+      continue;
+    vx_[v].p = best;
+    vx_[v].m = mNew;
+    for (const int r : ring) vdirty_[r] = 1;
+    vdirty_[v] = 1;
+    for (const int bt : ballTri) {
+      tq_[bt] = triQuality(tri_[bt].v[0], tri_[bt].v[1], tri_[bt].v[2]);
+      touched.push_back(bt);
+    }
+    ++moved;
+  }
+  return moved;
+}
+
+}  // namespace planar
+}  // namespace anisomesh
