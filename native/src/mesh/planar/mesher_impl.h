@@ -8,7 +8,8 @@
 // circumcircle; the kernel in delaunay_kernel.cpp), then an adaptation loop
 // (improvement.cpp): metric edge swaps (swaps.cpp), collapse of short edges and split of
 // long inner edges (collapse_split.cpp), length-bounded node smoothing (smoothing.cpp), each
-// pass on the edges that changed. Data layout is flat arrays of triangle records with
+// pass on the edges that changed, and last a compass search on the vertices of the worst
+// triangles (polish.cpp). Data layout is flat arrays of triangle records with
 // neighbour indices (topology.cpp); no per-insertion heap allocation on the hot path; the
 // vertices are renumbered along a Hilbert curve (renumbering.cpp) before the improvement
 // passes for cache locality. The driver, Mesher::run, is mesh/planar_mesher.cpp.
