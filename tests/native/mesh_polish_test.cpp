@@ -17,12 +17,12 @@ TEST(MeshPolish, RaisesTheWorstTriangleOfTheExamples) {
   struct Expect {
     const char* name;
     double minQ;            // min Q is above this (off -> on, measured: below)
-    double edgesWithinMin;  // edges in [1/sqrt2, sqrt2]: at least this (just under the off figure)
+    double edgesWithinMin;  // edges in [1/sqrt2, sqrt2]: at least this (0.001 under the off figure)
   };
   const Expect cases[] = {
-      {"shear_layer", 0.78, 0.9951},          // 0.706 -> 0.801, edges 0.9952 -> 0.9952
-      {"fig7_rect_holes_dr2", 0.75, 0.9982},  // 0.631 -> 0.776, edges 0.9983 -> 0.9985
-      {"expression_field", 0.75, 0.9970},     // 0.666 -> 0.778, edges 0.9971 -> 0.9979
+      {"shear_layer", 0.78, 0.9942},          // 0.706 -> 0.801, edges 0.9952 -> 0.9958
+      {"fig7_rect_holes_dr2", 0.75, 0.9973},  // 0.631 -> 0.773, edges 0.9983 -> 0.9985
+      {"expression_field", 0.75, 0.9961},     // 0.666 -> 0.798, edges 0.9971 -> 0.9979
   };
   for (const Expect& e : cases) {
     SCOPED_TRACE(e.name);

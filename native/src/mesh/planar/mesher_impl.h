@@ -68,7 +68,10 @@ constexpr double kPolishQuality = 0.8;
 constexpr double kPolishFirstStep = 0.25;
 constexpr double kPolishLastStep = 1.0 / 64.0;
 constexpr int kPolishRounds = 2;
-constexpr double kPolishMinLength = 0.74, kPolishMaxLength = 1.36;
+// Search bounds of each ring edge (or its present length if outside): a little inside
+// [1/sqrt2, sqrt2], which the place found must keep under the metric queried there.
+constexpr double kPolishMinLength = 0.73, kPolishMaxLength = 1.38;
+// The ball's other triangles may lose this much quality each (summed over the ball).
 constexpr double kPolishSumSlack = 0.01;
 
 // Swap sweeps per call, a bound only: chains along a boundary that crosses a stretched layer

@@ -16,8 +16,8 @@ constexpr double kDirs[8][2] = {{1, 0},  {kDiag, kDiag},   {0, 1},  {-kDiag, kDi
 // The smoothing pass tries four fixed candidates per vertex; a free vertex of a triangle
 // still below kPolishQuality after the adaptation loop gets a compass search instead: steps
 // of kPolishFirstStep metric units in eight directions, halved down to kPolishLastStep, each
-// move taken when the worst triangle of the ball improves, its ring edges stay within
-// [kPolishMinLength, kPolishMaxLength] (or within their present extremes) and the ball's
+// move taken when the worst triangle of the ball improves, each ring edge stays within
+// [kPolishMinLength, kPolishMaxLength] (or within its present length) and the ball's
 // quality sum loses at most kPolishSumSlack per triangle; the place found is kept when it
 // still wins under the metric queried there. Returns the vertices moved; their balls go to
 // touched (with their qualities refreshed).
@@ -37,6 +37,7 @@ int Mesher::polishPass(std::vector<int>& touched) {
   int moved = 0;
   std::vector<int> ring, ballTri;
   std::vector<SymMt> edgeM, triM;
+  std::vector<double> len0;  // ring edge lengths before the move
   for (const int v : candidates) {
     tickProgress();
     if (!closedBall(v, ballTri, ring)) continue;
@@ -46,17 +47,13 @@ int Mesher::polishPass(std::vector<int>& touched) {
     if (!(before < kPolishQuality)) continue;  // an earlier move in this pass fixed it
     edgeM.resize(deg);
     triM.resize(deg);
+    len0.resize(deg);
     const Vec2 p0 = vx_[v].p;
-    // Search bounds a little inside [1/sqrt2, sqrt2]: the final check under the new metric
-    // then rarely refuses the place found.
-    double longest = kPolishMaxLength, shortest = kPolishMinLength;
     for (size_t k = 0; k < deg; ++k) {
       const int r1 = ring[k], r2 = ring[k + 1 == deg ? 0 : k + 1];
       edgeM[k] = SymMt::average2(vx_[v].m, vx_[r1].m);
       triM[k] = SymMt::average3(vx_[v].m, vx_[r1].m, vx_[r2].m);
-      const double len = edgeM[k].length(p0 - vx_[r1].p);
-      longest = std::max(longest, len);
-      shortest = std::min(shortest, len);
+      len0[k] = edgeM[k].length(p0 - vx_[r1].p);
     }
     // The ball's worst quality with v at x under the fixed metrics, or -1 when x inverts a
     // triangle or puts a ring edge out of bounds.
@@ -67,9 +64,12 @@ int Mesher::polishPass(std::vector<int>& touched) {
         const Vec2& a = vx_[ring[k]].p;
         const Vec2& b = vx_[ring[k + 1 == deg ? 0 : k + 1]].p;
         if (!(orient(x, a, b) > 0.0)) return -1.0;
+        // Each ring edge within bounds a little inside [1/sqrt2, sqrt2] (or within its
+        // present length): the final check under the new metric then rarely refuses.
         const double l = edgeM[k].length(x - a);
-        if (!(l <= longest && l >= shortest)) return -1.0;
+        if (!(l <= std::max(kPolishMaxLength, len0[k]) && l >= std::min(kPolishMinLength, len0[k]))) return -1.0;
         const double qk = metricTriangleQuality(triM[k], x, a, b);
+        if (!(qk > 0.0)) return -1.0;  // also NaN
         q = std::min(q, qk);
         sum += qk;
       }
@@ -89,6 +89,7 @@ int Mesher::polishPass(std::vector<int>& touched) {
         improved = false;
         for (const auto& d : kDirs) {
           const Vec2 x = best + m.solve(Vec2(step * d[0], step * d[1]));
+          if (!x.allFinite()) continue;
           const double q = ballQuality(x);
           if (q > bestQ + 1e-9) {
             bestQ = q;
@@ -111,8 +112,7 @@ int Mesher::polishPass(std::vector<int>& touched) {
       sumAfter += q;
       sumBefore += tq_[ballTri[k]];
       const double l = SymMt::average2(mNew, vx_[r1].m).length(best - vx_[r1].p);
-      lengthsKept = l <= std::max(kSplitLength, edgeM[k].length(p0 - vx_[r1].p)) &&
-                    l >= std::min(kCollapseLength, edgeM[k].length(p0 - vx_[r1].p));
+      lengthsKept = l <= std::max(kSplitLength, len0[k]) && l >= std::min(kCollapseLength, len0[k]);
     }
     if (!lengthsKept || !(after > before + kSmoothMinGain) ||
         sumAfter < sumBefore - kPolishSumSlack * static_cast<double>(deg))
