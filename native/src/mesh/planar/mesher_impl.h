@@ -134,6 +134,9 @@ class Mesher {
   // The triangles around v counter-clockwise and, for each, its vertex after v; false when
   // v's ball is open (a boundary vertex) or longer than 1000 triangles.
   bool closedBall(int v, std::vector<int>& tris, std::vector<int>& ring) const;
+  // For v's ring (closedBall): the metric of each ring edge (v, ring[k]) and of each ball
+  // triangle (v, ring[k], ring[k + 1]), as vertex averages with v's present metric.
+  void ballMetrics(int v, const std::vector<int>& ring, std::vector<SymMt>& edgeM, std::vector<SymMt>& triM) const;
   void setNbrAcross(int tri, int a, int b, int newNbr);  // in tri, edge (b, a) now borders newNbr
   bool cons(int t, int i) const { return (tri_[t].c >> i) & 1; }
   int findEdge(int a, int b, int* idx) const;  // triangle holding directed edge a->b, opposite index

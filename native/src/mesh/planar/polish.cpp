@@ -45,16 +45,10 @@ int Mesher::polishPass(std::vector<int>& touched) {
     double before = std::numeric_limits<double>::infinity();
     for (const int bt : ballTri) before = std::min(before, tq_[bt]);
     if (!(before < kPolishQuality)) continue;  // an earlier move in this pass fixed it
-    edgeM.resize(deg);
-    triM.resize(deg);
+    ballMetrics(v, ring, edgeM, triM);
     len0.resize(deg);
     const Vec2 p0 = vx_[v].p;
-    for (size_t k = 0; k < deg; ++k) {
-      const int r1 = ring[k], r2 = ring[k + 1 == deg ? 0 : k + 1];
-      edgeM[k] = SymMt::average2(vx_[v].m, vx_[r1].m);
-      triM[k] = SymMt::average3(vx_[v].m, vx_[r1].m, vx_[r2].m);
-      len0[k] = edgeM[k].length(p0 - vx_[r1].p);
-    }
+    for (size_t k = 0; k < deg; ++k) len0[k] = edgeM[k].length(p0 - vx_[ring[k]].p);
     // The ball's worst quality with v at x under the fixed metrics, or -1 when x inverts a
     // triangle or puts a ring edge out of bounds.
     double sumFloor = -std::numeric_limits<double>::infinity();

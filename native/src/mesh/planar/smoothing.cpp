@@ -21,14 +21,8 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     if (before >= kSmoothSkipQuality) continue;  // already good: not worth the metric queries
     const Vec2 p = vx_[v].p;
     const size_t deg = ring.size();
-    // Metrics of the ring edges and ball triangles (the vertex keeps its metric while the
-    // candidates are judged): computed once, used for every candidate.
-    edgeM.resize(deg);
-    triM.resize(deg);
-    for (size_t k = 0; k < deg; ++k) {
-      edgeM[k] = SymMt::average2(vx_[v].m, vx_[ring[k]].m);
-      triM[k] = SymMt::average3(vx_[v].m, vx_[ring[k]].m, vx_[ring[k + 1 == deg ? 0 : k + 1]].m);
-    }
+    // The vertex keeps its metric while the candidates are judged: computed once.
+    ballMetrics(v, ring, edgeM, triM);
     Vec2 target(0.0, 0.0);
     double longest = kSplitLength;  // no ring edge may end up longer (or longer than the longest now)
     // Nor shorter than kSmoothMinLength (or than the shortest now): smoothing would

@@ -56,6 +56,17 @@ bool Mesher::closedBall(int v, std::vector<int>& tris, std::vector<int>& ring) c
   return t == t0;
 }
 
+void Mesher::ballMetrics(int v, const std::vector<int>& ring, std::vector<SymMt>& edgeM,
+                         std::vector<SymMt>& triM) const {
+  const size_t deg = ring.size();
+  edgeM.resize(deg);
+  triM.resize(deg);
+  for (size_t k = 0; k < deg; ++k) {
+    edgeM[k] = SymMt::average2(vx_[v].m, vx_[ring[k]].m);
+    triM[k] = SymMt::average3(vx_[v].m, vx_[ring[k]].m, vx_[ring[k + 1 == deg ? 0 : k + 1]].m);
+  }
+}
+
 int Mesher::allocTri() {
   if (!freeTris_.empty()) {
     const int t = freeTris_.back();
