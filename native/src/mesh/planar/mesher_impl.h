@@ -42,6 +42,7 @@ constexpr double kIdealRadius = 0.57735026918962576;     // circumradius of the 
 constexpr double kAcceptRadius = 0.70710678118654752;    // triangles with metric radius below are done
 constexpr int kBucketOffset = 4 * 1100;                  // bucket index offset: covers every double exponent
 constexpr double kEstimateFactor = 1.0;                  // measured: within ~10% on the layer test cases
+constexpr double kCoarseEstimateLimit = 65536.0;         // larger meshes take the fine estimate (metric_area.cpp)
 constexpr double kSwapSkipQuality = 0.97;                // pairs whose worse triangle is better are not swapped
 constexpr double kCollapseLength = 0.70710678118654752;  // shorter edges are collapsed
 constexpr double kCollapseMaxLength = 1.3;               // ... unless a new edge would be longer
@@ -154,6 +155,7 @@ class Mesher {
   void recoverEdge(int a, int b);
   void removeOutside();
   double estimateMetricArea();
+  double metricAreaEstimate(std::int64_t subdivisions, int maxRows) const;
   double metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double da, double db, double dc, int depth,
                        std::int64_t& budget) const;
   void insertInnerNodes();

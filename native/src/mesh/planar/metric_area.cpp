@@ -26,13 +26,11 @@ double Mesher::metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double
 
 // Metric area of the domain, the larger of two estimates: adaptive quadrature over the
 // boundary triangles (resolves metric features that touch the boundary) and a scanline
-// sampling on a grid of up to 256 rows with even-odd coverage (sees features inside the domain that
-// no boundary triangle vertex samples).
-double Mesher::estimateMetricArea() {
-  // 20,000 subdivisions: the first boundary triangles (where the metric varies) take them
-  // all whatever the budget, and a larger one moved the estimate by under 1 % (p2 with a
-  // source: 2474 vs 2478 at 200,000) for ten times the queries (a surface drag's 9 %).
-  std::int64_t budget = 20000;
+// sampling on a grid of up to `maxRows` rows with even-odd coverage (sees features inside
+// the domain that no boundary triangle vertex samples). `subdivisions` bounds the
+// quadrature's queries.
+double Mesher::metricAreaEstimate(std::int64_t subdivisions, int maxRows) const {
+  std::int64_t budget = subdivisions;
   double adaptive = 0.0;
   for (const auto& tr : tri_) {
     const auto& t = tr.v;
@@ -44,8 +42,8 @@ double Mesher::estimateMetricArea() {
     lo = lo.cwiseMin(vx_[v].p);
     hi = hi.cwiseMax(vx_[v].p);
   }
-  // As many rows as boundary points (64..256): the sampling stays cheap next to the mesh.
-  const int kRows = std::min(256, std::max(64, nBoundary_));
+  // As many rows as boundary points (64..maxRows): the sampling stays cheap next to the mesh.
+  const int kRows = std::min(maxRows, std::max(64, nBoundary_));
   const double dy = (hi.y() - lo.y()) / kRows, dx = (hi.x() - lo.x()) / kRows;
   if (!(dx > 0.0) || !(dy > 0.0)) return adaptive;
   double grid = 0.0;
@@ -70,6 +68,23 @@ double Mesher::estimateMetricArea() {
     }
   }
   return std::max(adaptive, grid);
+}
+
+double Mesher::estimateMetricArea() {
+  // A coarse estimate first (2,000 subdivisions, 64 rows: up to ~6,000 queries). A small
+  // mesh keeps it: the fine one cost ~60,000 queries whatever the mesh's size, ten times
+  // the mesher's own for a 6,000-triangle surface patch being dragged. Near a decision (the
+  // element budget, the domain decomposition's threshold) or above kCoarseEstimateLimit the
+  // fine estimate decides, as it always did: 20,000 subdivisions (the first boundary
+  // triangles, where the metric varies, take them all whatever the budget; a larger one
+  // moved the estimate by under 1 %) and up to 256 rows. The estimate sizes reservations and
+  // the progress fractions and guards the budget; the mesh does not depend on it.
+  const double coarseArea = metricAreaEstimate(2000, 64);
+  const double coarse = coarseArea / (std::sqrt(3.0) / 4.0) * elementRatio_;
+  const bool nearBudget = 2.0 * coarse >= static_cast<double>(opt_.maxElements);
+  const bool nearParts = opt_.partElements > 0 && coarse >= static_cast<double>(opt_.partElements);
+  if (coarse < kCoarseEstimateLimit && !nearBudget && !nearParts) return coarseArea;
+  return metricAreaEstimate(20000, 256);
 }
 
 }  // namespace planar
