@@ -25,7 +25,7 @@ double Mesher::start() {
     // Budget check before the expensive work: one unit equilateral triangle per sqrt(3)/4 of metric area.
     const double metricArea = estimateMetricArea();
     timings_.boundary = secondsSince(t0);
-    estimate_ = std::max(static_cast<double>(liveTriangles()), kEstimateFactor * metricArea / (std::sqrt(3.0) / 4.0));
+    estimate_ = std::max(static_cast<double>(liveTriangles()), trianglesOfMetricArea(metricArea));
     timings_.estimatedElements = static_cast<std::int64_t>(estimate_ * elementRatio_);
     if (estimate_ * elementRatio_ > static_cast<double>(opt_.maxElements)) {
       std::ostringstream os;

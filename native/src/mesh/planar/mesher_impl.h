@@ -79,6 +79,9 @@ constexpr double kPolishSumSlack = 0.01;
 // obliquely took 11 to 18 sweeps (6 left fans of slivers, min Q 0.02).
 constexpr int kMaxSwapSweeps = 256;
 
+// Elements of a metric area: one unit equilateral triangle per sqrt(3)/4 of it.
+inline double trianglesOfMetricArea(double area) { return kEstimateFactor * area / (std::sqrt(3.0) / 4.0); }
+
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
 
 // orient2d (predicates.h) with its floating-point filter inlined, the same value: the

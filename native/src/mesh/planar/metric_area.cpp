@@ -43,12 +43,12 @@ double Mesher::metricAreaEstimate(std::int64_t subdivisions, int maxRows) const 
     hi = hi.cwiseMax(vx_[v].p);
   }
   // As many rows as boundary points (64..maxRows): the sampling stays cheap next to the mesh.
-  const int kRows = std::min(maxRows, std::max(64, nBoundary_));
-  const double dy = (hi.y() - lo.y()) / kRows, dx = (hi.x() - lo.x()) / kRows;
+  const int rows = std::min(maxRows, std::max(64, nBoundary_));
+  const double dy = (hi.y() - lo.y()) / rows, dx = (hi.x() - lo.x()) / rows;
   if (!(dx > 0.0) || !(dy > 0.0)) return adaptive;
   double grid = 0.0;
   std::vector<double> xs;
-  for (int r = 0; r < kRows; ++r) {
+  for (int r = 0; r < rows; ++r) {
     const double y = lo.y() + (r + 0.5) * dy;
     xs.clear();
     for (const auto& e : bedges_) {
@@ -59,7 +59,7 @@ double Mesher::metricAreaEstimate(std::int64_t subdivisions, int maxRows) const 
     for (size_t k = 0; k + 1 < xs.size(); k += 2) {
       const double xa = xs[k], xb = xs[k + 1];
       int j = std::max(0, static_cast<int>((xa - lo.x()) / dx));
-      for (; j < kRows; ++j) {
+      for (; j < rows; ++j) {
         const double c0 = std::max(xa, lo.x() + j * dx), c1 = std::min(xb, lo.x() + (j + 1) * dx);
         if (c0 >= xb) break;
         if (c1 <= c0) continue;
@@ -80,7 +80,7 @@ double Mesher::estimateMetricArea() {
   // moved the estimate by under 1 %) and up to 256 rows. The estimate sizes reservations and
   // the progress fractions and guards the budget; the mesh does not depend on it.
   const double coarseArea = metricAreaEstimate(2000, 64);
-  const double coarse = coarseArea / (std::sqrt(3.0) / 4.0) * elementRatio_;
+  const double coarse = trianglesOfMetricArea(coarseArea) * elementRatio_;
   const bool nearBudget = 2.0 * coarse >= static_cast<double>(opt_.maxElements);
   const bool nearParts = opt_.partElements > 0 && coarse >= static_cast<double>(opt_.partElements);
   if (coarse < kCoarseEstimateLimit && !nearBudget && !nearParts) return coarseArea;
