@@ -309,8 +309,17 @@ int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const Gra
         seeds.push_back(nbr[k]);
       }
   };
+  // Nodes changed since constraints were last applied (flag and list).
+  std::vector<char> touched(n, 0);
+  std::vector<int> touchedList;
+  auto touch = [&](int i) {
+    if (!touched[i]) {
+      touched[i] = 1;
+      touchedList.push_back(i);
+    }
+  };
+  std::vector<AdaptiveControlSpace::RewrittenNode> rewritten;
   bool settled = false;
-  std::vector<SymMt> before(hanging.size());
   for (int round = 0; round < 48; ++round) {
     // Hanging nodes moved by the work-set, finest first (max-heap on the index, which
     // follows the level); a hanging master that shrinks joins the heap, so the shrink
@@ -318,11 +327,13 @@ int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const Gra
     std::vector<int> dirty;
     std::vector<char> inDirty(hanging.size(), 0);
     // (Popped largest first: the order does not depend on the list's.)
-    for (int i : changed.list)
+    for (int i : changed.list) {
       if (hangingOf[i] >= 0) {
         dirty.push_back(hangingOf[i]);
         inDirty[hangingOf[i]] = 1;
       }
+      if (round > 0) touch(i);
+    }
     changed.clear();
     std::make_heap(dirty.begin(), dirty.end());
     std::vector<int> movedMasters;
@@ -342,6 +353,7 @@ int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const Gra
         cs.setNodeMetric(mk, cand);
         ++updates;
         movedMasters.push_back(mk);
+        touch(mk);
         const int km = hangingOf[mk];
         if (km >= 0 && !inDirty[km]) {
           inDirty[km] = 1;
@@ -352,17 +364,27 @@ int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const Gra
     }
     // Hanging nodes take their interpolation again: those that moved (smoothed, or their
     // masters changed) must limit their neighbours and be limited by them once more.
-    for (size_t k = 0; k < hanging.size(); ++k) before[k] = cs.nodeMt(hanging[k].node);
-    cs.applyConstraints();
+    // After the first round only the nodes changed since the last application can move a
+    // hanging node: a round costs what it changes, not the hanging-node count.
+    rewritten.clear();
+    if (round == 0) {
+      for (const auto& h : hanging) rewritten.push_back({h.node, cs.nodeMt(h.node)});
+      cs.applyConstraints();
+    } else {
+      cs.applyConstraintsTouched(touched, rewritten);
+    }
+    for (int i : touchedList) touched[i] = 0;
+    for (const auto& w : rewritten) touched[w.node] = 0;
+    touchedList.clear();
     for (int i : seeds) seeded[i] = 0;  // (seeds holds every node marked)
     seeds.clear();
-    for (size_t k = 0; k < hanging.size(); ++k) {
-      const SymMt& now = cs.nodeMt(hanging[k].node);
-      const SymMt& was = before[k];
+    for (const auto& w : rewritten) {
+      const SymMt& now = cs.nodeMt(w.node);
+      const SymMt& was = w.before;
       const double scale = std::max({std::abs(was.a), std::abs(was.b), std::abs(was.c)});
       if (std::max({std::abs(now.a - was.a), std::abs(now.b - was.b), std::abs(now.c - was.c)}) <= tol * scale)
         continue;
-      const int d = hanging[k].node;
+      const int d = w.node;
       // Finer than before: limiting its neighbours (taking it) is enough. Otherwise its
       // neighbours must limit it again too.
       const Mat2 iw = toMetric(now).transform().inverse();

@@ -352,6 +352,17 @@ void QuadtreeControlSpace::rebuildConstraints() const {
     return a.level != b.level ? a.level < b.level : a.node < b.node;
   });
   for (const auto& k : constraints_) flags[k.node] |= kDependent;
+  // A master hanging on a coarser side comes earlier (sorted by level); checked, since
+  // applyConstraintsTouched() relies on it.
+  std::vector<int> rank(flags.size(), -1);
+  constraintsOrdered_ = true;
+  for (size_t r = 0; r < constraints_.size(); ++r) {
+    for (int j = 0; j < 3; ++j) {
+      const int m = constraints_[r].master[j];
+      if ((flags[m] & kDependent) && (rank[m] < 0)) constraintsOrdered_ = false;
+    }
+    rank[constraints_[r].node] = static_cast<int>(r);
+  }
   constraintsDirty_ = false;
 }
 
@@ -368,6 +379,29 @@ void QuadtreeControlSpace::applyConstraints() {
       init = init && (k.weight[j] == 0.0 || nodeIsInitialized(k.master[j]));
     }
     mt_[k.node] = r;
+    if (init) flags_[k.node] |= kInitialized;
+  }
+}
+
+void QuadtreeControlSpace::applyConstraintsTouched(std::vector<char>& touched, std::vector<RewrittenNode>& rewritten) {
+  rebuildConstraints();
+  for (const auto& k : constraints_) {
+    // Out of order, a constraint may read a master rewritten after it: evaluate them all.
+    if (constraintsOrdered_ && !touched[k.node] && !touched[k.master[0]] && !touched[k.master[1]] &&
+        !touched[k.master[2]])
+      continue;
+    SymMt r{0.0, 0.0, 0.0};
+    bool init = true;
+    for (int j = 0; j < 3; ++j) {
+      const SymMt& m = mt_[k.master[j]];
+      r.a += k.weight[j] * m.a;
+      r.b += k.weight[j] * m.b;
+      r.c += k.weight[j] * m.c;
+      init = init && (k.weight[j] == 0.0 || nodeIsInitialized(k.master[j]));
+    }
+    rewritten.push_back({k.node, mt_[k.node]});
+    mt_[k.node] = r;
+    touched[k.node] = 1;
     if (init) flags_[k.node] |= kInitialized;
   }
 }

@@ -89,6 +89,18 @@ class AdaptiveControlSpace : public ControlSpace {
 
   // Recomputes hanging nodes from their masters (no-op for structures without them).
   virtual void applyConstraints() {}
+  // A hanging node rewritten by applyConstraintsTouched() and its Mt before.
+  struct RewrittenNode {
+    int node;
+    SymMt before;
+  };
+  // applyConstraints() for the hanging nodes whose node or a master is flagged in `touched`
+  // (flags grow by the nodes rewritten, so dependents follow); the same values when only
+  // the flagged nodes changed since the last application. Appends the rewritten nodes.
+  virtual void applyConstraintsTouched(std::vector<char>& touched, std::vector<RewrittenNode>& rewritten) {
+    (void)touched;
+    (void)rewritten;
+  }
   // Pairs (i < j) of free nodes adjacent along the structure's edges, sorted: the graph
   // of gradation smoothing and extrapolation.
   std::vector<std::array<int, 2>> controlEdges() const { return sortedEdges(false); }

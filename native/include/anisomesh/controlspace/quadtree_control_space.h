@@ -50,6 +50,7 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   InterpolationStencil stencilAt(const Vec2& p) const override;
 
   void applyConstraints() override;
+  void applyConstraintsTouched(std::vector<char>& touched, std::vector<RewrittenNode>& rewritten) override;
   std::vector<std::array<int, 2>> rawEdges(bool structure) const override;
   std::vector<HangingNode> hangingNodes() const override;
   int elementCount() const override { return leafCount_; }
@@ -136,6 +137,8 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
 
   mutable std::vector<Constraint> constraints_;
   mutable bool constraintsDirty_ = true;
+  // Every hanging master precedes its dependents in constraints_ (one pass settles all).
+  mutable bool constraintsOrdered_ = true;
 };
 
 }  // namespace anisomesh
