@@ -366,21 +366,23 @@ void QuadtreeControlSpace::rebuildConstraints() const {
   constraintsDirty_ = false;
 }
 
+void QuadtreeControlSpace::applyConstraint(const Constraint& k) {
+  SymMt r{0.0, 0.0, 0.0};
+  bool init = true;
+  for (int j = 0; j < 3; ++j) {
+    const SymMt& m = mt_[k.master[j]];
+    r.a += k.weight[j] * m.a;
+    r.b += k.weight[j] * m.b;
+    r.c += k.weight[j] * m.c;
+    init = init && (k.weight[j] == 0.0 || nodeIsInitialized(k.master[j]));
+  }
+  mt_[k.node] = r;
+  if (init) flags_[k.node] |= kInitialized;
+}
+
 void QuadtreeControlSpace::applyConstraints() {
   rebuildConstraints();
-  for (const auto& k : constraints_) {
-    SymMt r{0.0, 0.0, 0.0};
-    bool init = true;
-    for (int j = 0; j < 3; ++j) {
-      const SymMt& m = mt_[k.master[j]];
-      r.a += k.weight[j] * m.a;
-      r.b += k.weight[j] * m.b;
-      r.c += k.weight[j] * m.c;
-      init = init && (k.weight[j] == 0.0 || nodeIsInitialized(k.master[j]));
-    }
-    mt_[k.node] = r;
-    if (init) flags_[k.node] |= kInitialized;
-  }
+  for (const auto& k : constraints_) applyConstraint(k);
 }
 
 void QuadtreeControlSpace::applyConstraintsTouched(std::vector<char>& touched, std::vector<RewrittenNode>& rewritten) {
@@ -390,19 +392,9 @@ void QuadtreeControlSpace::applyConstraintsTouched(std::vector<char>& touched, s
     if (constraintsOrdered_ && !touched[k.node] && !touched[k.master[0]] && !touched[k.master[1]] &&
         !touched[k.master[2]])
       continue;
-    SymMt r{0.0, 0.0, 0.0};
-    bool init = true;
-    for (int j = 0; j < 3; ++j) {
-      const SymMt& m = mt_[k.master[j]];
-      r.a += k.weight[j] * m.a;
-      r.b += k.weight[j] * m.b;
-      r.c += k.weight[j] * m.c;
-      init = init && (k.weight[j] == 0.0 || nodeIsInitialized(k.master[j]));
-    }
     rewritten.push_back({k.node, mt_[k.node]});
-    mt_[k.node] = r;
+    applyConstraint(k);
     touched[k.node] = 1;
-    if (init) flags_[k.node] |= kInitialized;
   }
 }
 

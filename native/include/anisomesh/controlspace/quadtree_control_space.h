@@ -111,6 +111,8 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   void growMap();
   void splitLeafImpl(int cell);
   void rebuildConstraints() const;
+  // Mt of constraint k's hanging node from its masters (initialized once they all are).
+  void applyConstraint(const Constraint& k);
   ControlElement elementOf(int cell) const;
 
   QuadtreeOptions options_;
