@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "anisomesh/core/error.h"
@@ -55,23 +56,37 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
 
   // (b) Weighted average of the sources reaching each free node. Free nodes are binned,
   // and their positions and sums kept in bin order (contiguous scans); every node still
-  // accumulates its sources in their order.
+  // accumulates its sources in their order. A few pieces (a dragged source) scan every
+  // free node instead: binning them would cost more than the scan, and each node gets the
+  // same sources (a point lies in one bin, and the distance test decides) in the same order.
   const int n = cs.nodeCount();
   const double minSize = cs.minElementSize();
-  std::vector<Box2> nodeBoxes;
   std::vector<int> freeNodes;
-  nodeBoxes.reserve(n);
   freeNodes.reserve(n);
   for (int i = 0; i < n; ++i)
-    if (cs.nodeIsFree(i)) {
-      freeNodes.push_back(i);
-      nodeBoxes.push_back(pointBox(cs.nodePosition(i), 0.0));
-    }
-  const BucketGrid nodeGrid(box, nodeBoxes);
-  const std::vector<int>& slotItem = nodeGrid.items();
-  const size_t slots = slotItem.size();
+    if (cs.nodeIsFree(i)) freeNodes.push_back(i);
+  constexpr size_t kScanPieces = 4;
+  const bool scan = pieces.size() <= kScanPieces;
+  std::vector<int> slotNode;  // the free node of each slot
+  std::optional<BucketGrid> nodeGrid;
+  if (scan) {
+    slotNode = freeNodes;
+  } else {
+    std::vector<Box2> nodeBoxes;
+    nodeBoxes.reserve(freeNodes.size());
+    for (int i : freeNodes) nodeBoxes.push_back(pointBox(cs.nodePosition(i), 0.0));
+    nodeGrid.emplace(box, nodeBoxes);
+    slotNode.reserve(nodeGrid->items().size());
+    for (int k : nodeGrid->items()) slotNode.push_back(freeNodes[k]);
+  }
+  const size_t slots = slotNode.size();
+  // Calls fn(slot) for the slots that may lie in b.
+  auto forSlots = [&](const Box2& b, auto&& fn) {
+    if (!scan) return nodeGrid->forSlots(b, fn);
+    for (size_t k = 0; k < slots; ++k) fn(static_cast<int>(k));
+  };
   std::vector<Vec2> slotPos(slots);
-  for (size_t k = 0; k < slots; ++k) slotPos[k] = cs.nodePosition(freeNodes[slotItem[k]]);
+  for (size_t k = 0; k < slots; ++k) slotPos[k] = cs.nodePosition(slotNode[k]);
   std::vector<SymMt> sum(slots, SymMt{0.0, 0.0, 0.0});
   std::vector<double> wsum(slots, 0.0);
   for (const SourcePiece& p : pieces) {
@@ -89,13 +104,13 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
       wsum[k] += w;
     };
     if (p.a == p.b) {  // a point: the distance as distanceToPiece() computes it
-      nodeGrid.forSlots(pieceBox(p, limit), [&](int k) {
+      forSlots(pieceBox(p, limit), [&](int k) {
         const double dx = p.a.x() - slotPos[k].x(), dy = p.a.y() - slotPos[k].y();
         const double d = std::sqrt(dx * dx + dy * dy);
         if (!(d > limit)) add(k, d);
       });
     } else {
-      nodeGrid.forSlots(pieceBox(p, limit), [&](int k) {
+      forSlots(pieceBox(p, limit), [&](int k) {
         const double d = distanceToPiece(p, slotPos[k]);
         if (!(d > limit)) add(k, d);
       });
@@ -104,7 +119,7 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
   for (size_t k = 0; k < slots; ++k) {
     cs.refinementTick();
     if (wsum[k] <= 0.0) continue;
-    const int i = freeNodes[slotItem[k]];
+    const int i = slotNode[k];
     const SymMt avg{sum[k].a / wsum[k], sum[k].b / wsum[k], sum[k].c / wsum[k]};
     const Metric m = toMetric(avg);
     cs.setNodeMetric(i, cs.nodeIsInitialized(i) ? intersect(cs.nodeMetric(i), m) : m);
