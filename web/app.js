@@ -31,6 +31,9 @@ const state = {
   jobsDone: 0,
   jobsFailed: 0,
   cancelled: 0,
+  laneJobs: 0,          // mesh jobs the second lane ran (inputs that did not wait for a stale job)
+  staleResults: 0,      // results older than the mesh already drawn (the other lane's was newer)
+  drawnVersions: [],    // case versions of the last 50 meshes drawn, in drawing order
   lastStats: null,
   lastError: null,      // { code, message, target }
   lastJob: null,        // { meshMs, workerMs, totalMs, drawMs }
@@ -91,6 +94,13 @@ const meshRunner = new JobRunner({
   },
 });
 const utilRunner = new JobRunner();  // exports and checks: never cancelled by meshing
+// A second mesh lane for drags, on cross-origin isolated pages (cooperative cancellation):
+// while one worker finishes the job of an input the pointer has since left (so the mesh
+// follows the drag), the latest input starts at once in the other instead of waiting for
+// it, and a newer input supersedes only that latest job. Made after the first mesh is
+// drawn (warmLanes); ?lanes=1: a single lane (for comparison).
+let laneRunner = null;
+const laneCount = Number(new URLSearchParams(location.search).get('lanes') ?? 2);
 
 // --- views ------------------------------------------------------------------------------
 
@@ -144,10 +154,11 @@ const views = new Views($('view'), {
       if (b) b.drag = true;
       state.dragEndAt = null;
       views.requestRender('all');
-    } else if (state.runningVersion !== state.caseVersion) {
+    } else if (!cancelStaleLanes()) {
       clearTimeout(editTimer);
       editTimer = null;
-      remesh();
+      remesh(runnerForLatest());
+      cancelStaleLanes();
     }
   },
   // A click on the surface (3D) or in (u, v) with a source armed by "+ radial / segment source".
@@ -442,7 +453,7 @@ function edited(delay = EDIT_DEBOUNCE_MS) {
   bumpVersion();
   recordHistory();
   clearTimeout(editTimer);
-  editTimer = setTimeout(() => { editTimer = null; remesh(); }, delay);
+  editTimer = setTimeout(() => { editTimer = null; remesh(); cancelStaleLanes(); }, delay);
 }
 
 // While a handle is dragged: remesh at once when the worker is free (leading edge, no
@@ -460,8 +471,9 @@ function editedByDrag() {
   const now = performance.now();
   if (now - lastMoveAt < 500) moveInterval = 0.7 * moveInterval + 0.3 * (now - lastMoveAt);
   lastMoveAt = now;
-  if (!meshRunner.busy && editTimer === null) {
-    remesh();
+  const lanes = readyLanes();
+  if (editTimer === null && (lanes.length > 1 || !meshRunner.busy)) {
+    remesh(runnerForLatest(lanes));
     return;
   }
   dragWaiting = true;
@@ -469,7 +481,7 @@ function editedByDrag() {
     restTimer = null;
     if (dragWaiting && state.runningVersion !== state.caseVersion) {
       dragWaiting = false;
-      remesh();
+      remesh(runnerForLatest());
     }
   }, Math.max(30, 1.5 * moveInterval));
 }
@@ -478,7 +490,46 @@ function editedByDrag() {
 function startWaitingDrag() {
   if (!dragWaiting) return;
   dragWaiting = false;
-  remesh();
+  remesh(runnerForLatest());
+}
+
+// The surface case's key for its curvature stages (all but the patches' 2D sources, which
+// a drag moves), or null for a planar case (nothing to warm).
+function stagesKey(c) {
+  if (!state.surface || !Array.isArray(c?.patches)) return null;
+  return JSON.stringify({ ...c, patches: c.patches.map(({ sources, ...rest }) => rest) });
+}
+
+// The mesh lanes that can take an input now: the main runner, and the second lane once
+// its worker is started and holds the case's curvature stages.
+function readyLanes() {
+  if (!laneRunner) return [meshRunner];
+  const key = stagesKey(state.case);
+  const ready = key === null ? laneRunner.slot.isReady : laneRunner.warmFor(key);
+  return ready && laneRunner.cancelsInWorker ? [meshRunner, laneRunner] : [meshRunner];
+}
+
+// The runner for the latest input: an idle lane, else the one running the newer job (it is
+// superseded; the older one finishes and is drawn, so the mesh follows the drag).
+function runnerForLatest(lanes = readyLanes()) {
+  const idleLane = lanes.find((r) => !r.busy);
+  if (idleLane) return idleLane;
+  return lanes.reduce((a, b) => ((b.jobVersion ?? -1) > (a.jobVersion ?? -1) ? b : a));
+}
+
+// Released: jobs for inputs older than the last one are stopped (the CPU goes to the last
+// one's); returns whether the last input's job is already running.
+function cancelStaleLanes() {
+  const lanes = laneRunner ? [meshRunner, laneRunner] : [meshRunner];
+  const running = lanes.some((r) => r.busy && r.jobVersion === state.caseVersion);
+  if (!running) return false;
+  for (const r of lanes) {
+    if (r.busy && r.jobVersion !== state.caseVersion && r.cancelsInWorker) {
+      r.cancelAll();
+      state.cancelled++;
+    }
+  }
+  return true;
 }
 
 /** Wants the control-space overlay from the worker (it costs an inspection of the structure). */
@@ -487,14 +538,18 @@ const wantOverlay = () => Boolean(state.view.controlSpace);
 // A surface case's curvature stages depend on everything but the patches' 2D sources
 // (what a drag moves): the spare worker builds them once per such key, after a mesh is
 // drawn, so the worker a cancellation swaps in does not start cold.
-function warmSpareFor(c) {
-  if (!state.surface || !Array.isArray(c?.patches)) return;
-  const key = JSON.stringify({ ...c, patches: c.patches.map(({ sources, ...rest }) => rest) });
+// The second mesh lane starts here (after the first mesh, not competing with it) and is
+// warmed the same way.
+function warmLanes(c) {
+  if (!laneRunner && laneCount > 1 && meshRunner.cooperative) laneRunner = new JobRunner({ supersede: true, spare: false });
+  const key = stagesKey(c);
+  if (key === null) return;
   meshRunner.warmSpare(key, 'warm', { case: c });
+  if (laneRunner && !laneRunner.busy) laneRunner.ready.then(() => laneRunner.warm(key, 'warm', { case: c }));
 }
 
 let completionWaiters = [];
-async function remesh() {
+async function remesh(runner = runnerForLatest()) {
   const version = state.caseVersion;
   const editAt = state.editAt ?? wallNow();
   try {
@@ -505,23 +560,36 @@ async function remesh() {
     return;
   }
   state.jobsStarted++;
-  const before = meshRunner.restarts, cancelsBefore = meshRunner.cancellations;
+  if (runner !== meshRunner) state.laneJobs++;
+  const before = runner.restarts, cancelsBefore = runner.cancellations;
   const overlay = wantOverlay();
   state.runningVersion = version;
   // A surface mesh while a handle is held, and the one its release asks for, comes without
   // its colours (the per-element 3D measures: they follow with the report, a third of a
   // 50k-triangle run), so the mesh is drawn sooner.
   const dragging = Boolean(state.surface && (views.dragging || state.dragEndAt));
-  const job = meshRunner.run('mesh', { case: state.case, surface: state.surface, overlay, dragging });
-  state.cancelled += meshRunner.cancellations - cancelsBefore;
-  if (meshRunner.restarts > before) {
+  const job = runner.run('mesh', { case: state.case, surface: state.surface, overlay, dragging });
+  runner.jobVersion = version;
+  state.cancelled += runner.cancellations - cancelsBefore;
+  if (runner.restarts > before) {
     const t0 = performance.now();
-    meshRunner.ready.then(() => state.workerRestartMs.push(Math.round(performance.now() - t0)));
+    runner.ready.then(() => state.workerRestartMs.push(Math.round(performance.now() - t0)));
   }
   try {
     const { id, result, marks, totalMs, workerMs, receivedAt } = await job;
+    if (runner.jobVersion === version) runner.jobVersion = null;
+    if (version <= state.meshedVersion) {
+      // The other lane drew a newer input's mesh first: this one is not shown.
+      state.staleResults++;
+      if (state.runningVersion === version) state.runningVersion = null;
+      state.jobsDone++;
+      startWaitingDrag();
+      settle();
+      return;
+    }
     const b = draw(result, version, editAt, marks, receivedAt, overlay);
-    warmSpareFor(state.case);
+    b.lane = runner === meshRunner ? 0 : 1;
+    warmLanes(state.case);
     state.lastJob = { meshMs: Math.round(b.coreMs), workerMs: Math.round(workerMs), totalMs: Math.round(totalMs), drawMs: Math.round(b.geometryMs + b.renderMs) };
     state.lastError = null;
     clearErrors();
@@ -529,14 +597,14 @@ async function remesh() {
     if (state.runningVersion === version) state.runningVersion = null;
     // While dragging, the next input goes first: the report of a mesh already left
     // behind is never computed. Otherwise the quality report follows.
-    if (dragWaiting) {
+    if (dragWaiting || (state.runningVersion ?? -1) > version) {
       state.jobsDone++;
       startWaitingDrag();
       return;
     }
     let stats = result.stats;
     if (!stats) {
-      const r = await meshRunner.run('report', { of: id });
+      const r = await runner.run('report', { of: id });
       stats = r.result.stats;
       b.reportMs = r.result.reportMs;
       // A surface mesh made while dragging: its colours, if it is still the one shown.
@@ -558,6 +626,7 @@ async function remesh() {
     statusText.textContent = `meshed in ${(b.inputToDrawnMs / 1000).toFixed(2)} s`;
     settle();
   } catch (e) {
+    if (runner.jobVersion === version) runner.jobVersion = null;
     if (state.runningVersion === version) state.runningVersion = null;
     if (e instanceof CancelledError) return;
     const target = (state.surface && surfaceEditor.targetOf(e.message)) || errorTarget(e.code, e.message);
@@ -593,6 +662,8 @@ function draw(result, version, editAt, marks, receivedAt, overlay) {
   views.renderNow(views.dragging ? [views.dragView ?? '2d'] : ['2d', '3d'], { sync: state.syncDraw });
   const t2 = wallNow();
   state.meshedVersion = version;
+  state.drawnVersions.push(version);
+  if (state.drawnVersions.length > 50) state.drawnVersions.shift();
   const core = result.core ?? {};
   const b = {
     version,
@@ -644,7 +715,7 @@ function settle() {
 }
 
 function idle() {
-  return editTimer === null && !meshRunner.busy && !dragWaiting && !state.adapting;
+  return editTimer === null && !meshRunner.busy && !laneRunner?.busy && !dragWaiting && !state.adapting;
 }
 
 // The mesh part of a result on screen (the quality report and the histograms follow
@@ -1156,6 +1227,8 @@ const app = {
   state,
   views,
   meshRunner,
+  /** The mesh lanes that can take a drag's input now (2 once the second one is warm). */
+  readyLanes: () => readyLanes().length,
   utilRunner,
   presets: presets.map((p) => p.id),
   loadPreset,

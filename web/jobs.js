@@ -161,13 +161,33 @@ export class JobRunner {
   }
 
   /**
+   * Runs op in this runner's own worker for its side effects, once per key and worker (as
+   * warmSpare() does for the spare): a second mesh lane (see app.js) must hold the case's
+   * curvature stages before it takes a drag's input. Returns whether a job was posted.
+   */
+  warm(key, op, args) {
+    if (this.slot.warmKey === key) return false;
+    this.slot.warmKey = key;
+    this.worker.postMessage({ type: 'job', id: 0, op, args, postedAt: wallNow() });
+    return true;
+  }
+
+  /** Whether this runner's worker is started and was warmed for key (see warm()). */
+  warmFor(key) { return this.slot.isReady && this.slot.warmKey === key; }
+
+  /** Whether every pending job can be cancelled without terminating the worker. */
+  get cancelsInWorker() {
+    return Boolean(this.slot.cancelFlag) && [...this.pending.values()].every((p) => p.op === 'mesh');
+  }
+
+  /**
    * Cancels every pending job: cooperatively when every one reports progress (meshing) on an
    * isolated page, else the worker is replaced by the spare (or a fresh one).
    */
   cancelAll() {
     if (this.pending.size === 0) return;
     this.cancellations++;
-    if (this.slot.cancelFlag && [...this.pending.values()].every((p) => p.op === 'mesh')) {
+    if (this.cancelsInWorker) {
       // The running job stops at its next progress step and the queued ones are skipped; their
       // late messages match no pending job. The next job queues behind them in this worker.
       Atomics.store(this.slot.cancelFlag, 0, this.nextId);

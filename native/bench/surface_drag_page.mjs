@@ -10,7 +10,8 @@
 // the spare's warm-up, the page's drawing). Also a plain edit of the source (no drag: a warm worker, no
 // cancellation). Prints a table of medians (no timed assertions; a measurement).
 //
-// Usage: node native/bench/surface_drag_page.mjs [--drags N] [--only small|refined] [--no-isolation]
+// Usage: node native/bench/surface_drag_page.mjs [--drags N] [--only small|refined] [--no-isolation] [--lanes 1|2]
+//   --lanes 1: one mesh worker for drags (the latest input waits for a stale job or the release).
 //   --no-isolation: the page without COOP / COEP (?isolation=off): stale jobs are cancelled by
 //   terminating the worker (the spare takes over) instead of inside the worker.
 import { readFileSync, readdirSync } from 'node:fs';
@@ -22,7 +23,8 @@ import { startServer } from '../../web/serve.mjs';
 const args = process.argv.slice(2);
 const opt = (name, fallback) => (args.includes(name) ? args[args.indexOf(name) + 1] : fallback);
 const drags = Number(opt('--drags', 11));
-const pageQuery = process.argv.includes('--no-isolation') ? '?isolation=off' : '';
+const query = [process.argv.includes('--no-isolation') ? 'isolation=off' : null, args.includes('--lanes') ? `lanes=${opt('--lanes')}` : null].filter(Boolean);
+const pageQuery = query.length ? `?${query.join('&')}` : '';
 const only = opt('--only', null);
 const median = (a) => (a.length ? [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)] : NaN);
 
@@ -103,5 +105,8 @@ for (const { label, plain, samples } of rows) {
     f(m(samples, 'cpu')).padStart(5), `${samples.filter((s) => s.cancelled > 0).length}/${samples.length}`.padStart(9));
   console.log(''.padEnd(52), 'edit'.padEnd(6), String(plain.at(-1).triangles).padStart(9), f(m(plain, 'inputToDrawnMs')).padStart(5),
     f(m(plain, 'coreMs')).padStart(6), f(m(plain, 'workerMs')).padStart(5), f(m(plain, page)).padStart(5), f(m(plain, 'cpu')).padStart(5), '-'.padStart(9));
+  const parts = ['inputToPostMs', 'postToStartMs', 'coreRunMs', 'coreOutputMs', 'coreMeasuresMs', 'toPageMs', 'geometryMs', 'renderMs'];
+  console.log('  drag breakdown (median ms):', parts.map((k) => `${k.replace(/Ms$/, '')} ${m(samples, (s) => s.b?.[k]).toFixed(1)}`).join(', '));
+  console.log('  lanes that drew:', samples.map((s) => s.b?.lane ?? '-').join(' '));
   console.log('  drags, total:', samples.map((s) => s.total).join(' '), ' worker:', samples.map((s) => f(s.b?.coreMs)).join(' '));
 }

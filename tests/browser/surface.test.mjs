@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import { mkdtemp, readFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { launch, openPage, settle } from './launch.mjs';
+import { dragSourceOnce, launch, openPage, openSurfaceDragPage, settle } from './launch.mjs';
 
 let env, dir;
 before(async () => {
@@ -388,6 +388,33 @@ test('undo and redo step through edits (panel edits and a new case)', async () =
   await page.waitForFunction(() => window.anisomeshApp.state.surface === true);
   await settle(page);
   assert.deepEqual(await page.evaluate(meshDigest), d1);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+// Two mesh lanes (cross-origin isolated page): while one worker finishes the job of an
+// input the pointer has left, the next input starts at once in the other; a result older
+// than the mesh drawn is dropped, so the meshes drawn follow the drag in order and the
+// last one is the last input's (the same mesh as a plain remesh of it).
+test('a drag on a surface meshes its latest input in a second worker while the first finishes', async () => {
+  const { page, errors } = await openSurfaceDragPage(env.browser, env.url);
+  await page.waitForFunction(() => window.anisomeshApp.readyLanes() === 2, null, { timeout: 30000 });
+  const before = await page.evaluate(() => ({ lane: window.anisomeshApp.state.laneJobs, drawn: window.anisomeshApp.state.drawnVersions.length }));
+  for (let rep = 0; rep < 3; rep++) await dragSourceOnce(page, rep);
+  await settle(page);
+  const r = await page.evaluate(() => {
+    const s = window.anisomeshApp.state;
+    return { lane: s.laneJobs, drawn: s.drawnVersions.slice(), meshed: s.meshedVersion, version: s.caseVersion, error: s.lastError };
+  });
+  assert.equal(r.error, null);
+  assert.ok(r.lane > before.lane, `inputs meshed in the second lane: ${r.lane - before.lane}`);
+  const drawn = r.drawn.slice(before.drawn);
+  assert.ok(drawn.length >= 3, `meshes drawn: ${drawn}`);
+  for (let k = 1; k < drawn.length; k++) assert.ok(drawn[k] > drawn[k - 1], `meshes drawn out of order: ${drawn}`);
+  assert.equal(r.meshed, r.version);
+  const digest = await page.evaluate(meshDigest);
+  await settle(page, () => window.anisomeshApp.edited(0));
+  assert.deepEqual(await page.evaluate(meshDigest), digest, 'the last mesh drawn is not the last input\'s');
   assert.deepEqual(errors, []);
   await page.close();
 });
