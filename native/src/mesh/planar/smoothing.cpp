@@ -11,9 +11,21 @@ int Mesher::smoothPass(std::vector<int>& touched) {
   std::vector<int> ring, ballTri;
   std::vector<SymMt> edgeM, triM;
   const int nv = static_cast<int>(vx_.size());
+  // The vertices with a triangle below kSmoothSkipQuality around them, marked once: only
+  // they are smoothed, and the pass leaves tq_ as it is (moves only queue their triangles
+  // in `touched`), so the others need no walk around their ball to be skipped.
+  std::vector<char> poor(nv, 0);
+  for (size_t t = 0; t < tri_.size(); ++t) {
+    const auto& tv = tri_[t].v;
+    if (tv[0] >= 0 && tq_[t] < kSmoothSkipQuality) poor[tv[0]] = poor[tv[1]] = poor[tv[2]] = 1;
+  }
   for (int v = kSuper; v < nv; ++v) {
     tickProgress();
     if (vbnd_[v] || !vdirty_[v]) continue;  // clean: nothing around it changed since its last visit
+    if (!poor[v]) {  // already good: not worth the metric queries
+      vdirty_[v] = 0;
+      continue;
+    }
     if (!closedBall(v, ballTri, ring)) continue;
     double before = std::numeric_limits<double>::infinity();
     for (const int bt : ballTri) before = std::min(before, tq_[bt]);
