@@ -1208,7 +1208,9 @@ const adaptMode = createAdaptMode({
     renderLegend();
     statusText.textContent = `adapted: iteration ${iteration} of ${of}, ${stats.vertices} vertices`;
   },
-  onStart() { state.adapting = true; status.classList.remove('err'); },
+  // The adaptation's job supersedes the main lane's; the second lane's (a drag's) must not
+  // draw a case mesh over the adapted one either.
+  onStart() { state.adapting = true; laneRunner?.cancelAll(); status.classList.remove('err'); },
   onEnd(error) {
     state.adapting = false;
     if (error) statusText.textContent = 'adaptation failed · previous mesh shown';

@@ -188,3 +188,34 @@ TEST(MeshPlanar, NoImprovementPasses) {
   opt.improvementPasses = -1;
   EXPECT_THROW(meshPlanarBoundary(loops, cs, opt), Error);
 }
+
+// A boundary-only run (a section 3.2 check) leaves its boundary triangulation in the cache;
+// a full run on equal loops starts from it and makes the mesh a run without the cache makes.
+// Loops that differ (one point moved) are triangulated again, not taken from the cache.
+TEST(MeshPlanar, BoundaryTriangulationCacheGivesTheSameMesh) {
+  const std::vector<BoundaryLoop> loops = {polygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 20),
+                                           circleLoop({0.5, 0.5}, 0.25, 48, true)};
+  const UniformControlSpace cs(kBox, Metric::fromSizes(0.4, 0.06, 0.015));
+  const Mesh plain = meshPlanarBoundary(loops, cs);
+  PlanarMesherOptions check;
+  check.boundaryOnly = true;
+  check.boundaryCache = makeBoundaryTriangulationCache();
+  const Mesh boundary = meshPlanarBoundary(loops, cs, check);
+  EXPECT_TRUE(sameMesh(boundary, meshPlanarBoundary(loops, cs, [] {
+                         PlanarMesherOptions o;
+                         o.boundaryOnly = true;
+                         return o;
+                       }())));
+  MesherTimings timings;
+  PlanarMesherOptions full;
+  full.boundaryCache = check.boundaryCache;
+  full.timings = &timings;
+  EXPECT_TRUE(sameMesh(meshPlanarBoundary(loops, cs, full), plain));
+  EXPECT_TRUE(timings.boundaryFromCache);
+  auto moved = loops;
+  moved[1].points[3] += Vec2(0.01, 0.0);
+  const Mesh other = meshPlanarBoundary(moved, cs, full);
+  EXPECT_FALSE(timings.boundaryFromCache);
+  EXPECT_TRUE(sameMesh(other, meshPlanarBoundary(moved, cs)));
+  EXPECT_FALSE(sameMesh(other, plain));
+}

@@ -38,6 +38,7 @@ Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& 
     PlanarMesherOptions o = options;
     o.partElements = 0;
     o.timings = &timings[p];
+    o.boundaryCache = nullptr;  // the parts run concurrently, on loops of their own
     if (options.progress) {
       o.progress = [&, p](double f) {
         std::lock_guard<std::mutex> lock(progressLock);

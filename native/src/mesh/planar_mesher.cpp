@@ -15,8 +15,7 @@ double Mesher::start() {
   auto t0 = Clock::now();
   elementRatio_ = opt_.allQuads ? 2.0 : (opt_.quads ? 0.6 : 1.0);
   checkProgress(0.0);
-  triangulateBoundary();
-  removeOutside();
+  boundaryTriangulation();
   for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v) vx_[v].m = queryMetric(vx_[v].p);
 
   if (opt_.boundaryOnly) {

@@ -117,6 +117,8 @@ class PlanarCaseSteps final : public Algorithm1Steps {
     analytic_ = caseAnalyticMetric(spec_);
     mesher_ = mesherOptionsFromCase(spec_);
     mesher_.progress = progress_;
+    // The boundary checks' triangulation, for the meshing on the same loops.
+    mesher_.boundaryCache = makeBoundaryTriangulationCache();
     withStage("element estimate", [&] {
       checkElementEstimate(spec_.domain, *cs_, mesher_.maxElements, "element estimate before contour discretization");
     });

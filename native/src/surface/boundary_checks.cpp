@@ -19,6 +19,7 @@ void ModelMesher::checkPatchBoundary(int p) {
   bo.boundaryOnly = true;
   bo.timings = nullptr;
   bo.progress = nullptr;
+  bo.boundaryCache = boundaryCaches_[size_t(p)];
   const std::vector<BoundaryLoop> loops = loopsOf(p, nullptr, nullptr);
   const Mesh bm = meshPlanarBoundary(loops, cs, bo);
 

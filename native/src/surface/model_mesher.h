@@ -163,6 +163,8 @@ class ModelMesher final : public Algorithm1Steps {
   std::vector<Slot> slots_;
   std::vector<PatchState> ps_;
   std::vector<std::vector<MetricSource>> pending_;
+  // Per patch: the boundary triangulation of its last check, for its meshing on the same loops.
+  std::vector<std::shared_ptr<BoundaryTriangulationCache>> boundaryCaches_;
   int nextId_ = 0;
   int invalidations_ = 0;
   double size_ = 1.0;

@@ -52,6 +52,8 @@ class CurveProjector {
 void ModelMesher::setupSlots() {
   ps_.resize(m_.patches.size());
   pending_.resize(m_.patches.size());
+  boundaryCaches_.resize(m_.patches.size());
+  for (auto& c : boundaryCaches_) c = makeBoundaryTriangulationCache();
   for (size_t p = 0; p < m_.patches.size(); ++p) {
     const SurfacePatch& patch = m_.patches[p];
     for (int k = 0; k < contourCount(patch); ++k) {

@@ -182,6 +182,7 @@ Mesh ModelMesher::meshPatches() {
     // split is done here so that shared contour edges get one midpoint for both patches.
     mo.quads = o_.quads || o_.allQuads;
     mo.allQuads = false;
+    mo.boundaryCache = boundaryCaches_[p];
     Mesh pm;
     try {
       pm = meshPlanarBoundary(loops, cs, mo);

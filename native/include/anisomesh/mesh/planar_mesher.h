@@ -24,6 +24,7 @@
 // at twice the size to get unit quads).
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "anisomesh/controlspace/control_space.h"
@@ -40,8 +41,14 @@ struct MesherTimings {
   double improvement = 0.0;  // edge swaps and node smoothing
   double quads = 0.0;        // quad conversion
   std::int64_t estimatedElements = 0;
-  int parts = 1;  // domain decomposition parts (the stage times are then sums over them)
+  int parts = 1;                   // domain decomposition parts (the stage times are then sums over them)
+  bool boundaryFromCache = false;  // the boundary triangulation came from options.boundaryCache
 };
+
+// The boundary triangulation of a boundary-only run (a section 3.2 check), kept for the
+// full run that follows on the same loops (opaque; see PlanarMesherOptions::boundaryCache).
+struct BoundaryTriangulationCache;
+std::shared_ptr<BoundaryTriangulationCache> makeBoundaryTriangulationCache();
 
 struct PlanarMesherOptions {
   bool quads = false;                   // convert to a quad-dominant mesh
@@ -60,6 +67,10 @@ struct PlanarMesherOptions {
   // elements or more are split into parts of about this size, meshed concurrently and merged;
   // 0 meshes the domain whole. Not with boundaryOnly or allQuads.
   std::int64_t partElements = 150000;
+  // Optional: a boundary-only run stores its boundary triangulation here, and a full run on
+  // loops equal to its own starts from a copy instead of building it again (the same mesh).
+  // Not shared between runs that may overlap in time.
+  std::shared_ptr<BoundaryTriangulationCache> boundaryCache;
 };
 
 // Meshes the region inside loops[0] and outside loops[1..]; every boundary point is a

@@ -154,6 +154,10 @@ class Mesher {
   void flip(int t, int i);
 
   // ---- stages ----
+  // The boundary triangulation (boundary points, recovered edges, outside removed): from
+  // opt_.boundaryCache when it holds loops equal to loops_, else built (and stored there by
+  // a boundary-only run).
+  void boundaryTriangulation();
   void triangulateBoundary();
   void recoverEdge(int a, int b);
   void removeOutside();
@@ -232,6 +236,8 @@ class Mesher {
   double estimate_ = 0.0;
   double elementRatio_ = 1.0;  // final elements per triangle
   MesherTimings timings_;
+
+  friend struct anisomesh::BoundaryTriangulationCache;
 };
 
 inline double Mesher::triQuality(int a, int b, int c) const { return triQuality(a, b, c, vx_[a].p); }

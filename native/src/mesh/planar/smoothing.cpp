@@ -22,7 +22,7 @@ int Mesher::smoothPass(std::vector<int>& touched) {
   for (int v = kSuper; v < nv; ++v) {
     tickProgress();
     if (vbnd_[v] || !vdirty_[v]) continue;  // clean: nothing around it changed since its last visit
-    if (!poor[v]) {  // already good: not worth the metric queries
+    if (!poor[v]) {                         // already good: not worth the metric queries
       vdirty_[v] = 0;
       continue;
     }
