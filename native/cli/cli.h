@@ -50,6 +50,11 @@ Command metricCommand();
 void restartWithHugePages(char** argv);
 // "on" when the process started with glibc.malloc.hugetlb set (not 0), else "off" (-v prints it).
 const char* hugePagesState();
+// glibc's malloc keeps what the CLI frees for its next allocations instead of giving it back
+// to the kernel: a block under 32 MiB comes from the heap (not a fresh mapping), and the heap
+// is trimmed only above 256 MiB free. Each first touch of a fresh page is a fault (~18 us on
+// the virtual machine); the stages allocate and free the same sizes again and again.
+void keepFreedMemory();
 
 // A nonnegative finite number (UsageError naming option otherwise).
 double parseNumber(const std::string& option, const char* text);

@@ -36,6 +36,7 @@ int usage(std::ostream& os, int code) {
 int main(int argc, char** argv) {
   if (argc < 2) return usage(std::cerr, 2);
   restartWithHugePages(argv);
+  keepFreedMemory();
   const std::string cmd = argv[1];
   try {
     if (cmd == "--version") {

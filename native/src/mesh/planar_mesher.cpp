@@ -41,6 +41,7 @@ Mesh Mesher::finish() {
   Mesh mesh;
   if (opt_.boundaryOnly) {
     mesh = output();
+    keepBoundaryTriangulation();
   } else {
     auto t0 = Clock::now();
     // Room for the expected mesh (the estimate is within ~10%): no reallocation copies.

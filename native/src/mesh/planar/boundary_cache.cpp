@@ -6,8 +6,8 @@
 namespace anisomesh {
 
 // The loops and every member of the mesher that triangulateBoundary() and removeOutside()
-// write (the mesh and the kernel's scratch, epochs included): a full run restored from it
-// continues exactly as one that built them.
+// write (the mesh and the kernel's scratch, epochs included): a full run given it continues
+// exactly as one that built them. Moved in and out, never copied.
 struct BoundaryTriangulationCache {
   bool filled = false;
   std::vector<BoundaryLoop> loops;
@@ -36,22 +36,30 @@ struct BoundaryTriangulationCache {
     return true;
   }
 
-  void save(const planar::Mesher& m) {
+  // Takes the state of a finished boundary-only run (moved: that mesher is done with it).
+  void take(planar::Mesher& m) {
     loops = m.loops_;
-    vx = m.vx_, vbnd = m.vbnd_, vtri = m.vtri_, tri = m.tri_, freeTris = m.freeTris_;
-    bedges = m.bedges_, bedgeRefs = m.bedgeRefs_, nBoundary = m.nBoundary_;
-    forbid = m.forbid_, vmark = m.vmark_, epoch = m.epoch_, fepoch = m.fepoch_;
-    cav = m.cav_, bnd = m.bnd_, startAt = m.startAt_, endAt = m.endAt_, newTris = m.newTris_, rng = m.rng_;
-    cache = m.cache_, stamp = m.stamp_, queued = m.queued_;
+    vx = std::move(m.vx_), vbnd = std::move(m.vbnd_), vtri = std::move(m.vtri_), tri = std::move(m.tri_);
+    freeTris = std::move(m.freeTris_), bedges = std::move(m.bedges_), bedgeRefs = std::move(m.bedgeRefs_);
+    nBoundary = m.nBoundary_;
+    forbid = std::move(m.forbid_), vmark = std::move(m.vmark_), epoch = m.epoch_, fepoch = m.fepoch_;
+    cav = std::move(m.cav_), bnd = std::move(m.bnd_), startAt = std::move(m.startAt_), endAt = std::move(m.endAt_);
+    newTris = std::move(m.newTris_), rng = m.rng_;
+    cache = std::move(m.cache_), stamp = std::move(m.stamp_), queued = std::move(m.queued_);
     filled = true;
   }
 
-  void restore(planar::Mesher& m) const {
-    m.vx_ = vx, m.vbnd_ = vbnd, m.vtri_ = vtri, m.tri_ = tri, m.freeTris_ = freeTris;
-    m.bedges_ = bedges, m.bedgeRefs_ = bedgeRefs, m.nBoundary_ = nBoundary;
-    m.forbid_ = forbid, m.vmark_ = vmark, m.epoch_ = epoch, m.fepoch_ = fepoch;
-    m.cav_ = cav, m.bnd_ = bnd, m.startAt_ = startAt, m.endAt_ = endAt, m.newTris_ = newTris, m.rng_ = rng;
-    m.cache_ = cache, m.stamp_ = stamp, m.queued_ = queued;
+  // Gives it to a full run (moved: used once).
+  void give(planar::Mesher& m) {
+    m.vx_ = std::move(vx), m.vbnd_ = std::move(vbnd), m.vtri_ = std::move(vtri), m.tri_ = std::move(tri);
+    m.freeTris_ = std::move(freeTris), m.bedges_ = std::move(bedges), m.bedgeRefs_ = std::move(bedgeRefs);
+    m.nBoundary_ = nBoundary;
+    m.forbid_ = std::move(forbid), m.vmark_ = std::move(vmark), m.epoch_ = epoch, m.fepoch_ = fepoch;
+    m.cav_ = std::move(cav), m.bnd_ = std::move(bnd), m.startAt_ = std::move(startAt), m.endAt_ = std::move(endAt);
+    m.newTris_ = std::move(newTris), m.rng_ = rng;
+    m.cache_ = std::move(cache), m.stamp_ = std::move(stamp), m.queued_ = std::move(queued);
+    filled = false;
+    loops.clear();
   }
 };
 
@@ -64,13 +72,18 @@ namespace planar {
 void Mesher::boundaryTriangulation() {
   BoundaryTriangulationCache* cache = opt_.boundaryCache.get();
   if (cache && !opt_.boundaryOnly && cache->filled && BoundaryTriangulationCache::sameLoops(cache->loops, loops_)) {
-    cache->restore(*this);
+    cache->give(*this);
     timings_.boundaryFromCache = true;
     return;
   }
   triangulateBoundary();
   removeOutside();
-  if (cache && opt_.boundaryOnly) cache->save(*this);
+}
+
+void Mesher::keepBoundaryTriangulation() {
+  // After a boundary-only run, the state differs from the one boundaryTriangulation() left
+  // only in the vertex metrics, which a full run queries again.
+  if (opt_.boundaryCache && opt_.boundaryOnly) opt_.boundaryCache->take(*this);
 }
 
 }  // namespace planar

@@ -158,6 +158,8 @@ class Mesher {
   // opt_.boundaryCache when it holds loops equal to loops_, else built (and stored there by
   // a boundary-only run).
   void boundaryTriangulation();
+  // A boundary-only run, done: its triangulation moves to opt_.boundaryCache (if any).
+  void keepBoundaryTriangulation();
   void triangulateBoundary();
   void recoverEdge(int a, int b);
   void removeOutside();
