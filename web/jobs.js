@@ -153,10 +153,14 @@ export class JobRunner {
    */
   warmSpare(key, op, args) {
     this.lastWarm = [key, op, args];
-    const spare = this.spare;
-    if (!spare || spare.warmKey === key) return false;
-    spare.warmKey = key;
-    spare.worker.postMessage({ type: 'job', id: 0, op, args, postedAt: wallNow() });
+    return Boolean(this.spare) && JobRunner.#warmSlot(this.spare, key, op, args);
+  }
+
+  /** Posts op to slot's worker once per key (id 0: its result matches no pending job). */
+  static #warmSlot(slot, key, op, args) {
+    if (slot.warmKey === key) return false;
+    slot.warmKey = key;
+    slot.worker.postMessage({ type: 'job', id: 0, op, args, postedAt: wallNow() });
     return true;
   }
 
@@ -165,12 +169,7 @@ export class JobRunner {
    * warmSpare() does for the spare): a second mesh lane (see app.js) must hold the case's
    * curvature stages before it takes a drag's input. Returns whether a job was posted.
    */
-  warm(key, op, args) {
-    if (this.slot.warmKey === key) return false;
-    this.slot.warmKey = key;
-    this.worker.postMessage({ type: 'job', id: 0, op, args, postedAt: wallNow() });
-    return true;
-  }
+  warm(key, op, args) { return JobRunner.#warmSlot(this.slot, key, op, args); }
 
   /** Whether this runner's worker is started and was warmed for key (see warm()). */
   warmFor(key) { return this.slot.isReady && this.slot.warmKey === key; }

@@ -67,18 +67,17 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
     if (cs.nodeIsFree(i)) freeNodes.push_back(i);
   constexpr size_t kScanPieces = 4;
   const bool scan = pieces.size() <= kScanPieces;
-  std::vector<int> slotNode;  // the free node of each slot
   std::optional<BucketGrid> nodeGrid;
-  if (scan) {
-    slotNode = freeNodes;
-  } else {
+  std::vector<int> binned;  // the free nodes in bin order (with the grid)
+  if (!scan) {
     std::vector<Box2> nodeBoxes;
     nodeBoxes.reserve(freeNodes.size());
     for (int i : freeNodes) nodeBoxes.push_back(pointBox(cs.nodePosition(i), 0.0));
     nodeGrid.emplace(box, nodeBoxes);
-    slotNode.reserve(nodeGrid->items().size());
-    for (int k : nodeGrid->items()) slotNode.push_back(freeNodes[k]);
+    binned.reserve(nodeGrid->items().size());
+    for (int k : nodeGrid->items()) binned.push_back(freeNodes[k]);
   }
+  const std::vector<int>& slotNode = scan ? freeNodes : binned;  // the free node of each slot
   const size_t slots = slotNode.size();
   // Calls fn(slot) for the slots that may lie in b.
   auto forSlots = [&](const Box2& b, auto&& fn) {

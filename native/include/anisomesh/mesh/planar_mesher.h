@@ -67,9 +67,9 @@ struct PlanarMesherOptions {
   // elements or more are split into parts of about this size, meshed concurrently and merged;
   // 0 meshes the domain whole. Not with boundaryOnly or allQuads.
   std::int64_t partElements = 150000;
-  // Optional: a boundary-only run stores its boundary triangulation here, and a full run on
-  // loops equal to its own starts from a copy instead of building it again (the same mesh).
-  // Not shared between runs that may overlap in time.
+  // Optional: a boundary-only run leaves its boundary triangulation here, and the next full
+  // run on loops equal to its own takes it (moved, used once) instead of building it again:
+  // the same mesh. Not shared between runs that may overlap in time.
   std::shared_ptr<BoundaryTriangulationCache> boundaryCache;
 };
 
