@@ -9,10 +9,15 @@ namespace anisomesh {
 std::vector<int> elementPatches(const SurfaceModel& model, const Mesh& mesh) {
   std::map<int, int> byId;
   for (size_t p = 0; p < model.patches.size(); ++p) byId.emplace(model.patches[p].id, int(p));
+  // Neighbouring elements mostly share their reference: the last lookup is kept.
+  int lastRef = 0, lastPatch = -2;
   auto patchOf = [&](const std::vector<int>& refs, size_t e) {
     if (e >= refs.size()) return -1;
+    if (lastPatch != -2 && refs[e] == lastRef) return lastPatch;
     const auto it = byId.find(refs[e]);
-    return it == byId.end() ? -1 : it->second;
+    lastRef = refs[e];
+    lastPatch = it == byId.end() ? -1 : it->second;
+    return lastPatch;
   };
   std::vector<int> out;
   out.reserve(mesh.triangles.size() + mesh.quads.size());
@@ -73,10 +78,19 @@ std::vector<Vec2> patchCornerParams(const SurfaceModel& model, const Mesh& mesh,
   const size_t nv = mesh.points.size();
   // The patch that placed each vertex: the first (lowest index) patch among its elements.
   std::vector<int> placedBy(nv, std::numeric_limits<int>::max());
-  auto corners = [&](size_t e) -> std::vector<int> {
-    if (e < mesh.triangles.size()) return {mesh.triangles[e].begin(), mesh.triangles[e].end()};
+  struct Corners {  // an element's corners, without a heap allocation per element
+    int v[4];
+    int n;
+    const int* begin() const { return v; }
+    const int* end() const { return v + n; }
+  };
+  auto corners = [&](size_t e) {
+    if (e < mesh.triangles.size()) {
+      const auto& t = mesh.triangles[e];
+      return Corners{{t[0], t[1], t[2], 0}, 3};
+    }
     const auto& q = mesh.quads[e - mesh.triangles.size()];
-    return {q.begin(), q.end()};
+    return Corners{{q[0], q[1], q[2], q[3]}, 4};
   };
   for (size_t e = 0; e < patches.size(); ++e)
     if (patches[e] >= 0)
