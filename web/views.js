@@ -10,6 +10,7 @@ import { qualityColor, lengthColor, sizeColor, fieldColor } from './colors.js';
 import { sourceOverlay } from './overlays.js';
 
 const BG = 0xf7f7f5;
+const SVG_NS = 'http://www.w3.org/2000/svg';
 const FACE_PLAIN = [0.80, 0.85, 0.92];
 const HANDLE_PICK_PX = 12;
 
@@ -32,6 +33,14 @@ export class Views {
     this.canvas.tabIndex = 0;
     container.appendChild(this.canvas);
     this.framesRendered = 0;
+    // While a handle is dragged in the 2D view the sources are drawn here, by the page's
+    // compositor, instead of in WebGL: a move then costs no WebGL frame (on a software
+    // rasterizer any WebGL frame costs ~25 ms of CPU, taken from the mesher). The first
+    // WebGL frame after the release draws them in WebGL again (see render()).
+    this.overlay2 = document.createElementNS(SVG_NS, 'svg');
+    Object.assign(this.overlay2.style, { position: 'absolute', left: '0', top: '0', pointerEvents: 'none', display: 'none' });
+    container.appendChild(this.overlay2);
+    this.sourcesInOverlay = false;
 
     // --- 2D scene ---
     this.scene2 = new THREE.Scene();
@@ -216,7 +225,15 @@ export class Views {
   render() {
     const dirty = this.dirty ?? new Set(['all']);
     this.dirty = new Set();
+    if (this.sourcesInOverlay && !this.dragging) {  // the drag is over: the sources go back to WebGL
+      this.sourcesInOverlay = false;
+      this.layers2.sources.visible = true;
+      this.overlay2.style.display = 'none';
+      dirty.add('2d');
+    }
     const all = dirty.has('all') || !this.preserveDrawingBuffer;
+    // A frame already drawn by renderNow() leaves its animation frame with nothing to draw.
+    if (!all && !Object.keys(this.viewports()).some((k) => dirty.has(k))) return;
     const W = this.container.clientWidth, H = this.container.clientHeight;
     if (all) {
       this.renderer.setScissor(0, 0, W, H);
@@ -278,12 +295,13 @@ export class Views {
     }
     const layers = this.layers2;
     if (!this.cache2Valid) {
+      const sourcesShown = layers.sources.visible;
       layers.sources.visible = false;
       r.setRenderTarget(rt);
       r.clear();
       r.render(this.scene2, this.cam2);
       r.setRenderTarget(null);
-      layers.sources.visible = true;
+      layers.sources.visible = sourcesShown;
       this.cache2Valid = true;
       this.cache2Draws = (this.cache2Draws ?? 0) + 1;
     }
@@ -617,7 +635,7 @@ export class Views {
     for (const grp of [g, this.sources3]) for (const o of [...grp.children]) { grp.remove(o); o.geometry.dispose(); }
     this.handles = [];
     this.handles3 = [];
-    if (!this.showSources) { this.requestRender(); return; }
+    if (!this.showSources) { this.overlay2.innerHTML = ''; this.requestRender(); return; }
     const du = this.sourceShift();
     const px = this.pixelSize2();
     for (const m of [this.mats.srcGuide, this.mats.srcGuideSel]) { m.dashSize = 6 * px; m.gapSize = 4 * px; }
@@ -665,7 +683,49 @@ export class Views {
         this.sources3.add(pts);
       }
     }
+    if (this.dragging && (this.dragView ?? '2d') === '2d' && this.viewports()['2d']) {
+      // The first move draws one WebGL frame without the sources; later moves none.
+      if (!this.sourcesInOverlay) {
+        this.sourcesInOverlay = true;
+        g.visible = false;
+        this.requestRender('2d');
+      }
+      this.#drawSourcesOverlay();
+      return;
+    }
     this.requestRender(this.handles3.length ? 'all' : '2d');
+  }
+
+  /** The 2D sources (as #refreshSources puts them in layers2.sources) drawn in the SVG overlay. */
+  #drawSourcesOverlay() {
+    const v = this.viewports()['2d'];
+    const svg = this.overlay2;
+    Object.assign(svg.style, { left: `${v.x}px`, top: `${v.y}px`, width: `${v.w}px`, height: `${v.h}px`, display: '' });
+    svg.setAttribute('viewBox', `0 0 ${v.w} ${v.h}`);
+    const { left, right, top, bottom } = this.cam2;
+    const sx = v.w / (right - left), sy = v.h / (top - bottom);
+    const px = (x, y) => `${((x - left) * sx).toFixed(1)},${((top - y) * sy).toFixed(1)}`;
+    const css = (m) => `#${m.color.getHexString()}`;
+    const parts = [];
+    for (const o of this.layers2.sources.children) {
+      const pos = o.geometry.getAttribute('position');
+      if (o.isPoints) {
+        const col = o.geometry.getAttribute('color');
+        const size = this.mats.handles.size;
+        for (let i = 0; i < pos.count; i++) {
+          const [cx, cy] = px(pos.getX(i), pos.getY(i)).split(',').map(Number);
+          const rgb = [col.getX(i), col.getY(i), col.getZ(i)].map((c) => Math.round(255 * c)).join(',');
+          parts.push(`<rect x="${(cx - size / 2).toFixed(1)}" y="${(cy - size / 2).toFixed(1)}" width="${size}" height="${size}" fill="rgb(${rgb})"/>`);
+        }
+        continue;
+      }
+      const pts = [];
+      for (let i = 0; i < pos.count; i++) pts.push(px(pos.getX(i), pos.getY(i)));
+      const m = o.material;
+      const dash = m.isLineDashedMaterial ? ' stroke-dasharray="6 4"' : '';
+      parts.push(`<polyline points="${pts.join(' ')}" fill="none" stroke="${css(m)}" stroke-opacity="${m.transparent ? m.opacity : 1}" stroke-width="1"${dash}/>`);
+    }
+    svg.innerHTML = parts.join('');
   }
 
   // (u, v) of each corner of element e of a surface mesh, and its vertex ids.

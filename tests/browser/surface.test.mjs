@@ -418,3 +418,45 @@ test('a drag on a surface meshes its latest input in a second worker while the f
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('a handle dragged in (u, v) is drawn by the page, not by WebGL, until the next mesh is drawn', async () => {
+  const { page, errors } = await openSurfaceDragPage(env.browser, env.url);
+  const h = await page.evaluate(() => window.anisomeshApp.handleClientPosition(0, 'center'));
+  const count = () => page.evaluate(() => ({
+    frames: window.anisomeshApp.views.framesRendered, drawn: window.anisomeshApp.state.drawnVersions.length,
+  }));
+  const frame = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  await page.mouse.move(h.x, h.y);
+  await page.mouse.down();
+  await page.mouse.move(h.x + 5, h.y + 3);
+  await frame();
+  const start = await count();
+  for (let k = 2; k <= 7; k++) {
+    await page.mouse.move(h.x + 5 * k, h.y + 3 * k);
+    await frame();
+  }
+  const moved = await count();
+  // Six moves: WebGL frames only for the meshes drawn meanwhile (each drawn, then recoloured once its report is in).
+  const meshes = moved.drawn - start.drawn;
+  assert.ok(moved.frames - start.frames <= 2 * meshes, `${moved.frames - start.frames} frames for ${meshes} meshes`);
+  // The handle in the overlay sits under the pointer; the WebGL sources layer is hidden.
+  const mid = await page.evaluate(() => {
+    const v = window.anisomeshApp.views, box = v.overlay2.getBoundingClientRect();
+    const rects = [...v.overlay2.querySelectorAll('rect')].map((r) => {
+      const b = r.getBoundingClientRect();
+      return [b.x + b.width / 2, b.y + b.height / 2];
+    });
+    return { shown: v.overlay2.style.display !== 'none' && box.width > 0, rects, lines: v.overlay2.querySelectorAll('polyline').length, webgl: v.layers2.sources.visible };
+  });
+  assert.ok(mid.shown && !mid.webgl, JSON.stringify(mid));
+  assert.ok(mid.lines > 0, 'the source outline is in the overlay');
+  const near = mid.rects.some(([x, y]) => Math.hypot(x - (h.x + 35), y - (h.y + 21)) < 2);
+  assert.ok(near, `a handle under the pointer (${h.x + 35}, ${h.y + 21}): ${JSON.stringify(mid.rects)}`);
+  await page.mouse.up();
+  await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
+  await frame();
+  const after = await page.evaluate(() => ({ shown: window.anisomeshApp.views.overlay2.style.display !== 'none', webgl: window.anisomeshApp.views.layers2.sources.visible }));
+  assert.deepEqual(after, { shown: false, webgl: true });
+  assert.deepEqual(errors, []);
+  await page.close();
+});
