@@ -314,3 +314,31 @@ TEST(SurfaceGeometry, HeightFieldCurvatureMatchesGraphFormulas) {
     expectVecNear(c.normal, Vec3(-z.fu, -z.fv, 1) / w, 1e-14, "p2 normal");
   }
 }
+
+// The chord measures take the surface point of a sample from firstDerivatives(uv).p instead
+// of evaluating point(uv) again: both must give the same bits on every kind of surface.
+TEST(SurfaceGeometry, FirstDerivativesPointIsThePointBitForBit) {
+  std::vector<std::shared_ptr<Surface>> surfaces = {
+      std::make_shared<PlaneSurface>(Vec3(0.1, 0.2, 0.3), Vec3(1, 0.5, 0), Vec3(0, 1, 0.25)),
+      std::make_shared<HeightFieldSurface>("0.3*sin(2*u)*cos(3*v) + u^2/7", Box2{{-1, -1}, {1, 1}}),
+      std::make_shared<CylinderSurface>(1.3),
+      std::make_shared<SphereSurface>(0.7),
+      std::make_shared<TorusSurface>(2.0, 0.5),
+      std::make_shared<BezierPatchSurface>(curvedBezierPoints()),
+      std::make_shared<BSplinePatchSurface>(curvedBSplinePoints(6, 5)),
+      std::make_shared<ExpressionSurface>("u*cos(v)", "u*sin(v)", "0.2*exp(-u)*atan2(v, 1 + u)",
+                                          Box2{{0.1, 0}, {2, 3}}),
+      paperP2(),
+  };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (const auto& s : surfaces) {
+    const Box2 b = s->domain();
+    for (int k = 0; k < 2000; ++k) {
+      const Vec2 uv = b.lo + Vec2(unit(rng) * b.size().x(), unit(rng) * b.size().y());
+      const Vec3 p = s->point(uv), q = s->firstDerivatives(uv).p;
+      ASSERT_TRUE(p.x() == q.x() && p.y() == q.y() && p.z() == q.z())
+          << s->name() << " at (" << uv.x() << ", " << uv.y() << "): " << p.transpose() << " vs " << q.transpose();
+    }
+  }
+}

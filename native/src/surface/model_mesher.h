@@ -211,10 +211,12 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
 
 double modelSize(const SurfaceModel& m);
 
-// Distance between the chord x0x1 and the surface, along the surface normal at samples of
-// the parameter segment u0u1 (the edge-to-surface gap, without the tangential offset a
-// curved parameter line adds).
-double normalChordDeviation(const Surface& s, const Vec2& u0, const Vec2& u1, const Vec3& x0, const Vec3& x1);
+// Gaps between an edge's chord x0x1 and the surface at 7 samples of its parameter segment
+// u0u1: along the surface normal (normal), and as chordDeviation() measures them (iso).
+struct EdgeChordGaps {
+  double normal = 0.0, iso = 0.0;
+};
+EdgeChordGaps edgeChordGaps(const Surface& s, const Vec2& u0, const Vec2& u1, const Vec3& x0, const Vec3& x1);
 
 // The same gap inside the triangle (u0, u1, u2) -> (x0, x1, x2): at the 10 interior
 // barycentric points (i, j, k) / 6 (centroid included), the distance from the flat

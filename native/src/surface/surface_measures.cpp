@@ -130,17 +130,17 @@ void DeferredMeasures::measureChords() {
       }
     }
   }
-  // Edges: in the patch whose element met them first (as their lengths).
-  ChordDeviationOptions co;
-  co.samples = 7;
+  // Edges: in the patch whose element met them first (as their lengths); both gaps from
+  // one set of surface evaluations.
   for (const auto& e : edgeAt) {
     const MeasuredPatch& mp = patches[size_t(e[0])];
     const Surface& surf = *mp.surface;
     const Vec2 u0 = mp.params[size_t(e[1])], u1 = mp.params[size_t(e[2])];
     const Vec3& x0 = points[size_t(mp.gid[size_t(e[1])])];
     const Vec3& x1 = points[size_t(mp.gid[size_t(e[2])])];
-    q.isoChordDeviationMax = std::max(q.isoChordDeviationMax, chordDeviation(surf, u0, u1, co));
-    q.edgeChordDeviationMax = std::max(q.edgeChordDeviationMax, normalChordDeviation(surf, u0, u1, x0, x1));
+    const EdgeChordGaps g = edgeChordGaps(surf, u0, u1, x0, x1);
+    q.isoChordDeviationMax = std::max(q.isoChordDeviationMax, g.iso);
+    q.edgeChordDeviationMax = std::max(q.edgeChordDeviationMax, g.normal);
   }
   q.chordDeviationMax = std::max(q.chordDeviationMax, q.edgeChordDeviationMax);
   q.chordDeviationMaxRelative = chordTolerance > 0 ? q.chordDeviationMax / chordTolerance : 0.0;

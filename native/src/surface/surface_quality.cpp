@@ -19,19 +19,25 @@ double modelSize(const SurfaceModel& m) {
   return std::isfinite(d) && d > 0 ? d : 1.0;
 }
 
-// Distance between the chord x0x1 and the surface, along the surface normal at samples of
-// the parameter segment u0u1 (the edge-to-surface gap, without the tangential offset a
-// curved parameter line adds).
-double normalChordDeviation(const Surface& s, const Vec2& u0, const Vec2& u1, const Vec3& x0, const Vec3& x1) {
-  double worst = 0.0;
+// The gaps between the chord x0x1 and the surface at the 7 samples t = i / 8 of the
+// parameter segment u0u1: along the surface normal (the edge-to-surface gap, without the
+// tangential offset a curved parameter line adds), and chordDeviation()'s gap (the surface
+// point's distance to the chord of the surface's own end points), bit for bit as
+// chordDeviation() with 7 samples gives it: firstDerivatives(uv).p is point(uv).
+EdgeChordGaps edgeChordGaps(const Surface& s, const Vec2& u0, const Vec2& u1, const Vec3& x0, const Vec3& x1) {
+  const Vec3 pa = s.point(u0), pb = s.point(u1), e = pb - pa;
+  const double ee = e.squaredNorm();
+  EdgeChordGaps g;
   for (int i = 1; i <= 7; ++i) {
     const double t = i / 8.0;
     const SurfaceDerivatives d = s.firstDerivatives((1.0 - t) * u0 + t * u1);
+    const double tau = ee > 0.0 ? std::min(std::max((d.p - pa).dot(e) / ee, 0.0), 1.0) : 0.0;
+    g.iso = std::max(g.iso, (d.p - (pa + tau * e)).norm());
     const Vec3 n = d.su.cross(d.sv);
     if (!(n.norm() > 0)) continue;
-    worst = std::max(worst, std::abs(n.normalized().dot(d.p - ((1.0 - t) * x0 + t * x1))));
+    g.normal = std::max(g.normal, std::abs(n.normalized().dot(d.p - ((1.0 - t) * x0 + t * x1))));
   }
-  return worst;
+  return g;
 }
 
 // The same gap inside the triangle (u0, u1, u2) -> (x0, x1, x2): at the 10 interior
