@@ -6,11 +6,15 @@
 // dragInputToMeshMs: "total"), the worker's part (the core call, coreMs, and the worker's
 // whole job, workerMs), the result's way to the page (toPageMs) and the main thread's draw
 // (geometry + render), whether the release cancelled a stale job (the spare worker then
-// meshes), and the CPU ms of Chromium's renderer over the drag (all threads: the workers,
+// meshes), the CPU ms of the GPU process over the drag (with software WebGL it rasterizes and
+// composites every frame on the cores the mesher uses: ~25 ms per WebGL frame here), and the
+// CPU ms of Chromium's renderer over the drag (all threads: the workers,
 // the spare's warm-up, the page's drawing). Also a plain edit of the source (no drag: a warm worker, no
 // cancellation). Prints a table of medians (no timed assertions; a measurement).
 //
 // Usage: node native/bench/surface_drag_page.mjs [--drags N] [--only small|refined] [--no-isolation] [--lanes 1|2]
+//   CHROMIUM_EXTRA_ARGS="--disable-gpu-compositing" adds Chromium flags (e.g. that one composites
+//   the page in software instead of through SwiftShader, as a machine with a GPU would not pay).
 //   --lanes 1: one mesh worker for drags (the latest input waits for a stale job or the release).
 //   --no-isolation: the page without COOP / COEP (?isolation=off): stale jobs are cancelled by
 //   terminating the worker (the spare takes over) instead of inside the worker.
@@ -31,11 +35,11 @@ const median = (a) => (a.length ? [...a].sort((x, y) => x - y)[Math.floor(a.leng
 // CPU ns of Chromium's renderer processes (utime + stime of /proc/PID/stat, which keep the
 // time of exited threads: a terminated worker's CPU stays counted), all threads.
 const tick = 1e9 / 100;  // USER_HZ
-function workerCpuNs() {
+function workerCpuNs(type = 'renderer') {
   let ns = 0;
   for (const pid of readdirSync('/proc').filter((d) => /^\d+$/.test(d))) {
     try {
-      if (!readFileSync(`/proc/${pid}/cmdline`, 'utf8').includes('--type=renderer')) continue;
+      if (!readFileSync(`/proc/${pid}/cmdline`, 'utf8').includes(`--type=${type}`)) continue;
       const f = readFileSync(`/proc/${pid}/stat`, 'utf8').split(') ')[1].split(' ');
       ns += (Number(f[11]) + Number(f[12])) * tick;
     } catch { /* gone */ }
@@ -53,7 +57,7 @@ const { server, url } = await startServer({ port: 0 });
 const jsFlags = process.env.CHROMIUM_JS_FLAGS;
 const browser = await chromium.launch({
   executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium', headless: true,
-  args: [...chromiumArgs, ...(jsFlags ? [`--js-flags=${jsFlags}`] : [])],
+  args: [...chromiumArgs, ...(jsFlags ? [`--js-flags=${jsFlags}`] : []), ...(process.env.CHROMIUM_EXTRA_ARGS?.split(' ').filter(Boolean) ?? [])],
 });
 const env = { browser, url, close: async () => { await browser.close(); await new Promise((r) => server.close(r)); } };
 const rows = [];
@@ -64,26 +68,26 @@ try {
     // Plain edits: the source moved from the panel (one job on a warm worker).
     const plain = [];
     for (let k = 0; k < 5; k++) {
-      const n0 = workerCpuNs();
+      const n0 = workerCpuNs(), g0 = workerCpuNs('gpu-process');
       await settle(page, (x) => {
         const a = window.anisomeshApp;
         a.state.case.patches[0].sources[0].center = [x, 0.05];
         a.edited(0);
       }, 0.05 * (k + 1));
       const r = await page.evaluate(() => ({ b: window.anisomeshApp.state.breakdowns.at(-1), job: window.anisomeshApp.state.lastJob }));
-      plain.push({ ...r.b, workerMs: r.job.workerMs, cpu: (workerCpuNs() - n0) / 1e6 });
+      plain.push({ ...r.b, workerMs: r.job.workerMs, cpu: (workerCpuNs() - n0) / 1e6, gpu: (workerCpuNs('gpu-process') - g0) / 1e6 });
     }
     const samples = [];
     for (let rep = 0; rep < drags; rep++) {
       const before = await page.evaluate(() => window.anisomeshApp.meshRunner.cancellations);
-      const n0 = workerCpuNs();
+      const n0 = workerCpuNs(), g0 = workerCpuNs('gpu-process');
       await dragSourceOnce(page, rep);
       const r = await page.evaluate(() => {
         const a = window.anisomeshApp, s = a.state;
         return { total: s.dragInputToMeshMs, up: s.dragToMeshMs, b: s.breakdowns.filter((x) => x.drag).at(-1) ?? null, job: s.lastJob, cancellations: a.meshRunner.cancellations, tris: a.views.mesh.triangles.length / 3 };
       });
       await page.evaluate(() => new Promise((res) => setTimeout(res, 300)));
-      samples.push({ ...r, cancelled: r.cancellations - before, cpu: (workerCpuNs() - n0) / 1e6 });
+      samples.push({ ...r, cancelled: r.cancellations - before, cpu: (workerCpuNs() - n0) / 1e6, gpu: (workerCpuNs('gpu-process') - g0) / 1e6 });
     }
     if (errors.length) console.log('page errors:', errors);
     rows.push({ label, plain, samples });
@@ -95,16 +99,17 @@ try {
 
 const f = (x) => (Number.isFinite(x) ? x.toFixed(0) : '-');
 console.log(`median ms (drags: ${drags} each; plain edits: 5). total = the last edit -> its mesh drawn; worker = the core call in the worker (coreMs);`);
-console.log('job = the worker\'s whole job; page = result to page + geometry + render; cpu = Chromium renderer CPU over the drag (all threads: workers, the spare\'s warm-up, drawing)');
-console.log('case'.padEnd(52), 'kind'.padEnd(6), 'triangles', 'total', 'worker', '  job', ' page', '  cpu', 'cancelled');
+console.log('job = the worker\'s whole job; page = result to page + geometry + render; cpu = Chromium renderer CPU over the drag (all threads: workers, the spare\'s warm-up, drawing);');
+console.log('gpu = the GPU process\'s CPU over the drag (software WebGL: rasterizing and compositing the frames, on the same cores as the mesher)');
+console.log('case'.padEnd(52), 'kind'.padEnd(6), 'triangles', 'total', 'worker', '  job', ' page', '  cpu', '  gpu', 'cancelled');
 for (const { label, plain, samples } of rows) {
   const m = (list, key) => median(list.map((s) => (typeof key === 'function' ? key(s) : s[key])).filter((x) => Number.isFinite(x)));
   const page = (b) => (b ? b.toPageMs + b.geometryMs + b.renderMs : NaN);
   console.log(label.padEnd(52), 'drag'.padEnd(6), String(samples.at(-1).tris).padStart(9), f(m(samples, 'total')).padStart(5),
     f(m(samples, (s) => s.b?.coreMs)).padStart(6), f(m(samples, (s) => s.job?.workerMs)).padStart(5), f(m(samples, (s) => page(s.b))).padStart(5),
-    f(m(samples, 'cpu')).padStart(5), `${samples.filter((s) => s.cancelled > 0).length}/${samples.length}`.padStart(9));
+    f(m(samples, 'cpu')).padStart(5), f(m(samples, 'gpu')).padStart(5), `${samples.filter((s) => s.cancelled > 0).length}/${samples.length}`.padStart(9));
   console.log(''.padEnd(52), 'edit'.padEnd(6), String(plain.at(-1).triangles).padStart(9), f(m(plain, 'inputToDrawnMs')).padStart(5),
-    f(m(plain, 'coreMs')).padStart(6), f(m(plain, 'workerMs')).padStart(5), f(m(plain, page)).padStart(5), f(m(plain, 'cpu')).padStart(5), '-'.padStart(9));
+    f(m(plain, 'coreMs')).padStart(6), f(m(plain, 'workerMs')).padStart(5), f(m(plain, page)).padStart(5), f(m(plain, 'cpu')).padStart(5), f(m(plain, 'gpu')).padStart(5), '-'.padStart(9));
   const parts = ['inputToPostMs', 'postToStartMs', 'coreRunMs', 'coreOutputMs', 'coreMeasuresMs', 'toPageMs', 'geometryMs', 'renderMs'];
   console.log('  drag breakdown (median ms):', parts.map((k) => `${k.replace(/Ms$/, '')} ${m(samples, (s) => s.b?.[k]).toFixed(1)}`).join(', '));
   console.log('  lanes that drew:', samples.map((s) => s.b?.lane ?? '-').join(' '));
