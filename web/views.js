@@ -33,14 +33,15 @@ export class Views {
     this.canvas.tabIndex = 0;
     container.appendChild(this.canvas);
     this.framesRendered = 0;
-    // While a handle is dragged in the 2D view the sources are drawn here, by the page's
-    // compositor, instead of in WebGL: a move then costs no WebGL frame (on a software
-    // rasterizer any WebGL frame costs ~25 ms of CPU, taken from the mesher). The first
+    // While a handle is dragged the view it is dragged in shows the sources here, drawn by
+    // the page's compositor, instead of in WebGL: a move then costs no WebGL frame (on a
+    // software rasterizer a WebGL frame costs the GPU process 15-26 ms of CPU, a compositor
+    // frame 13 ms, taken from the mesher: native/bench/webgl_frame_cost.mjs). The first
     // WebGL frame after the release draws them in WebGL again (see render()).
-    this.overlay2 = document.createElementNS(SVG_NS, 'svg');
-    Object.assign(this.overlay2.style, { position: 'absolute', left: '0', top: '0', pointerEvents: 'none', display: 'none' });
-    container.appendChild(this.overlay2);
-    this.sourcesInOverlay = false;
+    this.dragOverlay = document.createElementNS(SVG_NS, 'svg');
+    Object.assign(this.dragOverlay.style, { position: 'absolute', left: '0', top: '0', pointerEvents: 'none', display: 'none' });
+    container.appendChild(this.dragOverlay);
+    this.sourcesInOverlay = null;  // the view ('2d' | '3d') whose sources the overlay shows
 
     // --- 2D scene ---
     this.scene2 = new THREE.Scene();
@@ -226,10 +227,11 @@ export class Views {
     const dirty = this.dirty ?? new Set(['all']);
     this.dirty = new Set();
     if (this.sourcesInOverlay && !this.dragging) {  // the drag is over: the sources go back to WebGL
-      this.sourcesInOverlay = false;
+      dirty.add(this.sourcesInOverlay);
+      this.sourcesInOverlay = null;
       this.layers2.sources.visible = true;
-      this.overlay2.style.display = 'none';
-      dirty.add('2d');
+      this.sources3.visible = true;
+      this.dragOverlay.style.display = 'none';
     }
     const all = dirty.has('all') || !this.preserveDrawingBuffer;
     // A frame already drawn by renderNow() leaves its animation frame with nothing to draw.
@@ -635,7 +637,7 @@ export class Views {
     for (const grp of [g, this.sources3]) for (const o of [...grp.children]) { grp.remove(o); o.geometry.dispose(); }
     this.handles = [];
     this.handles3 = [];
-    if (!this.showSources) { this.overlay2.innerHTML = ''; this.requestRender(); return; }
+    if (!this.showSources) { this.dragOverlay.innerHTML = ''; this.requestRender(); return; }
     const du = this.sourceShift();
     const px = this.pixelSize2();
     for (const m of [this.mats.srcGuide, this.mats.srcGuideSel]) { m.dashSize = 6 * px; m.gapSize = 4 * px; }
@@ -683,12 +685,13 @@ export class Views {
         this.sources3.add(pts);
       }
     }
-    if (this.dragging && (this.dragView ?? '2d') === '2d' && this.viewports()['2d']) {
+    const view = this.dragView ?? '2d';
+    if (this.dragging && this.viewports()[view]) {
       // The first move draws one WebGL frame without the sources; later moves none.
       if (!this.sourcesInOverlay) {
-        this.sourcesInOverlay = true;
-        g.visible = false;
-        this.requestRender('2d');
+        this.sourcesInOverlay = view;
+        (view === '2d' ? g : this.sources3).visible = false;
+        this.requestRender(view);
       }
       this.#drawSourcesOverlay();
       return;
@@ -696,31 +699,40 @@ export class Views {
     this.requestRender(this.handles3.length ? 'all' : '2d');
   }
 
-  /** The 2D sources (as #refreshSources puts them in layers2.sources) drawn in the SVG overlay. */
+  /**
+   * The sources of the view being dragged in, as #refreshSources puts them in WebGL (2D: the
+   * layers2.sources lines and handles; 3D: the sources3 handles), drawn in the SVG overlay.
+   */
   #drawSourcesOverlay() {
-    const v = this.viewports()['2d'];
-    const svg = this.overlay2;
+    const view = this.sourcesInOverlay;
+    const v = this.viewports()[view];
+    const svg = this.dragOverlay;
     Object.assign(svg.style, { left: `${v.x}px`, top: `${v.y}px`, width: `${v.w}px`, height: `${v.h}px`, display: '' });
     svg.setAttribute('viewBox', `0 0 ${v.w} ${v.h}`);
-    const { left, right, top, bottom } = this.cam2;
-    const sx = v.w / (right - left), sy = v.h / (top - bottom);
-    const px = (x, y) => `${((x - left) * sx).toFixed(1)},${((top - y) * sy).toFixed(1)}`;
+    // World -> viewport pixels through the view's camera (NDC: x right, y up).
+    const cam = view === '2d' ? this.cam2 : this.cam3;
+    const ndc = new THREE.Vector3();
+    const px = (x, y, z = 0) => {
+      ndc.set(x, y, z).project(cam);
+      return [(ndc.x + 1) * 0.5 * v.w, (1 - ndc.y) * 0.5 * v.h, ndc.z];
+    };
     const css = (m) => `#${m.color.getHexString()}`;
     const parts = [];
-    for (const o of this.layers2.sources.children) {
+    for (const o of (view === '2d' ? this.layers2.sources : this.sources3).children) {
       const pos = o.geometry.getAttribute('position');
       if (o.isPoints) {
         const col = o.geometry.getAttribute('color');
         const size = this.mats.handles.size;
         for (let i = 0; i < pos.count; i++) {
-          const [cx, cy] = px(pos.getX(i), pos.getY(i)).split(',').map(Number);
+          const [cx, cy, z] = px(pos.getX(i), pos.getY(i), pos.getZ(i));
+          if (!(Math.abs(z) <= 1)) continue;  // behind the camera or clipped
           const rgb = [col.getX(i), col.getY(i), col.getZ(i)].map((c) => Math.round(255 * c)).join(',');
           parts.push(`<rect x="${(cx - size / 2).toFixed(1)}" y="${(cy - size / 2).toFixed(1)}" width="${size}" height="${size}" fill="rgb(${rgb})"/>`);
         }
         continue;
       }
       const pts = [];
-      for (let i = 0; i < pos.count; i++) pts.push(px(pos.getX(i), pos.getY(i)));
+      for (let i = 0; i < pos.count; i++) pts.push(px(pos.getX(i), pos.getY(i)).slice(0, 2).map((c) => c.toFixed(1)).join(','));
       const m = o.material;
       const dash = m.isLineDashedMaterial ? ' stroke-dasharray="6 4"' : '';
       parts.push(`<polyline points="${pts.join(' ')}" fill="none" stroke="${css(m)}" stroke-opacity="${m.transparent ? m.opacity : 1}" stroke-width="1"${dash}/>`);

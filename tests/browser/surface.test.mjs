@@ -287,8 +287,20 @@ test('a source placed by clicking on the 3D surface refines the mesh there; drag
   await page.mouse.move(h.x, h.y);
   await page.mouse.down();
   for (let k = 1; k <= 5; k++) await page.mouse.move(h.x + 8 * k, h.y + 5 * k);
+  // While held, the 3D view's handles are drawn by the page (the SVG overlay), not by WebGL.
+  const held = await page.evaluate(() => {
+    const v = window.anisomeshApp.views;
+    const rects = [...v.dragOverlay.querySelectorAll('rect')].map((r) => {
+      const b = r.getBoundingClientRect();
+      return [b.x + b.width / 2, b.y + b.height / 2];
+    });
+    return { view: v.sourcesInOverlay, shown: v.dragOverlay.style.display !== 'none', webgl: v.sources3.visible, rects };
+  });
+  assert.ok(held.view === '3d' && held.shown && !held.webgl, JSON.stringify(held));
+  assert.ok(held.rects.some(([x, y]) => Math.hypot(x - (h.x + 40), y - (h.y + 25)) < 3), `a handle under the pointer: ${JSON.stringify(held.rects)}`);
   await page.mouse.up();
   await settle(page);
+  assert.equal(await page.evaluate(() => window.anisomeshApp.views.sources3.visible), true);
   const moved = await page.evaluate(() => window.anisomeshApp.state.case.patches[0].sources.at(-1).center);
   assert.notDeepEqual(moved, placed.s.center);
   assert.notDeepEqual(await page.evaluate(meshDigest), digest);
@@ -441,12 +453,12 @@ test('a handle dragged in (u, v) is drawn by the page, not by WebGL, until the n
   assert.ok(moved.frames - start.frames <= 2 * meshes, `${moved.frames - start.frames} frames for ${meshes} meshes`);
   // The handle in the overlay sits under the pointer; the WebGL sources layer is hidden.
   const mid = await page.evaluate(() => {
-    const v = window.anisomeshApp.views, box = v.overlay2.getBoundingClientRect();
-    const rects = [...v.overlay2.querySelectorAll('rect')].map((r) => {
+    const v = window.anisomeshApp.views, box = v.dragOverlay.getBoundingClientRect();
+    const rects = [...v.dragOverlay.querySelectorAll('rect')].map((r) => {
       const b = r.getBoundingClientRect();
       return [b.x + b.width / 2, b.y + b.height / 2];
     });
-    return { shown: v.overlay2.style.display !== 'none' && box.width > 0, rects, lines: v.overlay2.querySelectorAll('polyline').length, webgl: v.layers2.sources.visible };
+    return { shown: v.dragOverlay.style.display !== 'none' && box.width > 0, rects, lines: v.dragOverlay.querySelectorAll('polyline').length, webgl: v.layers2.sources.visible };
   });
   assert.ok(mid.shown && !mid.webgl, JSON.stringify(mid));
   assert.ok(mid.lines > 0, 'the source outline is in the overlay');
@@ -455,7 +467,7 @@ test('a handle dragged in (u, v) is drawn by the page, not by WebGL, until the n
   await page.mouse.up();
   await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
   await frame();
-  const after = await page.evaluate(() => ({ shown: window.anisomeshApp.views.overlay2.style.display !== 'none', webgl: window.anisomeshApp.views.layers2.sources.visible }));
+  const after = await page.evaluate(() => ({ shown: window.anisomeshApp.views.dragOverlay.style.display !== 'none', webgl: window.anisomeshApp.views.layers2.sources.visible }));
   assert.deepEqual(after, { shown: false, webgl: true });
   assert.deepEqual(errors, []);
   await page.close();
