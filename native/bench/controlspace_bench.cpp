@@ -16,7 +16,7 @@ using namespace anisomesh;
 
 namespace {
 
-Box2 unitBox() { return Box2{Vec2(0.0, 0.0), Vec2(1.0, 1.0)}; }
+Box2 csUnitBox() { return Box2{Vec2(0.0, 0.0), Vec2(1.0, 1.0)}; }
 
 Metric boundaryLayer(const Vec2& p) { return Metric::fromSizes(0.0, 0.1, 0.001 + 0.1 * std::abs(p.y() - 0.5)); }
 
@@ -29,20 +29,20 @@ ContinuousInsertionOptions insertion() {
 
 // The structures queried: the boundary layer field, built once.
 struct Spaces {
-  AnalyticControlSpace analytic{unitBox(), boundaryLayer};
+  AnalyticControlSpace analytic{csUnitBox(), boundaryLayer};
   std::unique_ptr<QuadtreeControlSpace> bilinear, serendipity;
   std::unique_ptr<BackgroundMeshControlSpace> background;
   Spaces() {
     QuadtreeOptions q;
     q.maxLevel = 10;
-    bilinear = std::make_unique<QuadtreeControlSpace>(unitBox(), q);
+    bilinear = std::make_unique<QuadtreeControlSpace>(csUnitBox(), q);
     insertMetricFunction(*bilinear, boundaryLayer, insertion());
     q.interpolation = QuadtreeInterpolation::Serendipity;
-    serendipity = std::make_unique<QuadtreeControlSpace>(unitBox(), q);
+    serendipity = std::make_unique<QuadtreeControlSpace>(csUnitBox(), q);
     insertMetricFunction(*serendipity, boundaryLayer, insertion());
     BackgroundMeshOptions b;
     b.maxLevel = 12;
-    background = std::make_unique<BackgroundMeshControlSpace>(unitBox(), b);
+    background = std::make_unique<BackgroundMeshControlSpace>(csUnitBox(), b);
     insertMetricFunction(*background, boundaryLayer, insertion());
   }
 };
@@ -128,11 +128,11 @@ std::unique_ptr<AdaptiveControlSpace> emptySpace(bool quadtree) {
   if (quadtree) {
     QuadtreeOptions q;
     q.maxLevel = 12;
-    return std::make_unique<QuadtreeControlSpace>(unitBox(), q);
+    return std::make_unique<QuadtreeControlSpace>(csUnitBox(), q);
   }
   BackgroundMeshOptions b;
   b.maxLevel = 14;
-  return std::make_unique<BackgroundMeshControlSpace>(unitBox(), b);
+  return std::make_unique<BackgroundMeshControlSpace>(csUnitBox(), b);
 }
 
 // Args: number of sources, quadtree (1) or background mesh (0), smoothing dr=2 (0 off,

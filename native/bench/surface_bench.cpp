@@ -16,7 +16,7 @@ namespace {
 const char* kP2 = "1.5*exp(-0.001*(u^2+v^2))*sin(2*u)*cos(0.2*v)";
 
 // A fixed 64 x 64 grid of query points over [-10, 10]^2.
-std::vector<Vec2> grid() {
+std::vector<Vec2> surfaceGrid() {
   std::vector<Vec2> pts;
   for (int i = 0; i < 64; ++i)
     for (int j = 0; j < 64; ++j) pts.emplace_back(-10 + 20.0 * i / 63, -10 + 20.0 * j / 63);
@@ -25,7 +25,7 @@ std::vector<Vec2> grid() {
 
 void BM_ExpressionP2Value(benchmark::State& state) {
   const Expression e = Expression::parse(kP2);
-  const auto pts = grid();
+  const auto pts = surfaceGrid();
   size_t i = 0;
   for (auto _ : state) {
     const Vec2& p = pts[i++ & 4095];
@@ -37,7 +37,7 @@ BENCHMARK(BM_ExpressionP2Value);
 
 void BM_ExpressionP2Derivatives(benchmark::State& state) {
   const Expression e = Expression::parse(kP2);
-  const auto pts = grid();
+  const auto pts = surfaceGrid();
   size_t i = 0;
   for (auto _ : state) {
     const Vec2& p = pts[i++ & 4095];
@@ -49,7 +49,7 @@ BENCHMARK(BM_ExpressionP2Derivatives);
 
 // Hand-written p2 height with the same derivatives, as the floor the evaluator is compared to.
 void BM_HandWrittenP2Derivatives(benchmark::State& state) {
-  const auto pts = grid();
+  const auto pts = surfaceGrid();
   size_t i = 0;
   for (auto _ : state) {
     const Vec2& p = pts[i++ & 4095];
@@ -72,7 +72,7 @@ BENCHMARK(BM_HandWrittenP2Derivatives);
 
 void BM_SurfaceP2Derivatives(benchmark::State& state) {
   const auto p2 = paperP2();
-  const auto pts = grid();
+  const auto pts = surfaceGrid();
   size_t i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(p2->derivatives(pts[i++ & 4095]));
   state.SetItemsProcessed(state.iterations());
@@ -81,7 +81,7 @@ BENCHMARK(BM_SurfaceP2Derivatives);
 
 void BM_CurvatureMetricP2(benchmark::State& state) {
   const auto p2 = paperP2();
-  const auto pts = grid();
+  const auto pts = surfaceGrid();
   SurfaceMetricOptions o;
   o.chordTolerance = 0.005;
   o.hmin = 0.01;
@@ -98,7 +98,7 @@ void BM_ControlSpaceMetricAtP2(benchmark::State& state) {
   o.hmin = 0.01;
   o.hmax = 2.0;
   const SurfaceCurvatureControlSpace cs(paperP2(), o);
-  const auto pts = grid();
+  const auto pts = surfaceGrid();
   size_t i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(cs.metricAt(pts[i++ & 4095]));
   state.SetItemsProcessed(state.iterations());

@@ -57,7 +57,7 @@ Metric sharpField(const Vec2& p) {
   return intersect(layer, spot);
 }
 
-Vec2 dir(double a) { return {std::cos(a), std::sin(a)}; }
+Vec2 unitDirection(double a) { return {std::cos(a), std::sin(a)}; }
 
 }  // namespace
 
@@ -184,7 +184,7 @@ TEST(ControlSpaceMinimum, QuadtreeResultLiesInsideBothInputs) {
     const Vec2 p(u(rng), u(rng));
     const Metric r = cs1->metricAt(p), a = orig->metricAt(p), b = cs2->metricAt(p);
     for (int d = 0; d < 8; ++d) {
-      const Vec2 v = dir(d * M_PI / 8);
+      const Vec2 v = unitDirection(d * M_PI / 8);
       ASSERT_LE(r.sizeAlong(v), a.sizeAlong(v) * (1 + 1e-6));
       ASSERT_LE(r.sizeAlong(v), b.sizeAlong(v) * (1 + 1e-6));
     }
@@ -240,7 +240,7 @@ TEST(ControlSpaceMinimum, BackgroundAndCrossStructureMinimum) {
       const Vec2 p = cs1->nodePosition(i);
       const Metric r = cs1->nodeMetric(i), a = orig->metricAt(p), b = cs2->metricAt(p);
       for (int d = 0; d < 8; ++d) {
-        const Vec2 v = dir(d * M_PI / 8);
+        const Vec2 v = unitDirection(d * M_PI / 8);
         ASSERT_LE(r.sizeAlong(v), a.sizeAlong(v) * (1 + 1e-6));
         ASSERT_LE(r.sizeAlong(v), b.sizeAlong(v) * (1 + 1e-6)) << c.q1 << c.q2 << " node " << i;
       }
@@ -255,7 +255,7 @@ TEST(ControlSpaceMinimum, BackgroundAndCrossStructureMinimum) {
       const Vec2 p(u(rng), u(rng));
       const Metric r = cs1->metricAt(p), analytic = intersect(f1(p), f2(p)), structures = exact.metricAt(p);
       for (int d = 0; d < 8; ++d) {
-        const Vec2 v = dir(d * M_PI / 8);
+        const Vec2 v = unitDirection(d * M_PI / 8);
         worstAnalytic = std::max(worstAnalytic, r.sizeAlong(v) / analytic.sizeAlong(v) - 1);
         worstStructures = std::max(worstStructures, r.sizeAlong(v) / structures.sizeAlong(v) - 1);
       }

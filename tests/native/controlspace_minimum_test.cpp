@@ -19,7 +19,7 @@ namespace {
 
 using anisomesh::test_util::box;
 
-ContinuousInsertionOptions insertion() {
+ContinuousInsertionOptions minimumInsertion() {
   ContinuousInsertionOptions c;
   c.threshold = 0.3;
   c.sampleThreshold = 0.05;
@@ -38,22 +38,22 @@ std::shared_ptr<const ControlSpace> makeInput(int kind, const MetricFunction& f)
     QuadtreeOptions o;
     o.maxLevel = 7;
     auto cs = std::make_shared<QuadtreeControlSpace>(box(0, 0, 1, 1), o);
-    insertMetricFunction(*cs, f, insertion());
+    insertMetricFunction(*cs, f, minimumInsertion());
     return cs;
   }
   BackgroundMeshOptions o;
   o.maxLevel = 7;
   auto cs = std::make_shared<BackgroundMeshControlSpace>(box(0, 0, 1, 1), o);
-  insertMetricFunction(*cs, f, insertion());
+  insertMetricFunction(*cs, f, minimumInsertion());
   return cs;
 }
 
-Vec2 dir(double a) { return {std::cos(a), std::sin(a)}; }
+Vec2 angleDirection(double a) { return {std::cos(a), std::sin(a)}; }
 
 // The result's size is at most the input's in 32 directions (within rounding).
 void expectInside(const Metric& r, const Metric& input, const Vec2& p) {
   for (int d = 0; d < 32; ++d) {
-    const Vec2 v = dir(d * M_PI / 32);
+    const Vec2 v = angleDirection(d * M_PI / 32);
     ASSERT_LE(r.sizeAlong(v), input.sizeAlong(v) * (1 + 1e-9)) << p.transpose() << " direction " << d;
   }
 }

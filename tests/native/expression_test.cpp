@@ -293,7 +293,7 @@ TEST(Expression, ValueAndTheDualValuePartAreTheSameDouble) {
 }
 
 namespace {
-std::uint64_t bitsOf(double x) {
+std::uint64_t expressionBitsOf(double x) {
   std::uint64_t u;
   std::memcpy(&u, &x, sizeof u);
   return u;
@@ -317,7 +317,7 @@ TEST(Expression, FirstOrderEvaluationHasTheBitsOfTheSecondOrderOne) {
       const Dual1 b = e.evaluateFirst(u, v);
       for (const auto& [x, y] : {std::pair{a.f, b.f}, std::pair{a.fu, b.fu}, std::pair{a.fv, b.fv}}) {
         if (std::isnan(x) && std::isnan(y)) continue;
-        ASSERT_EQ(bitsOf(x), bitsOf(y)) << text << " at (" << u << ", " << v << ")";
+        ASSERT_EQ(expressionBitsOf(x), expressionBitsOf(y)) << text << " at (" << u << ", " << v << ")";
       }
     }
   }

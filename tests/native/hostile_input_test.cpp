@@ -33,9 +33,10 @@
 namespace anisomesh {
 namespace {
 
-const char* kSquare = R"("domain": {"outer": [{"type": "polyline", "points": [[0,0],[1,0],[1,1],[0,1],[0,0]]}]})";
+const char* kHostileSquare =
+    R"("domain": {"outer": [{"type": "polyline", "points": [[0,0],[1,0],[1,1],[0,1],[0,0]]}]})";
 
-ErrorCode codeOf(const std::function<void()>& f, std::string* message = nullptr) {
+ErrorCode hostileCodeOf(const std::function<void()>& f, std::string* message = nullptr) {
   try {
     f();
   } catch (const Error& e) {
@@ -55,11 +56,13 @@ TEST(JsonOverflow, PathOfTheOverflowingNumber) {
 
 TEST(JsonOverflow, CaseRunGivesParseErrorNamingThePath) {
   std::string msg;
-  EXPECT_EQ(codeOf([&] { runCase(std::string("{") + kSquare + R"(, "controlSpace": {"hmax": 1e999}})"); }, &msg),
+  EXPECT_EQ(hostileCodeOf([&] { runCase(std::string("{") + kHostileSquare + R"(, "controlSpace": {"hmax": 1e999}})"); },
+                          &msg),
             ErrorCode::ParseError);
   EXPECT_NE(msg.find("controlSpace.hmax"), std::string::npos) << msg;
   // Surface cases go through the other reader.
-  EXPECT_EQ(codeOf([&] { runCase(R"({"patches": [], "metric": {"hmax": -1e999}})"); }, &msg), ErrorCode::ParseError);
+  EXPECT_EQ(hostileCodeOf([&] { runCase(R"({"patches": [], "metric": {"hmax": -1e999}})"); }, &msg),
+            ErrorCode::ParseError);
   EXPECT_NE(msg.find("metric.hmax"), std::string::npos) << msg;
 }
 
@@ -72,7 +75,7 @@ TEST(ControlSpaceBudget, RefinementStopsAtTheNodeBudgetBeforeTheWork) {
   limits.maxNodes = 5000;
   cs.setLimits(limits);
   std::string msg;
-  EXPECT_EQ(codeOf([&] { cs.refine([](const ControlElement&) { return true; }, nullptr); }, &msg),
+  EXPECT_EQ(hostileCodeOf([&] { cs.refine([](const ControlElement&) { return true; }, nullptr); }, &msg),
             ErrorCode::ElementBudgetExceeded);
   EXPECT_NE(msg.find("control-space refinement"), std::string::npos) << msg;
   EXPECT_NE(msg.find("node budget of 5000"), std::string::npos) << msg;
@@ -80,7 +83,7 @@ TEST(ControlSpaceBudget, RefinementStopsAtTheNodeBudgetBeforeTheWork) {
   // The background mesh too.
   BackgroundMeshControlSpace bg(Box2{{0, 0}, {1, 1}});
   bg.setLimits(limits);
-  EXPECT_EQ(codeOf([&] { bg.refine([](const ControlElement&) { return true; }, nullptr); }),
+  EXPECT_EQ(hostileCodeOf([&] { bg.refine([](const ControlElement&) { return true; }, nullptr); }),
             ErrorCode::ElementBudgetExceeded);
   EXPECT_LE(bg.nodeCount(), 2 * 5000);  // bisection's conforming closure may add more than one node per split
   // The clone keeps the budget.
@@ -93,9 +96,9 @@ TEST(ControlSpaceBudget, DerivedFromTheElementBudget) {
   RunCaseOptions opt;
   opt.maxControlNodes = 20000;
   std::string msg;
-  EXPECT_EQ(codeOf(
+  EXPECT_EQ(hostileCodeOf(
                 [&] {
-                  runCase(std::string("{") + kSquare +
+                  runCase(std::string("{") + kHostileSquare +
                               R"J(, "controlSpace": {"hmax": 0.1, "maxLevel": 20, "refineThreshold": 0.001},
                               "sources": [{"type": "analytic", "field": "expression", "h1": "0.001 + 0.05 * abs(sin(40 * x) * sin(40 * y))"}]
 })J",
@@ -114,7 +117,8 @@ TEST(ControlSpaceBudget, ProgressDuringRefinementCancels) {
   int calls = 0;
   limits.progress = [&](double) { return ++calls < 2; };
   cs.setLimits(limits);
-  EXPECT_EQ(codeOf([&] { cs.refine([](const ControlElement&) { return true; }, nullptr); }), ErrorCode::Cancelled);
+  EXPECT_EQ(hostileCodeOf([&] { cs.refine([](const ControlElement&) { return true; }, nullptr); }),
+            ErrorCode::Cancelled);
   EXPECT_EQ(calls, 2);
 }
 
@@ -141,7 +145,7 @@ TEST(ElementEstimate, BoundIsNeverBelowTheEstimate) {
     EXPECT_LT(bound, 1000.0 * estimate) << int(interp);  // a bound, not infinity
     // Above the bound's budget the estimate is not made; below it, the check still refuses.
     EXPECT_NO_THROW(checkElementEstimate(square, cs, std::int64_t(bound), "a stage"));
-    EXPECT_EQ(codeOf([&] { checkElementEstimate(square, cs, std::int64_t(estimate / 4), "a stage"); }),
+    EXPECT_EQ(hostileCodeOf([&] { checkElementEstimate(square, cs, std::int64_t(estimate / 4), "a stage"); }),
               ErrorCode::ElementBudgetExceeded);
   }
 }
@@ -155,22 +159,25 @@ TEST(ElementEstimate, MetricAreaOverUnitTriangles) {
   // Sampled per control element (16 here, 4 of them straddling the edge): within 25%.
   EXPECT_NEAR(estimateElementCount(square, cs), expect, 0.25 * expect);
   std::string msg;
-  EXPECT_EQ(codeOf([&] { checkElementEstimate(square, cs, 1000, "a stage"); }, &msg), ErrorCode::ElementBudgetExceeded);
+  EXPECT_EQ(hostileCodeOf([&] { checkElementEstimate(square, cs, 1000, "a stage"); }, &msg),
+            ErrorCode::ElementBudgetExceeded);
   EXPECT_EQ(msg.rfind("a stage: the metric asks for about", 0), 0u) << msg;
   EXPECT_NO_THROW(checkElementEstimate(square, cs, 20000, "a stage"));  // within the slack of 2
   // hmax 1e-6 on the unit square: refused at once, no overflow in the figure.
   RunCaseOptions opt;
-  EXPECT_EQ(codeOf([&] { runCase(std::string("{") + kSquare + R"(, "controlSpace": {"hmax": 1e-6}})", opt); }, &msg),
-            ErrorCode::ElementBudgetExceeded);
+  EXPECT_EQ(
+      hostileCodeOf([&] { runCase(std::string("{") + kHostileSquare + R"(, "controlSpace": {"hmax": 1e-6}})", opt); },
+                    &msg),
+      ErrorCode::ElementBudgetExceeded);
   EXPECT_NE(msg.find("element estimate before contour discretization"), std::string::npos) << msg;
   EXPECT_NE(msg.find("about 2.44e+12 elements"), std::string::npos) << msg;  // 1.057 * 1e12 / (sqrt(3) / 4)
 }
 
 TEST(OutOfMemory, AllocationFailuresBecomeCodedErrorsNamingTheStage) {
   std::string msg;
-  EXPECT_EQ(codeOf([&] { withStage("a stage", [] { throw std::bad_alloc(); }); }, &msg), ErrorCode::OutOfMemory);
+  EXPECT_EQ(hostileCodeOf([&] { withStage("a stage", [] { throw std::bad_alloc(); }); }, &msg), ErrorCode::OutOfMemory);
   EXPECT_EQ(msg, "out of memory during a stage");
-  EXPECT_EQ(codeOf([&] {
+  EXPECT_EQ(hostileCodeOf([&] {
               withStage("another", [] {
                 std::vector<double> v;
                 v.reserve(v.max_size() + 1);
@@ -185,37 +192,37 @@ TEST(MetricField, VertexAtInfinityIsRefusedWithoutUndefinedBehaviour) {
   m.points = {{0, 0, 0}, {1, 0, 0}, {std::numeric_limits<double>::infinity(), 1, 0}};
   m.triangles = {{0, 1, 2}};
   const std::vector<Metric> metrics(3, Metric::isotropic(0.1));
-  EXPECT_EQ(codeOf([&] { TriangleMeshMetricField f(m, metrics); }), ErrorCode::InvalidDomain);
+  EXPECT_EQ(hostileCodeOf([&] { TriangleMeshMetricField f(m, metrics); }), ErrorCode::InvalidDomain);
   // Finite but huge coordinates: the box size (and every barycentric determinant) overflows
   // to infinity, so no query could be answered: refused up front, with a code.
   m.points = {{-1e308, -1e308, 0}, {1e308, -1e308, 0}, {1e308, 1e308, 0}};
-  EXPECT_EQ(codeOf([&] { TriangleMeshMetricField f(m, metrics); }), ErrorCode::InvalidDomain);
+  EXPECT_EQ(hostileCodeOf([&] { TriangleMeshMetricField f(m, metrics); }), ErrorCode::InvalidDomain);
   // Queries far away or at NaN: no float-to-int conversion out of range (UBSan fails the
   // test otherwise); far outside answers the nearest triangle, NaN is a coded error.
   m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   const TriangleMeshMetricField g(m, metrics);
   EXPECT_NEAR(g.metricAt(Vec2(-1e300, 0.5)).tensor()(0, 0), 100.0, 1e-9);
   EXPECT_NEAR(g.metricAt(Vec2(1e300, -1e300)).tensor()(0, 0), 100.0, 1e-9);
-  EXPECT_EQ(codeOf([&] { g.metricAt(Vec2(-1e300, std::nan(""))); }), ErrorCode::InvalidArgument);
-  EXPECT_EQ(codeOf([&] { g.metricAt(Vec2(std::nan(""), 1e300)); }), ErrorCode::InvalidArgument);
+  EXPECT_EQ(hostileCodeOf([&] { g.metricAt(Vec2(-1e300, std::nan(""))); }), ErrorCode::InvalidArgument);
+  EXPECT_EQ(hostileCodeOf([&] { g.metricAt(Vec2(std::nan(""), 1e300)); }), ErrorCode::InvalidArgument);
 }
 
 TEST(FileLimits, DevicesDirectoriesAndLargeFilesAreRefusedUpFront) {
   std::string msg;
-  EXPECT_EQ(codeOf([&] { readTextFile("/dev/zero"); }, &msg), ErrorCode::IoError);
+  EXPECT_EQ(hostileCodeOf([&] { readTextFile("/dev/zero"); }, &msg), ErrorCode::IoError);
   EXPECT_NE(msg.find("device"), std::string::npos) << msg;
-  EXPECT_EQ(codeOf([&] { readTextFile("/tmp"); }), ErrorCode::IoError);
+  EXPECT_EQ(hostileCodeOf([&] { readTextFile("/tmp"); }), ErrorCode::IoError);
   const std::string path = ::testing::TempDir() + "anisomesh_file_limit.txt";
   writeTextFileAtomic(path, std::string(100, 'x'));
   ReadFileOptions o;
   o.maxBytes = 99;
-  EXPECT_EQ(codeOf([&] { readTextFile(path, o); }, &msg), ErrorCode::IoError);
+  EXPECT_EQ(hostileCodeOf([&] { readTextFile(path, o); }, &msg), ErrorCode::IoError);
   EXPECT_NE(msg.find("above the input limit of 99 bytes"), std::string::npos) << msg;
   o.maxBytes = 100;
   EXPECT_EQ(readTextFile(path, o).size(), 100u);
   const std::int64_t before = defaultMaxInputBytes();
   setDefaultMaxInputBytes(50);
-  EXPECT_EQ(codeOf([&] { readTextFile(path); }), ErrorCode::IoError);
+  EXPECT_EQ(hostileCodeOf([&] { readTextFile(path); }), ErrorCode::IoError);
   setDefaultMaxInputBytes(before);
   EXPECT_EQ(readTextFile(path).size(), 100u);
   std::remove(path.c_str());

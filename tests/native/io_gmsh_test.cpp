@@ -18,7 +18,7 @@ using namespace anisomesh;
 
 namespace {
 
-Mesh sampleMesh() {
+Mesh gmshSampleMesh() {
   Mesh m;
   m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(2, 0.5, 0), Vec3(0.1, 1e-17, 0)};
   m.pointRefs.assign(6, 0);
@@ -31,14 +31,14 @@ Mesh sampleMesh() {
   return m;
 }
 
-Mesh caseMesh(const std::string& example, bool quads) {
+Mesh gmshCaseMesh(const std::string& example, bool quads) {
   RunCaseOptions o;
   o.quads = quads;
   return runCase(readTextFile(std::string(ANISOMESH_SOURCE_DIR) + "/examples/" + example), o).mesh;
 }
 
 // The same mesh up to element order within (dimension, ref) groups: compared as written.
-void expectSameMesh(const Mesh& a, const Mesh& b) {
+void expectSameGmshMesh(const Mesh& a, const Mesh& b) {
   ASSERT_EQ(a.points.size(), b.points.size());
   for (size_t i = 0; i < a.points.size(); ++i) ASSERT_EQ(a.points[i], b.points[i]) << i;
   EXPECT_EQ(a.dimension, b.dimension);
@@ -75,13 +75,13 @@ void expectRoundTrip(const Mesh& m) {
   for (GmshVersion v : {GmshVersion::V41, GmshVersion::V22}) {
     const std::string text = writeGmsh(m, v);
     const Mesh back = parseGmsh(text);
-    expectSameMesh(grouped(m), back);
+    expectSameGmshMesh(grouped(m), back);
     EXPECT_EQ(writeGmsh(back, v), text) << "a second round trip changes the text";
   }
 }
 
 template <class F>
-void expectParseError(F f, const std::string& fragment) {
+void expectGmshParseError(F f, const std::string& fragment) {
   try {
     f();
     FAIL() << "no error";
@@ -94,7 +94,7 @@ void expectParseError(F f, const std::string& fragment) {
 bool haveCommand(const std::string& probe) { return std::system((probe + " >/dev/null 2>&1").c_str()) == 0; }
 
 // A Python with meshio (Debian's python3-meshio is for /usr/bin/python3), or "".
-std::string meshioPython() {
+std::string gmshMeshioPython() {
   for (const char* py : {"python3", "/usr/bin/python3"})
     if (std::system((std::string(py) + " -c 'import meshio' >/dev/null 2>&1").c_str()) == 0) return py;
   return "";
@@ -103,17 +103,17 @@ std::string meshioPython() {
 }  // namespace
 
 TEST(IoGmsh, SampleRoundTripsInBothVersions) {
-  expectRoundTrip(sampleMesh());
-  const std::string v41 = writeGmsh(sampleMesh());
+  expectRoundTrip(gmshSampleMesh());
+  const std::string v41 = writeGmsh(gmshSampleMesh());
   EXPECT_EQ(v41.rfind("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n", 0), 0u) << v41;
-  const std::string v22 = writeGmsh(sampleMesh(), GmshVersion::V22);
+  const std::string v22 = writeGmsh(gmshSampleMesh(), GmshVersion::V22);
   EXPECT_NE(v22.find("2 2 3 3 2 5 3\n"), std::string::npos) << v22;  // triangle, physical 3, elementary 3
 }
 
 TEST(IoGmsh, MeshedExamplesRoundTrip) {
-  expectRoundTrip(caseMesh("point_source.json", false));
-  expectRoundTrip(caseMesh("fig7_rect_holes_dr2.json", true));
-  const Mesh surface = caseMesh("surface/surface_sphere.json", true);
+  expectRoundTrip(gmshCaseMesh("point_source.json", false));
+  expectRoundTrip(gmshCaseMesh("fig7_rect_holes_dr2.json", true));
+  const Mesh surface = gmshCaseMesh("surface/surface_sphere.json", true);
   ASSERT_EQ(surface.dimension, 3);
   expectRoundTrip(surface);
 }
@@ -134,40 +134,41 @@ TEST(IoGmsh, ReadsWhatGmshWritesAndSkipsUnknownSections) {
 }
 
 TEST(IoGmsh, StrictErrors) {
-  expectParseError([] { parseGmsh("$MeshFormat\n4.1 1 8\n$EndMeshFormat\n"); }, "binary .msh files are not supported");
-  expectParseError([] { parseGmsh("$MeshFormat\n3.0 0 8\n$EndMeshFormat\n"); }, "expected version 4.1 or 2.2");
-  expectParseError(
+  expectGmshParseError([] { parseGmsh("$MeshFormat\n4.1 1 8\n$EndMeshFormat\n"); },
+                       "binary .msh files are not supported");
+  expectGmshParseError([] { parseGmsh("$MeshFormat\n3.0 0 8\n$EndMeshFormat\n"); }, "expected version 4.1 or 2.2");
+  expectGmshParseError(
       [] {
         parseGmsh(
             "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 0 0\n$EndNodes\n"
             "$Elements\n1\n1 9 2 0 0 1 1 1 1 1 1\n$EndElements\n");
       },
       "element type 9 is not supported");
-  expectParseError(
+  expectGmshParseError(
       [] {
         parseGmsh(
             "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 0 0\n$EndNodes\n"
             "$Elements\n1\n1 1 0 1 2\n$EndElements\n");
       },
       "a node tag defined in $Nodes");
-  expectParseError([] { parseGmsh("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n"); }, "msh line 6");
-  expectParseError([] { parseGmsh("mesh"); }, "'$MeshFormat'");
+  expectGmshParseError([] { parseGmsh("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n"); }, "msh line 6");
+  expectGmshParseError([] { parseGmsh("mesh"); }, "'$MeshFormat'");
 }
 
 TEST(IoGmsh, MshExtensionDispatch) {
   EXPECT_EQ(meshFormatFromPath("a/b.MSH"), MeshFormat::Gmsh);
-  const Mesh m = sampleMesh();
+  const Mesh m = gmshSampleMesh();
   EXPECT_EQ(writeMeshString(m, MeshFormat::Gmsh), writeGmsh(m, GmshVersion::V41));
   EXPECT_EQ(writeMeshString(m, MeshFormat::Gmsh22), writeGmsh(m, GmshVersion::V22));
 }
 
 // meshio (python3-meshio) and gmsh read every file written: same counts; skipped when absent.
 TEST(IoGmsh, MeshioAndGmshReadTheWrittenFiles) {
-  const std::string py = meshioPython();
+  const std::string py = gmshMeshioPython();
   const bool meshio = !py.empty();
   const bool gmsh = haveCommand("gmsh -version");
   if (!meshio && !gmsh) GTEST_SKIP() << "neither meshio (python3-meshio) nor gmsh is installed";
-  const Mesh m = caseMesh("fig7_rect_holes_dr2.json", true);
+  const Mesh m = gmshCaseMesh("fig7_rect_holes_dr2.json", true);
   const std::string dir = testing::TempDir();
   for (GmshVersion v : {GmshVersion::V41, GmshVersion::V22}) {
     const std::string path = dir + (v == GmshVersion::V41 ? "/anisomesh_v41.msh" : "/anisomesh_v22.msh");

@@ -15,7 +15,7 @@ using namespace anisomesh;
 
 namespace {
 
-Mesh sampleMesh(int dimension) {
+Mesh meditSampleMesh(int dimension) {
   Mesh m;
   m.dimension = dimension;
   const double z = dimension == 3 ? 0.25 : 0.0;
@@ -45,7 +45,7 @@ void expectSameMesh(const Mesh& a, const Mesh& b) {
 
 // Parses text and checks the error code and a message fragment.
 template <class F>
-void expectError(F f, ErrorCode code, const std::string& fragment) {
+void expectMeditError(F f, ErrorCode code, const std::string& fragment) {
   try {
     f();
     FAIL() << "no error, expected " << errorCodeName(code);
@@ -57,12 +57,12 @@ void expectError(F f, ErrorCode code, const std::string& fragment) {
 
 std::string tempPath(const std::string& name) { return ::testing::TempDir() + "anisomesh_io_" + name; }
 
-bool exists(const std::string& path) { return std::ifstream(path).good(); }
+bool fileExists(const std::string& path) { return std::ifstream(path).good(); }
 
 }  // namespace
 
 TEST(IoMedit, RoundTrip2D) {
-  const Mesh m = sampleMesh(2);
+  const Mesh m = meditSampleMesh(2);
   const std::string text = writeMedit(m);
   EXPECT_NE(text.find("Dimension 2"), std::string::npos);
   EXPECT_NE(text.find("Quadrilaterals"), std::string::npos);
@@ -70,7 +70,7 @@ TEST(IoMedit, RoundTrip2D) {
 }
 
 TEST(IoMedit, RoundTrip3D) {
-  const Mesh m = sampleMesh(3);
+  const Mesh m = meditSampleMesh(3);
   expectSameMesh(m, parseMedit(writeMedit(m)));
 }
 
@@ -124,8 +124,8 @@ TEST(IoMedit, FileReadInBatchesGivesTheWholeTextsMesh) {
 
 TEST(IoMedit, FileRoundTripIsAtomic) {
   const std::string path = tempPath("round.mesh");
-  writeMeditFile(path, sampleMesh(2));
-  expectSameMesh(sampleMesh(2), readMeditFile(path));
+  writeMeditFile(path, meditSampleMesh(2));
+  expectSameMesh(meditSampleMesh(2), readMeditFile(path));
   std::remove(path.c_str());
 }
 
@@ -148,28 +148,28 @@ TEST(IoMedit, ParsesVersion1CommentsAndSkippedSections) {
 
 TEST(IoMedit, MalformedFilesNameLineAndExpectation) {
   const std::string head = "MeshVersionFormatted 2\nDimension 2\n";
-  expectError([&] { parseMedit(head + "Vertices\n2\n0 0 0\n1 x 0\nEnd\n"); }, ErrorCode::ParseError,
-              "line 6: expected coordinate y of vertex 2, got 'x'");
-  expectError([&] { parseMedit(head + "Vertices\n2\n0 0 0\n1 1 0\nTriangles\n1\n1 2 3 0\n"); }, ErrorCode::ParseError,
-              "line 9: vertex index 3 of Triangles 1 is out of range 1..2");
-  expectError([&] { parseMedit(head + "Vertices\n3\n0 0 0\n"); }, ErrorCode::ParseError, "larger than the data");
-  expectError([&] { parseMedit(head + "Vertices\n1\n0 0\n"); }, ErrorCode::ParseError,
-              "expected the reference of vertex 1, got end of file");
-  expectError([&] { parseMedit(head + "Vertex\n1\n0 0 0\n"); }, ErrorCode::ParseError,
-              "line 3: expected a Medit keyword");
-  expectError([&] { parseMedit("MeshVersionFormatted 2\nDimension 4\n"); }, ErrorCode::ParseError,
-              "line 2: expected Dimension 2 or 3");
-  expectError([&] { parseMedit("Dimension 2\nVertices\n0\n"); }, ErrorCode::ParseError,
-              "expected MeshVersionFormatted before Vertices");
-  expectError([&] { parseMedit(head + "Triangles\n0\n"); }, ErrorCode::ParseError,
-              "expected Vertices before Triangles");
-  expectError([&] { parseMedit(head + "Vertices\n-1\n"); }, ErrorCode::ParseError, "nonnegative");
+  expectMeditError([&] { parseMedit(head + "Vertices\n2\n0 0 0\n1 x 0\nEnd\n"); }, ErrorCode::ParseError,
+                   "line 6: expected coordinate y of vertex 2, got 'x'");
+  expectMeditError([&] { parseMedit(head + "Vertices\n2\n0 0 0\n1 1 0\nTriangles\n1\n1 2 3 0\n"); },
+                   ErrorCode::ParseError, "line 9: vertex index 3 of Triangles 1 is out of range 1..2");
+  expectMeditError([&] { parseMedit(head + "Vertices\n3\n0 0 0\n"); }, ErrorCode::ParseError, "larger than the data");
+  expectMeditError([&] { parseMedit(head + "Vertices\n1\n0 0\n"); }, ErrorCode::ParseError,
+                   "expected the reference of vertex 1, got end of file");
+  expectMeditError([&] { parseMedit(head + "Vertex\n1\n0 0 0\n"); }, ErrorCode::ParseError,
+                   "line 3: expected a Medit keyword");
+  expectMeditError([&] { parseMedit("MeshVersionFormatted 2\nDimension 4\n"); }, ErrorCode::ParseError,
+                   "line 2: expected Dimension 2 or 3");
+  expectMeditError([&] { parseMedit("Dimension 2\nVertices\n0\n"); }, ErrorCode::ParseError,
+                   "expected MeshVersionFormatted before Vertices");
+  expectMeditError([&] { parseMedit(head + "Triangles\n0\n"); }, ErrorCode::ParseError,
+                   "expected Vertices before Triangles");
+  expectMeditError([&] { parseMedit(head + "Vertices\n-1\n"); }, ErrorCode::ParseError, "nonnegative");
   // Keywords are case-sensitive, as in Medit.
-  expectError([&] { parseMedit(head + "vertices\n0\n"); }, ErrorCode::ParseError, "got 'vertices'");
+  expectMeditError([&] { parseMedit(head + "vertices\n0\n"); }, ErrorCode::ParseError, "got 'vertices'");
 }
 
 TEST(IoMedit, UnreadableFileIsIoError) {
-  expectError([] { readMeditFile("/nonexistent/dir/x.mesh"); }, ErrorCode::IoError, "/nonexistent/dir/x.mesh");
+  expectMeditError([] { readMeditFile("/nonexistent/dir/x.mesh"); }, ErrorCode::IoError, "/nonexistent/dir/x.mesh");
 }
 
 TEST(IoSol, ScalarAndTensorRoundTrip) {
@@ -210,35 +210,35 @@ TEST(IoSol, FileRoundTrip) {
 
 TEST(IoSol, Errors) {
   const std::string head = "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n2\n";
-  expectError([&] { parseSol(head + "1 4\n1 1\n2 2\nEnd\n"); }, ErrorCode::ParseError,
-              "line 5: expected solution type 1 (scalar), 2 (vector) or 3 (symmetric tensor), got 4");
-  expectError([&] { parseSol(head + "2 1 1\n1 1\n"); }, ErrorCode::ParseError,
-              "line 5: expected 1 solution field, got 2");
-  expectError([&] { parseSol(head + "1 3\n1 0 1\n1 0 oops\n"); }, ErrorCode::ParseError,
-              "line 7: expected value 3 of vertex 2, got 'oops'");
-  expectError([&] { parseSol("MeshVersionFormatted 2\nDimension 2\nEnd\n"); }, ErrorCode::ParseError,
-              "expected a SolAtVertices section");
+  expectMeditError([&] { parseSol(head + "1 4\n1 1\n2 2\nEnd\n"); }, ErrorCode::ParseError,
+                   "line 5: expected solution type 1 (scalar), 2 (vector) or 3 (symmetric tensor), got 4");
+  expectMeditError([&] { parseSol(head + "2 1 1\n1 1\n"); }, ErrorCode::ParseError,
+                   "line 5: expected 1 solution field, got 2");
+  expectMeditError([&] { parseSol(head + "1 3\n1 0 1\n1 0 oops\n"); }, ErrorCode::ParseError,
+                   "line 7: expected value 3 of vertex 2, got 'oops'");
+  expectMeditError([&] { parseSol("MeshVersionFormatted 2\nDimension 2\nEnd\n"); }, ErrorCode::ParseError,
+                   "expected a SolAtVertices section");
   SolData s;
   s.values = {1, 2, 3};
-  expectError([&] { solToMetrics(s, 5); }, ErrorCode::ParseError,
-              "the solution has 3 values but the mesh has 5 vertices");
+  expectMeditError([&] { solToMetrics(s, 5); }, ErrorCode::ParseError,
+                   "the solution has 3 values but the mesh has 5 vertices");
   s.values = {1, -2, 3};
-  expectError([&] { solToMetrics(s, 3); }, ErrorCode::InvalidMetric, "vertex 2");
-  expectError([] { readSolFile("/nonexistent/x.sol"); }, ErrorCode::IoError, "cannot open");
+  expectMeditError([&] { solToMetrics(s, 3); }, ErrorCode::InvalidMetric, "vertex 2");
+  expectMeditError([] { readSolFile("/nonexistent/x.sol"); }, ErrorCode::IoError, "cannot open");
 }
 
 TEST(IoFile, AtomicWriteLeavesNoFileOnFailure) {
   // The folder does not exist: nothing may be created, neither the file nor a temporary.
   const std::string path = tempPath("missing_dir/out.mesh");
-  expectError([&] { writeTextFileAtomic(path, "data"); }, ErrorCode::IoError, "out.mesh");
-  EXPECT_FALSE(exists(path));
+  expectMeditError([&] { writeTextFileAtomic(path, "data"); }, ErrorCode::IoError, "out.mesh");
+  EXPECT_FALSE(fileExists(path));
   // A failure while producing the contents never reaches the file.
   const std::string path2 = tempPath("never.mesh");
   std::remove(path2.c_str());
   Mesh bad;
   bad.dimension = 5;
   EXPECT_THROW(writeMeditFile(path2, bad), Error);
-  EXPECT_FALSE(exists(path2));
+  EXPECT_FALSE(fileExists(path2));
 }
 
 TEST(IoFile, AtomicWriteReplacesExistingFile) {
@@ -256,42 +256,44 @@ TEST(IoFile, Extension) {
 }
 
 TEST(IoFile, ReadingADirectoryIsIoError) {
-  expectError([] { readTextFile(::testing::TempDir()); }, ErrorCode::IoError, "");
+  expectMeditError([] { readTextFile(::testing::TempDir()); }, ErrorCode::IoError, "");
 }
 
 // Issue #15: numbers that do not fit are refused with the line, never changed silently.
 TEST(IoMedit, StrictNumbersAndReferences) {
   const std::string head = "MeshVersionFormatted 2\nDimension 2\n";
-  expectError([&] { parseMedit(head + "Vertices\n1\n1e999 0 0\nEnd\n"); }, ErrorCode::ParseError,
-              "line 5: coordinate x of vertex 1 '1e999' overflows a double");
-  expectError([&] { parseMedit(head + "Vertices\n1\n0 -1e400 0\nEnd\n"); }, ErrorCode::ParseError,
-              "line 5: coordinate y of vertex 1 '-1e400' overflows a double");
-  expectError([&] { parseMedit(head + "Vertices\n1\n0 0 99999999999\nEnd\n"); }, ErrorCode::ParseError,
-              "line 5: the reference of vertex 1 99999999999 does not fit in a 32-bit integer");
-  expectError([&] { parseMedit(head + "Vertices\n3\n0 0 0\n1 0 0\n0 1 0\nTriangles\n1\n1 2 3\n-99999999999\n"); },
-              ErrorCode::ParseError, "line 11: the reference of Triangles 1 -99999999999 does not fit in a 32-bit");
-  expectError([&] { parseMedit(head + "Vertices\n1\n0 0 99999999999999999999\n"); }, ErrorCode::ParseError,
-              "line 5: the reference of vertex 1 '99999999999999999999' does not fit in a 64-bit integer");
+  expectMeditError([&] { parseMedit(head + "Vertices\n1\n1e999 0 0\nEnd\n"); }, ErrorCode::ParseError,
+                   "line 5: coordinate x of vertex 1 '1e999' overflows a double");
+  expectMeditError([&] { parseMedit(head + "Vertices\n1\n0 -1e400 0\nEnd\n"); }, ErrorCode::ParseError,
+                   "line 5: coordinate y of vertex 1 '-1e400' overflows a double");
+  expectMeditError([&] { parseMedit(head + "Vertices\n1\n0 0 99999999999\nEnd\n"); }, ErrorCode::ParseError,
+                   "line 5: the reference of vertex 1 99999999999 does not fit in a 32-bit integer");
+  expectMeditError([&] { parseMedit(head + "Vertices\n3\n0 0 0\n1 0 0\n0 1 0\nTriangles\n1\n1 2 3\n-99999999999\n"); },
+                   ErrorCode::ParseError,
+                   "line 11: the reference of Triangles 1 -99999999999 does not fit in a 32-bit");
+  expectMeditError([&] { parseMedit(head + "Vertices\n1\n0 0 99999999999999999999\n"); }, ErrorCode::ParseError,
+                   "line 5: the reference of vertex 1 '99999999999999999999' does not fit in a 64-bit integer");
   // The largest references that fit, and an underflow (the nearest double, as strtod).
   const Mesh m = parseMedit(head + "Vertices\n2\n1e-400 0 2147483647\n+0.5 0x1p-2 -2147483648\nEnd\n");
   EXPECT_EQ(m.pointRefs, (std::vector<int>{2147483647, -2147483648}));
   EXPECT_EQ(m.points[0].x(), 0.0);
   EXPECT_EQ(m.points[1].x(), 0.5);   // '+' sign (strtod's syntax kept)
   EXPECT_EQ(m.points[1].y(), 0.25);  // hexadecimal (strtod's syntax kept)
-  expectError([&] { parseSol(head + "SolAtVertices\n1\n1 1\n1e999\nEnd\n"); }, ErrorCode::ParseError,
-              "line 6: value 1 of vertex 1 '1e999' overflows a double");
+  expectMeditError([&] { parseSol(head + "SolAtVertices\n1\n1 1\n1e999\nEnd\n"); }, ErrorCode::ParseError,
+                   "line 6: value 1 of vertex 1 '1e999' overflows a double");
 }
 
 // Issue #15: Dimension appears once, before the data (a late one would reinterpret it).
 TEST(IoMedit, DimensionOnceBeforeTheData) {
-  expectError([] { parseMedit("MeshVersionFormatted 2\nDimension 2\nDimension 3\nVertices\n0\nEnd\n"); },
-              ErrorCode::ParseError, "Dimension appears twice");
-  expectError([] { parseMedit("MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 1 0\nDimension 2\nEnd\n"); },
-              ErrorCode::ParseError, "Dimension after the data");
-  expectError([] { parseSol("MeshVersionFormatted 2\nDimension 2\nDimension 2\nSolAtVertices\n0\n1 1\nEnd\n"); },
-              ErrorCode::ParseError, "Dimension appears twice");
-  expectError([] { parseSol("MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n1\n1 1\n0.5\nDimension 3\nEnd\n"); },
-              ErrorCode::ParseError, "Dimension after the data");
+  expectMeditError([] { parseMedit("MeshVersionFormatted 2\nDimension 2\nDimension 3\nVertices\n0\nEnd\n"); },
+                   ErrorCode::ParseError, "Dimension appears twice");
+  expectMeditError([] { parseMedit("MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 1 0\nDimension 2\nEnd\n"); },
+                   ErrorCode::ParseError, "Dimension after the data");
+  expectMeditError([] { parseSol("MeshVersionFormatted 2\nDimension 2\nDimension 2\nSolAtVertices\n0\n1 1\nEnd\n"); },
+                   ErrorCode::ParseError, "Dimension appears twice");
+  expectMeditError(
+      [] { parseSol("MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n1\n1 1\n0.5\nDimension 3\nEnd\n"); },
+      ErrorCode::ParseError, "Dimension after the data");
 }
 
 // from_chars / to_chars (native) and strtod / %.17g (wasm) give the same values and bytes.

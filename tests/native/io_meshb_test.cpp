@@ -22,7 +22,7 @@ using namespace anisomesh;
 
 namespace {
 
-Mesh sampleMesh() {
+Mesh meshbSampleMesh() {
   Mesh m;
   m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(2, 0.5, 0), Vec3(0.1, 1e-17, 0)};
   m.pointRefs = {1, 0, 0, 2, 0, -3};
@@ -35,13 +35,13 @@ Mesh sampleMesh() {
   return m;
 }
 
-Mesh caseMesh(const std::string& example, bool quads) {
+Mesh meshbCaseMesh(const std::string& example, bool quads) {
   RunCaseOptions o;
   o.quads = quads;
   return runCase(readTextFile(std::string(ANISOMESH_SOURCE_DIR) + "/examples/" + example), o).mesh;
 }
 
-void expectSameMesh(const Mesh& a, const Mesh& b) {
+void expectSameMeshb(const Mesh& a, const Mesh& b) {
   ASSERT_EQ(a.points.size(), b.points.size());
   for (size_t i = 0; i < a.points.size(); ++i) ASSERT_EQ(a.points[i], b.points[i]) << i;
   EXPECT_EQ(a.dimension, b.dimension);
@@ -55,7 +55,7 @@ void expectSameMesh(const Mesh& a, const Mesh& b) {
 }
 
 template <class F>
-void expectParseError(F f, const std::string& fragment) {
+void expectMeshbParseError(F f, const std::string& fragment) {
   try {
     f();
     FAIL() << "no error";
@@ -108,7 +108,7 @@ struct Encoder {
 // The sample mesh (with Corners, Ridges, RequiredVertices and an unknown keyword) in a
 // given version and byte order.
 std::string encodedSample(int version, bool bigEndian) {
-  const Mesh m = sampleMesh();
+  const Mesh m = meshbSampleMesh();
   Encoder e{version, bigEndian, ""};
   e.word(1);
   e.word(version);
@@ -168,7 +168,7 @@ std::string encodedSample(int version, bool bigEndian) {
 }
 
 // A Python with meshio, or "".
-std::string meshioPython() {
+std::string meshbMeshioPython() {
   for (const char* py : {"python3", "/usr/bin/python3"})
     if (std::system((std::string(py) + " -c 'import meshio' >/dev/null 2>&1").c_str()) == 0) return py;
   return "";
@@ -177,14 +177,14 @@ std::string meshioPython() {
 }  // namespace
 
 TEST(IoMeshb, SampleRoundTripsIdentically) {
-  const Mesh m = sampleMesh();
+  const Mesh m = meshbSampleMesh();
   const std::string bytes = writeMeditBinary(m);
   // Code 1, version 2, Dimension (3) whose next keyword is at byte 20, dimension 2.
   const unsigned char head[] = {1, 0, 0, 0, 2, 0, 0, 0, 3, 0, 0, 0, 20, 0, 0, 0, 2, 0, 0, 0};
   ASSERT_GE(bytes.size(), sizeof head);
   EXPECT_EQ(std::memcmp(bytes.data(), head, sizeof head), 0);
   const Mesh back = parseMeditBinary(bytes);
-  expectSameMesh(m, back);
+  expectSameMeshb(m, back);
   EXPECT_EQ(writeMeditBinary(back), bytes) << "a second round trip changes the bytes";
   EXPECT_EQ(writeMeshString(m, MeshFormat::MeditBinary), bytes);
   EXPECT_EQ(meshFormatFromPath("a/b.MESHB"), MeshFormat::MeditBinary);
@@ -194,16 +194,16 @@ TEST(IoMeshb, MeshedExamplesRoundTripAndMatchTheTextFormat) {
   for (const auto& [example, quads] : {std::pair<const char*, bool>{"point_source.json", false},
                                        {"fig7_rect_holes_dr2.json", true},
                                        {"surface/surface_sphere.json", true}}) {
-    const Mesh m = caseMesh(example, quads);
+    const Mesh m = meshbCaseMesh(example, quads);
     const Mesh binary = parseMeditBinary(writeMeditBinary(m));
     const Mesh text = parseMedit(writeMedit(m));
-    expectSameMesh(text, binary);
+    expectSameMeshb(text, binary);
     EXPECT_EQ(writeMedit(binary), writeMedit(m)) << example;
   }
 }
 
 TEST(IoMeshb, ReadsEveryVersionInBothByteOrders) {
-  const Mesh m = sampleMesh();
+  const Mesh m = meshbSampleMesh();
   for (int version = 1; version <= 4; ++version)
     for (bool big : {false, true}) {
       SCOPED_TRACE("version " + std::to_string(version) + (big ? " big-endian" : " little-endian"));
@@ -215,15 +215,15 @@ TEST(IoMeshb, ReadsEveryVersionInBothByteOrders) {
         EXPECT_EQ(back.triangles, m.triangles);
         EXPECT_EQ(back.quadRefs, m.quadRefs);
       } else {
-        expectSameMesh(m, back);
+        expectSameMeshb(m, back);
       }
     }
 }
 
 TEST(IoMeshb, TruncatedFilesAreParseErrorsAtEveryLength) {
-  const std::string bytes = writeMeditBinary(sampleMesh());
+  const std::string bytes = writeMeditBinary(meshbSampleMesh());
   // Cut anywhere but where End's position word would start (writers may leave it out).
-  expectSameMesh(sampleMesh(), parseMeditBinary(bytes.substr(0, bytes.size() - 4)));
+  expectSameMeshb(meshbSampleMesh(), parseMeditBinary(bytes.substr(0, bytes.size() - 4)));
   for (size_t n = 0; n < bytes.size(); ++n) {
     if (n == bytes.size() - 4) continue;
     try {
@@ -242,33 +242,34 @@ TEST(IoMeshb, TruncatedFilesAreParseErrorsAtEveryLength) {
 }
 
 TEST(IoMeshb, LyingCountsIndicesAndReferencesAreNamed) {
-  std::string bytes = writeMeditBinary(sampleMesh());
+  std::string bytes = writeMeditBinary(meshbSampleMesh());
   // Vertices at byte 20: code, position, count (byte 28).
   std::string lying = bytes;
   lying[28] = char(0xff), lying[29] = char(0xff), lying[30] = char(0xff), lying[31] = char(0x7f);
-  expectParseError([&] { parseMeditBinary(lying); }, "byte 28 (Vertices): 2147483647 vertices need 20 bytes each");
+  expectMeshbParseError([&] { parseMeditBinary(lying); }, "byte 28 (Vertices): 2147483647 vertices need 20 bytes each");
   // The first edge's first vertex: past the 6 vertices of 20 bytes.
   const size_t edges = 32 + 6 * 20;
   std::string index = bytes;
   index[edges + 12] = 9;
-  expectParseError([&] { parseMeditBinary(index); }, "(Edges): vertex index 9 of Edges 1 is out of range 1..6");
-  expectParseError([&] { parseMeditBinary(bytes.substr(0, bytes.size() - 8)); }, "expected the End keyword");
-  expectParseError([&] { parseMeditBinary(writeMedit(sampleMesh())); }, "byte 0: expected the code 1");
+  expectMeshbParseError([&] { parseMeditBinary(index); }, "(Edges): vertex index 9 of Edges 1 is out of range 1..6");
+  expectMeshbParseError([&] { parseMeditBinary(bytes.substr(0, bytes.size() - 8)); }, "expected the End keyword");
+  expectMeshbParseError([&] { parseMeditBinary(writeMedit(meshbSampleMesh())); }, "byte 0: expected the code 1");
   std::string dim = bytes;
   dim[16] = 4;
-  expectParseError([&] { parseMeditBinary(dim); }, "byte 16 (Dimension): expected Dimension 2 or 3, got 4");
+  expectMeshbParseError([&] { parseMeditBinary(dim); }, "byte 16 (Dimension): expected Dimension 2 or 3, got 4");
   std::string version = bytes;
   version[4] = 5;
-  expectParseError([&] { parseMeditBinary(version); }, "byte 4: unsupported version 5");
+  expectMeshbParseError([&] { parseMeditBinary(version); }, "byte 4: unsupported version 5");
   // Version 4: a 64-bit reference beyond 32 bits; an unknown keyword whose position points back.
   std::string v4 = encodedSample(4, false);
   const size_t ref1 = 8 + 16 + 20 + 16;  // header, Dimension, Vertices head, x y of vertex 1
   ASSERT_EQ(v4[ref1], 1);
   v4[ref1 + 5] = 1;
-  expectParseError([&] { parseMeditBinary(v4); }, "the reference 1099511627777 of vertex 1 does not fit in 32 bits");
+  expectMeshbParseError([&] { parseMeditBinary(v4); },
+                        "the reference 1099511627777 of vertex 1 does not fit in 32 bits");
   Encoder e{2, false, ""};
   e.word(1), e.word(2), e.word(3), e.word(20), e.word(2), e.word(99), e.word(4);
-  expectParseError([&] { parseMeditBinary(e.out); }, "byte 24 (keyword 99): the position of the next keyword, 4");
+  expectMeshbParseError([&] { parseMeditBinary(e.out); }, "byte 24 (keyword 99): the position of the next keyword, 4");
 }
 
 TEST(IoMeshb, SolutionsRoundTripInEveryType) {
@@ -289,10 +290,10 @@ TEST(IoMeshb, SolutionsRoundTripInEveryType) {
   SolData tensor = metricsToSol({Metric::fromTensor(4, 1, 9), Metric::isotropic(0.25)});
   std::string lying = writeSolBinary(tensor);
   lying[28] = 100;  // the vertex count
-  expectParseError([&] { parseSolBinary(lying); }, "byte 28 (SolAtVertices): 100 solution values of 24 bytes");
+  expectMeshbParseError([&] { parseSolBinary(lying); }, "byte 28 (SolAtVertices): 100 solution values of 24 bytes");
   std::string type = writeSolBinary(tensor);
   type[36] = 4;
-  expectParseError([&] { parseSolBinary(type); }, "expected solution type 1 (scalar), 2 (vector) or 3");
+  expectMeshbParseError([&] { parseSolBinary(type); }, "expected solution type 1 (scalar), 2 (vector) or 3");
   SolData vector;
   vector.type = 2;
   vector.values = {1, 2};
@@ -311,9 +312,9 @@ TEST(IoMeshb, SolutionsRoundTripInEveryType) {
 // meshio reads our .meshb (counts, coordinates, refs) and we read the .meshb meshio writes
 // (version 3); skipped when python3-meshio is absent.
 TEST(IoMeshb, MeshioReadsAndWritesTheBinaryFormat) {
-  const std::string py = meshioPython();
+  const std::string py = meshbMeshioPython();
   if (py.empty()) GTEST_SKIP() << "meshio (python3-meshio) is not installed";
-  const Mesh m = caseMesh("fig7_rect_holes_dr2.json", true);
+  const Mesh m = meshbCaseMesh("fig7_rect_holes_dr2.json", true);
   const std::string ours = clitest::tmp("ours.meshb"), theirs = clitest::tmp("theirs.meshb");
   const std::string report = clitest::tmp("meshio.txt");
   writeMeshFile(ours, m);
@@ -339,7 +340,7 @@ TEST(IoMeshb, MeshioReadsAndWritesTheBinaryFormat) {
   const std::string back = readTextFile(theirs);
   ASSERT_GE(back.size(), 8u);
   EXPECT_EQ(back[4], 3) << "meshio writes version 3";
-  expectSameMesh(m, readMeshFile(theirs));
+  expectSameMeshb(m, readMeshFile(theirs));
 }
 
 // The CLI reads and writes .meshb / .solb by extension: remesh from .meshb + .solb gives
@@ -356,7 +357,7 @@ TEST(IoMeshb, CliUsesTheBinaryFormatsByExtension) {
   ASSERT_EQ(rb.code, 0) << rb.err;
   EXPECT_EQ(clitest::slurp(a), clitest::slurp(b));
   ASSERT_EQ(clitest::run("remesh " + meshb + " -sol " + solb + " -o " + c).code, 0);
-  expectSameMesh(readMeshFile(a), readMeshFile(c));
+  expectSameMeshb(readMeshFile(a), readMeshFile(c));
   const std::string adapted = clitest::tmp("adapted.meshb"), square = clitest::tmp("square.meshb");
   writeMeshFile(square, readMeshFile(clitest::example("adaptation/square.mesh")));
   const clitest::CliRun ad = clitest::run("adapt " + square + " -field 'x*x' -nv 200 -iterations 1 -o " + adapted);

@@ -38,7 +38,7 @@ std::vector<double> dataArray(const std::string& vtu, const std::string& name) {
 }
 
 // A Python with meshio (Debian's python3-meshio is for /usr/bin/python3), or "".
-std::string meshioPython() {
+std::string vtuMeshioPython() {
   for (const char* py : {"python3", "/usr/bin/python3"})
     if (std::system((std::string(py) + " -c 'import meshio' >/dev/null 2>&1").c_str()) == 0) return py;
   return "";
@@ -85,7 +85,7 @@ TEST(IoVtu, SurfaceRunCarries3dQuality) {
 }
 
 TEST(IoVtu, MeshioReadsIt) {
-  const std::string py = meshioPython();
+  const std::string py = vtuMeshioPython();
   if (py.empty()) GTEST_SKIP() << "python3-meshio not installed";
   const CaseRun run = runExample("point_source.json", true);
   const std::string path = testing::TempDir() + "/anisomesh_case.vtu", out = path + ".txt";

@@ -15,7 +15,7 @@ namespace {
 const Box2 kUnit{{0.0, 0.0}, {1.0, 1.0}};
 
 // Boundary layer along y = 0.5: h_y = 0.001 + 0.2 |y - 0.5| capped at 0.1, h_x = 0.1 (aspect ratio 100).
-Metric boundaryLayer(const Vec2& p) {
+Metric wallLayer(const Vec2& p) {
   const double hy = std::min(0.1, 0.001 + 0.2 * std::fabs(p.y() - 0.5));
   return Metric::fromSizes(0.0, 0.1, hy);
 }
@@ -54,8 +54,8 @@ QualityReport meshAndReport(const AnalyticControlSpace& cs, const char* name, Me
 }  // namespace
 
 TEST(MeshAnisotropic, BoundaryLayerAspectRatio100) {
-  AnalyticControlSpace cs(kUnit, boundaryLayer);
-  EXPECT_NEAR(boundaryLayer({0.3, 0.5}).aspectRatio(), 100.0, 1e-9);
+  AnalyticControlSpace cs(kUnit, wallLayer);
+  EXPECT_NEAR(wallLayer({0.3, 0.5}).aspectRatio(), 100.0, 1e-9);
   Mesh m;
   const QualityReport r = meshAndReport(cs, "boundary layer", &m);
   // With the final short-edge collapses and smoothing that never shortens an edge below
@@ -119,7 +119,7 @@ TEST(MeshAnisotropic, CoarseBoundaryFineMetricTerminates) {
 // A budget between the early estimate and the real count is still enforced (during or
 // after insertion, not only by the estimate).
 TEST(MeshAnisotropic, BudgetEnforcedBeyondTheEstimate) {
-  AnalyticControlSpace cs(kUnit, boundaryLayer);
+  AnalyticControlSpace cs(kUnit, wallLayer);
   const std::vector<BoundaryLoop> loops{metricPolygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, cs)};
   MesherTimings timings;
   PlanarMesherOptions opt;

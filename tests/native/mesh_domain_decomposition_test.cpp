@@ -20,9 +20,9 @@ using namespace meshtest;
 
 namespace {
 
-struct ThreadCountGuard {
+struct DecompositionThreadCountGuard {
   int saved = threadCount();
-  ~ThreadCountGuard() { setThreadCount(saved); }
+  ~DecompositionThreadCountGuard() { setThreadCount(saved); }
 };
 
 // A rotated shear layer along the diagonal of [0, 2] x [0, 1] (aspect ratio 8 at it).
@@ -119,7 +119,7 @@ TEST(DomainDecomposition, PartsTileTheDomainAndShareTheirChords) {
 // The merged mesh: boundary kept, conforming, same for 1, 2 and 4 threads, and of the
 // quality of the domain meshed whole.
 TEST(DomainDecomposition, MergedMeshIsConformingAndTheSameForAnyThreadCount) {
-  ThreadCountGuard guard;
+  DecompositionThreadCountGuard guard;
   const auto cs = shearSpace();
   const auto loops = domainWithHoles(*cs);
   PlanarMesherOptions whole;

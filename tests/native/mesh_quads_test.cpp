@@ -13,9 +13,9 @@ using namespace meshtest;
 
 namespace {
 
-const Box2 kUnit{{0.0, 0.0}, {1.0, 1.0}};
+const Box2 kQuadsUnit{{0.0, 0.0}, {1.0, 1.0}};
 
-Metric layer(const Vec2& p) {
+Metric quadLayer(const Vec2& p) {
   return Metric::fromSizes(0.0, 0.05, std::min(0.05, 0.005 + 0.2 * std::fabs(p.y() - 0.5)));
 }
 
@@ -32,7 +32,7 @@ bool convexCcw(const Mesh& m, const std::array<int, 4>& q) {
 }  // namespace
 
 TEST(MeshQuads, QuadDominant) {
-  AnalyticControlSpace cs(kUnit, layer);
+  AnalyticControlSpace cs(kQuadsUnit, quadLayer);
   const auto loops = domain(cs);
   const Mesh tri = meshPlanarBoundary(loops, cs);
   PlanarMesherOptions opt;
@@ -54,7 +54,7 @@ TEST(MeshQuads, QuadDominant) {
 }
 
 TEST(MeshQuads, AllQuads) {
-  AnalyticControlSpace cs(kUnit, layer);
+  AnalyticControlSpace cs(kQuadsUnit, quadLayer);
   const auto loops = domain(cs);
   PlanarMesherOptions opt;
   opt.quads = true;

@@ -18,7 +18,7 @@ using namespace anisomesh;
 
 namespace {
 
-Box2 unitBox() { return Box2{Vec2(0.0, 0.0), Vec2(1.0, 1.0)}; }
+Box2 rulesUnitBox() { return Box2{Vec2(0.0, 0.0), Vec2(1.0, 1.0)}; }
 
 // Index of the node at p (exactly), -1 when none.
 int nodeAt(const AdaptiveControlSpace& cs, const Vec2& p) {
@@ -35,7 +35,7 @@ class CountingControlSpace : public ControlSpace {
     ++queries;
     return f_(p);
   }
-  Box2 bounds() const override { return unitBox(); }
+  Box2 bounds() const override { return rulesUnitBox(); }
   mutable int queries = 0;
 
  private:
@@ -102,7 +102,7 @@ TEST(PaperRulesGradation, SmoothingGrowsSizesBySlopeOnBothSides) {
     o.initialLevel = 4;  // 16 x 16 cells, h = 1/16
     o.maxLevel = 4;
     o.initialMetric = Metric::isotropic(1.0);
-    QuadtreeControlSpace cs(unitBox(), o);
+    QuadtreeControlSpace cs(rulesUnitBox(), o);
     const int c = nodeAt(cs, {0.5, 0.5});
     ASSERT_GE(c, 0);
     const double h0 = 0.01;
@@ -130,7 +130,7 @@ TEST(PaperRulesSources, NodeTakesTheDistanceWeightedAverage) {
   QuadtreeOptions o;
   o.initialLevel = 3;
   o.maxLevel = 3;  // no refinement: the nodes stay where they are
-  QuadtreeControlSpace cs(unitBox(), o);
+  QuadtreeControlSpace cs(rulesUnitBox(), o);
   const Vec2 p(0.5, 0.5);
   const int n = nodeAt(cs, p);
   ASSERT_GE(n, 0);
@@ -170,7 +170,7 @@ TEST(PaperRulesBackground, InverseSquaredDistanceWeightsAndEpsilon) {
   o.initialGrid = 1;  // two triangles: (0,0) (1,0) (1,1) and (0,0) (1,1) (0,1)
   o.maxLevel = 0;
   o.epsilon = 0.01;  // relative to the box diagonal
-  BackgroundMeshControlSpace cs(unitBox(), o);
+  BackgroundMeshControlSpace cs(rulesUnitBox(), o);
   ASSERT_EQ(cs.elementCount(), 2);
   const std::vector<Vec2> corners = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   const std::vector<Metric> metrics = {Metric::fromSizes(0.3, 0.1, 0.4), Metric::isotropic(0.2),

@@ -20,10 +20,10 @@ using namespace anisomesh;
 
 namespace {
 
-Box2 unitBox() { return Box2{Vec2(0.0, 0.0), Vec2(1.0, 1.0)}; }
+Box2 passesUnitBox() { return Box2{Vec2(0.0, 0.0), Vec2(1.0, 1.0)}; }
 
 // Steep boundary layer and a small isotropic spot (slopes far above a_max).
-Metric sharpField(const Vec2& p) {
+Metric sharpPassField(const Vec2& p) {
   const double hn = std::min(0.001 + 1.0 * std::abs(p.y() - 0.5), 0.2);
   const Metric layer = Metric::fromSizes(0.0, 0.2, hn);
   const Metric spot = Metric::isotropic(std::min(0.002 + 3.0 * (p - Vec2(0.25, 0.25)).norm(), 0.2));
@@ -33,11 +33,11 @@ Metric sharpField(const Vec2& p) {
 std::unique_ptr<QuadtreeControlSpace> sharpTree() {
   QuadtreeOptions o;
   o.maxLevel = 7;
-  auto cs = std::make_unique<QuadtreeControlSpace>(unitBox(), o);
+  auto cs = std::make_unique<QuadtreeControlSpace>(passesUnitBox(), o);
   ContinuousInsertionOptions c;
   c.threshold = 0.3;
   c.sampleThreshold = 0.05;
-  insertMetricFunction(*cs, sharpField, c);
+  insertMetricFunction(*cs, sharpPassField, c);
   return cs;
 }
 

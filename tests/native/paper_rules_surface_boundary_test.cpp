@@ -33,7 +33,7 @@ const char* kTwoSlots =
     R"([[{"type": "polyline", "points": [[0.3, 0.3], [0.445, 0.3], [0.445, 0.7], [0.3, 0.7], [0.3, 0.3]]}],
         [{"type": "polyline", "points": [[0.455, 0.3], [0.6, 0.3], [0.6, 0.7], [0.455, 0.7], [0.455, 0.3]]}]])";
 
-SurfaceMeshReport run(const SurfaceCaseSpec& spec, Mesh* mesh = nullptr) {
+SurfaceMeshReport runBoundaryCase(const SurfaceCaseSpec& spec, Mesh* mesh = nullptr) {
   SurfaceMeshReport r;
   const Mesh m = meshSurfaceCase(spec, &r);
   if (mesh) *mesh = m;
@@ -55,8 +55,8 @@ int trianglesNear(const Mesh& m, const Vec2& c, double radius) {
 // segment's length as the reference size, shortSegmentSources); below the threshold no update.
 TEST(PaperRulesSurfaceBoundary, Eps1IsTheThresholdOfShortSegments) {
   Mesh withUpdates, without;
-  const SurfaceMeshReport def = run(planeCase(kTinyHole, 0.2), &withUpdates);
-  const SurfaceMeshReport low = run(planeCase(kTinyHole, 0.2, R"({"eps1": 0.05})"), &without);
+  const SurfaceMeshReport def = runBoundaryCase(planeCase(kTinyHole, 0.2), &withUpdates);
+  const SurfaceMeshReport low = runBoundaryCase(planeCase(kTinyHole, 0.2, R"({"eps1": 0.05})"), &without);
   EXPECT_GT(def.shortSegmentSources, 0);
   EXPECT_EQ(low.shortSegmentSources, 0);
   // The updates grade the mesh down to the hole: more triangles near it.
@@ -67,8 +67,8 @@ TEST(PaperRulesSurfaceBoundary, Eps1IsTheThresholdOfShortSegments) {
 // pieces put a radial source over the gap; with eps2 tiny there is none.
 TEST(PaperRulesSurfaceBoundary, Eps2IsTheProximityThreshold) {
   Mesh withUpdates, without;
-  const SurfaceMeshReport def = run(planeCase(kTwoSlots, 0.1), &withUpdates);
-  const SurfaceMeshReport off = run(planeCase(kTwoSlots, 0.1, R"({"eps2": 1e-9})"), &without);
+  const SurfaceMeshReport def = runBoundaryCase(planeCase(kTwoSlots, 0.1), &withUpdates);
+  const SurfaceMeshReport off = runBoundaryCase(planeCase(kTwoSlots, 0.1, R"({"eps2": 1e-9})"), &without);
   EXPECT_GT(def.proximitySources, 0);
   EXPECT_EQ(off.proximitySources, 0);
   EXPECT_GT(trianglesNear(withUpdates, Vec2(0.45, 0.5), 0.02), trianglesNear(without, Vec2(0.45, 0.5), 0.02));
@@ -78,8 +78,8 @@ TEST(PaperRulesSurfaceBoundary, Eps2IsTheProximityThreshold) {
 // segments along the gap measure more than lengthMax = 2 there, so their contours are
 // invalidated and discretized again; with lengthMax out of reach they never are.
 TEST(PaperRulesSurfaceBoundary, SegmentsAboveLengthMaxInvalidateTheirContour) {
-  const SurfaceMeshReport def = run(planeCase(kTwoSlots, 0.1));
-  const SurfaceMeshReport wide = run(planeCase(kTwoSlots, 0.1, R"({"lengthMax": 1e9})"));
+  const SurfaceMeshReport def = runBoundaryCase(planeCase(kTwoSlots, 0.1));
+  const SurfaceMeshReport wide = runBoundaryCase(planeCase(kTwoSlots, 0.1, R"({"lengthMax": 1e9})"));
   EXPECT_GT(def.invalidations, 0);
   EXPECT_GT(def.rounds, 1);
   EXPECT_EQ(wide.invalidations, 0);
@@ -89,7 +89,7 @@ TEST(PaperRulesSurfaceBoundary, SegmentsAboveLengthMaxInvalidateTheirContour) {
 // sphere band's boundary circles are sized by it alone, so it adds segment sources and
 // invalidates the circles, which are discretized again until their chords are within it.
 TEST(PaperRulesSurfaceBoundary, ChordCheckInvalidatesCurvedContours) {
-  const SurfaceMeshReport r = run(parseSurfaceCaseJson(
+  const SurfaceMeshReport r = runBoundaryCase(parseSurfaceCaseJson(
       R"({"metric": {"chordTolerance": 0.004, "hmin": 0.01, "hmax": 0.5, "maxAspectRatio": 5, "gradation": 2.0,
                      "contourCurvature": false},
           "patches": [{"name": "band", "surface": {"type": "sphere", "radius": 1.0,
@@ -114,8 +114,8 @@ TEST(PaperRulesSurfaceBoundary, DMaxScalesTheSizeAcrossTheContour) {
                   "holes": [[{"type": "circle", "center": [0.5, 0.5], "radius": 0.2}]]}]})");
   };
   Mesh round, stretched;
-  const SurfaceMeshReport r1 = run(ringCase("1"), &round);
-  const SurfaceMeshReport r4 = run(ringCase("4"), &stretched);
+  const SurfaceMeshReport r1 = runBoundaryCase(ringCase("1"), &round);
+  const SurfaceMeshReport r4 = runBoundaryCase(ringCase("4"), &stretched);
   EXPECT_GT(r1.chordSources, 0);
   EXPECT_GT(r4.chordSources, 0);
   auto ring = [](const Mesh& m) {  // triangles with their centroid within 0.04 of the circle

@@ -33,7 +33,7 @@ struct P2Space {
   ParameterizationFunction mp = [s = surface](const Vec2& uv) { return parameterizationMatrix(*s, uv); };
 };
 
-double relDiff(const Mat2& a, const Mat2& b) { return (a - b).norm() / b.norm(); }
+double paramRelDiff(const Mat2& a, const Mat2& b) { return (a - b).norm() / b.norm(); }
 
 }  // namespace
 
@@ -46,8 +46,8 @@ TEST(ParameterizedControlSpace, NodesKeepTheirMetricAndTheSurfacesMp) {
   for (int i = 0; i < s.cs->nodeCount(); i += 7) {
     if (!s.cs->nodeIsFree(i)) continue;
     const Vec2 p = s.cs->nodePosition(i);
-    EXPECT_LT(relDiff(view.metricAt(p).tensor(), s.cs->nodeMetric(i).tensor()), 1e-9) << i;
-    EXPECT_LT(relDiff(view.parameterizationAt(p), parameterizationMatrix(*s.surface, p)), 1e-12) << i;
+    EXPECT_LT(paramRelDiff(view.metricAt(p).tensor(), s.cs->nodeMetric(i).tensor()), 1e-9) << i;
+    EXPECT_LT(paramRelDiff(view.parameterizationAt(p), parameterizationMatrix(*s.surface, p)), 1e-12) << i;
     ++checked;
   }
   EXPECT_GT(checked, 20);
@@ -75,8 +75,8 @@ TEST(ParameterizedControlSpace, StoredMpIsInterpolatedLikeMt) {
       mpExpected += w[k] * parameterizationMatrix(*s.surface, qt.nodePosition(nd[k]));
       mtExpected += w[k] * matOf(qt.nodeMt(nd[k]));
     }
-    EXPECT_LT(relDiff(view.parameterizationAt(p), mpExpected), 1e-12) << leaf;
-    EXPECT_LT(relDiff(qt.metricAt(p).transform(), mtExpected), 1e-12) << leaf;
+    EXPECT_LT(paramRelDiff(view.parameterizationAt(p), mpExpected), 1e-12) << leaf;
+    EXPECT_LT(paramRelDiff(qt.metricAt(p).transform(), mtExpected), 1e-12) << leaf;
     ++checked;
   }
   EXPECT_GT(checked, 10);
@@ -97,11 +97,11 @@ TEST(ParameterizedControlSpace, ComputedMpComesFromTheSurfaceAtTheQuery) {
   const double w[4] = {(1 - e) * (1 - x), e * (1 - x), e * x, (1 - e) * x};
   Mat2 t = Mat2::Zero();
   for (int k = 0; k < 4; ++k) t += w[k] * matOf(view.nodeTangentMt(qt.leafNodes(leaf)[k]));
-  EXPECT_LT(relDiff(view.metricAt(p).tensor(), mp * t * t * mp), 1e-12);
+  EXPECT_LT(paramRelDiff(view.metricAt(p).tensor(), mp * t * t * mp), 1e-12);
   // Node tangent Mt = sqrt(Mp^-1 M Mp^-1), from the surface's Mp at the node.
   const int n = qt.leafNodes(leaf)[0];
   const Mat2 pn = parameterizationMatrix(*s.surface, qt.nodePosition(n)), tn = matOf(view.nodeTangentMt(n));
-  EXPECT_LT(relDiff(pn * tn * tn * pn, qt.nodeMetric(n).tensor()), 1e-9);
+  EXPECT_LT(paramRelDiff(pn * tn * tn * pn, qt.nodeMetric(n).tensor()), 1e-9);
 }
 
 TEST(ParameterizedControlSpace, FoldedIsNotAView) {

@@ -19,7 +19,7 @@ using namespace anisomesh;
 
 namespace {
 
-CaseSpec example(const std::string& name) {
+CaseSpec exampleCase(const std::string& name) {
   return readCaseFile(std::string(ANISOMESH_SOURCE_DIR) + "/examples/" + name + ".json");
 }
 
@@ -62,7 +62,7 @@ double circleChordDeviation(const Mesh& m, int ref, const Vec2& c, double r) {
   return worst;
 }
 
-void expectSameMesh(const Mesh& a, const Mesh& b) {
+void expectSameCaseMesh(const Mesh& a, const Mesh& b) {
   ASSERT_EQ(a.points.size(), b.points.size());
   ASSERT_EQ(a.triangles.size(), b.triangles.size());
   for (size_t i = 0; i < a.points.size(); ++i) ASSERT_EQ(a.points[i], b.points[i]) << i;
@@ -76,7 +76,7 @@ TEST(PipelineCase, EveryExampleMeshesWithTheRealControlSpace) {
   for (const char* name : {"fig6_rect_holes_nosmooth", "fig7_rect_holes_dr8", "fig7_rect_holes_dr2", "boundary_layer",
                            "shear_layer", "point_source", "expression_field"}) {
     SCOPED_TRACE(name);
-    const CaseSpec spec = example(name);
+    const CaseSpec spec = exampleCase(name);
     PipelineReport report;
     std::unique_ptr<AdaptiveControlSpace> cs;
     const Mesh mesh = meshCase(spec, &report, {}, &cs);
@@ -105,14 +105,14 @@ TEST(PipelineCase, EveryExampleMeshesWithTheRealControlSpace) {
     EXPECT_EQ(q.degenerate, 0);
     EXPECT_GT(q.triangles, 100);
     // Deterministic.
-    expectSameMesh(mesh, meshCase(spec));
+    expectSameCaseMesh(mesh, meshCase(spec));
   }
 }
 
 // Quality against the analytic metric the case asks for (not the structure's
 // interpolation of it): the mesher follows the quadtree, the user wants the formula.
 TEST(PipelineCase, BoundaryLayerQualityAgainstAnalyticMetric) {
-  const CaseSpec spec = example("boundary_layer");
+  const CaseSpec spec = exampleCase("boundary_layer");
   std::unique_ptr<AdaptiveControlSpace> cs;
   const Mesh mesh = meshCase(spec, nullptr, {}, &cs);
   EXPECT_STREQ(cs->kindName(), "quadtree");
@@ -128,7 +128,7 @@ TEST(PipelineCase, BoundaryLayerQualityAgainstAnalyticMetric) {
 }
 
 TEST(PipelineCase, ShearLayerQualityAgainstAnalyticMetric) {
-  const CaseSpec spec = example("shear_layer");
+  const CaseSpec spec = exampleCase("shear_layer");
   std::unique_ptr<AdaptiveControlSpace> cs;
   const Mesh mesh = meshCase(spec, nullptr, {}, &cs);
   EXPECT_STREQ(cs->kindName(), "quadtree");
@@ -144,9 +144,9 @@ TEST(PipelineCase, ShearLayerQualityAgainstAnalyticMetric) {
 }
 
 TEST(PipelineCase, Dr2GivesSmallerNeighbourSizeRatiosThanDr8) {
-  const Mesh dr2 = meshCase(example("fig7_rect_holes_dr2"));
-  const Mesh dr8 = meshCase(example("fig7_rect_holes_dr8"));
-  const Mesh none = meshCase(example("fig6_rect_holes_nosmooth"));
+  const Mesh dr2 = meshCase(exampleCase("fig7_rect_holes_dr2"));
+  const Mesh dr8 = meshCase(exampleCase("fig7_rect_holes_dr8"));
+  const Mesh none = meshCase(exampleCase("fig6_rect_holes_nosmooth"));
   const double r2 = largestNeighbourSizeRatio(dr2), r8 = largestNeighbourSizeRatio(dr8),
                r0 = largestNeighbourSizeRatio(none);
   std::cout << "[ figures  ] largest neighbour size ratio: dr 2 " << r2 << ", dr 8 " << r8 << ", none " << r0 << "\n";
@@ -235,7 +235,7 @@ TEST(PipelineCase, UpdateLoopTerminatesAndIsDeterministic) {
   PipelineReport a, b;
   const Mesh m1 = meshCase(narrowChannel(), &a);
   const Mesh m2 = meshCase(narrowChannel(), &b);
-  expectSameMesh(m1, m2);
+  expectSameCaseMesh(m1, m2);
   EXPECT_EQ(a.updateRounds, b.updateRounds);
   EXPECT_LE(a.updateRounds, BoundaryUpdateOptions().maxRounds);
   // A round limit stops the loop and says so.

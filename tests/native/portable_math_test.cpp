@@ -44,7 +44,7 @@ struct Range {
 
 constexpr int kPerRange = 25000;  // 4 ranges -> 1e5 inputs per function
 
-double sample(std::mt19937_64& rng, const Range& r, bool positiveOnly) {
+double sampleRange(std::mt19937_64& rng, const Range& r, bool positiveOnly) {
   const double u = static_cast<double>(rng() >> 11) * 0x1p-53;
   double x;
   if (r.logScale) {
@@ -62,7 +62,7 @@ double maxUlp1(double (*f)(double), double (*ref)(double), std::initializer_list
   double worst = 0;
   for (const Range& r : ranges)
     for (int i = 0; i < kPerRange; ++i) {
-      const double x = sample(rng, r, positiveOnly);
+      const double x = sampleRange(rng, r, positiveOnly);
       const double e = ulpDist(f(x), ref(x));
       if (e > worst) worst = e;
     }
@@ -202,7 +202,7 @@ TEST(PortableMath, SincosSameBitsAsSinCos) {
   std::vector<double> xs = {0.0, -0.0, kInf, -kInf, kNaN, 1e7, -1e15, 1e300, 0.7853981633974483, 2.356194490192345};
   for (const Range& r :
        {Range{1e-300, 1e-3, true}, Range{1e-3, 10.0, true}, Range{10.0, 1e6, true}, Range{1e6, 1e300, true}})
-    for (int i = 0; i < kPerRange; ++i) xs.push_back(sample(rng, r, false));
+    for (int i = 0; i < kPerRange; ++i) xs.push_back(sampleRange(rng, r, false));
   for (double x : xs) {
     double s = 0.0, c = 0.0;
     pm::sincos(x, s, c);

@@ -18,13 +18,14 @@ using namespace anisomesh;
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
+constexpr double kPiHausdorff = 3.141592653589793;
 
 // A disk of radius 1: n boundary vertices, a fan from the centre.
 Mesh diskMesh(int n) {
   Mesh m;
   m.points.push_back(Vec3::Zero());
-  for (int k = 0; k < n; ++k) m.points.push_back(Vec3(std::cos(2 * kPi * k / n), std::sin(2 * kPi * k / n), 0));
+  for (int k = 0; k < n; ++k)
+    m.points.push_back(Vec3(std::cos(2 * kPiHausdorff * k / n), std::sin(2 * kPiHausdorff * k / n), 0));
   for (int k = 0; k < n; ++k) {
     m.triangles.push_back({0, 1 + k, 1 + (k + 1) % n});
     m.triangleRefs.push_back(1);
@@ -77,9 +78,10 @@ double distanceToCurve(const Curve& c, const Vec2& p) {
 TEST(RemeshHausdorff, SplineInterpolatesJoinsC1AndFollowsACircle) {
   const int n = 32;
   std::vector<Vec2> pts;
-  for (int k = 0; k <= n / 2; ++k) pts.push_back(Vec2(std::cos(2 * kPi * k / n), std::sin(2 * kPi * k / n)));
+  for (int k = 0; k <= n / 2; ++k)
+    pts.push_back(Vec2(std::cos(2 * kPiHausdorff * k / n), std::sin(2 * kPiHausdorff * k / n)));
   const SplineCurve c(pts);
-  const double sagitta = 1 - std::cos(kPi / n);  // the polygon's chord error
+  const double sagitta = 1 - std::cos(kPiHausdorff / n);  // the polygon's chord error
   double worst = 0, kink = 0;
   for (size_t i = 0; i + 1 < pts.size(); ++i) {
     const double t0 = double(i) / double(pts.size() - 1);
@@ -94,8 +96,10 @@ TEST(RemeshHausdorff, SplineInterpolatesJoinsC1AndFollowsACircle) {
   EXPECT_LT(worst, sagitta / 50) << "the spline follows the circle far closer than the polygon";
   EXPECT_LT(kink, 1e-6) << "C1 at the interior vertices";
   // Joined pieces of a split smooth loop share their tangent direction.
-  const Vec2 before = pts[pts.size() - 2], after = Vec2(std::cos(2 * kPi * 17 / n), std::sin(2 * kPi * 17 / n));
-  const std::vector<Vec2> second{pts.back(), after, Vec2(std::cos(2 * kPi * 18 / n), std::sin(2 * kPi * 18 / n))};
+  const Vec2 before = pts[pts.size() - 2],
+             after = Vec2(std::cos(2 * kPiHausdorff * 17 / n), std::sin(2 * kPiHausdorff * 17 / n));
+  const std::vector<Vec2> second{pts.back(), after,
+                                 Vec2(std::cos(2 * kPiHausdorff * 18 / n), std::sin(2 * kPiHausdorff * 18 / n))};
   const SplineCurve a(pts, 0, nullptr, &after), b(second, 0, &before, nullptr);
   const Vec2 ta = a.derivative(1.0).normalized(), tb = b.derivative(0.0).normalized();
   EXPECT_LT((ta - tb).norm(), 1e-12);
@@ -108,7 +112,7 @@ TEST(RemeshHausdorff, SplineInterpolatesJoinsC1AndFollowsACircle) {
 // (where the polyline boundary of a run without -hausd puts them).
 TEST(RemeshHausdorff, CoarserCircleKeepsItsBoundaryWithinH) {
   const Mesh in = diskMesh(64);
-  const double H = 0.002, inputSagitta = 1 - std::cos(kPi / 64);
+  const double H = 0.002, inputSagitta = 1 - std::cos(kPiHausdorff / 64);
   const std::vector<Metric> metrics(in.points.size(), Metric::isotropic(0.3));
   RemeshOptions o;
   o.hausdorff = H;
@@ -117,7 +121,7 @@ TEST(RemeshHausdorff, CoarserCircleKeepsItsBoundaryWithinH) {
   const Mesh polyline = remesh(in, metrics, RemeshOptions{});
   LoopDomainOptions lo;
   lo.smooth = true;
-  lo.cornerAngle = kPi / 4;
+  lo.cornerAngle = kPiHausdorff / 4;
   const Domain domain = domainFromBoundaryLoops(boundaryLoopsFromMesh(in), lo);
   ASSERT_EQ(domain.outer.curves.size(), 3u) << "no corners: the loop split in three";
 
@@ -145,9 +149,9 @@ TEST(RemeshHausdorff, CoarserCircleKeepsItsBoundaryWithinH) {
 
 TEST(RemeshHausdorff, RidgeAngleFindsTheFourCornersOfANoisySquare) {
   const BoundaryLoop square = noisySquare(false);
-  EXPECT_EQ(countCurves(square, kPi / 4), 4) << "45 degrees: the 4 corners only";
+  EXPECT_EQ(countCurves(square, kPiHausdorff / 4), 4) << "45 degrees: the 4 corners only";
   LoopDomainOptions o;
-  o.cornerAngle = kPi / 4;
+  o.cornerAngle = kPiHausdorff / 4;
   o.smooth = true;
   const Domain d = domainFromBoundaryLoops({square}, o);
   for (const CurveUse& u : d.outer.curves) {
@@ -155,10 +159,10 @@ TEST(RemeshHausdorff, RidgeAngleFindsTheFourCornersOfANoisySquare) {
     EXPECT_TRUE((s.array() == 0 || s.array() == 1).all()) << formatPoint(s);
     EXPECT_STREQ(u.curve->typeName(), "spline");
   }
-  EXPECT_GT(countCurves(square, 30 * kPi / 180), 4) << "30 degrees: the zigzag's turns too";
+  EXPECT_GT(countCurves(square, 30 * kPiHausdorff / 180), 4) << "30 degrees: the zigzag's turns too";
   // -nr: no angle corners; reference changes stay corners.
-  EXPECT_EQ(countCurves(square, kPi), 3) << "one smooth loop, split in three";
-  EXPECT_EQ(countCurves(noisySquare(true), kPi), 4) << "the 4 reference changes";
+  EXPECT_EQ(countCurves(square, kPiHausdorff), 3) << "one smooth loop, split in three";
+  EXPECT_EQ(countCurves(noisySquare(true), kPiHausdorff), 4) << "the 4 reference changes";
 }
 
 // The CLI: -hausd, -ar, -nr accepted and checked; -hausd refines a coarse circle's boundary.

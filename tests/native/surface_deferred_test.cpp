@@ -12,7 +12,7 @@ using namespace anisomesh;
 
 namespace {
 
-std::string slurp(const std::string& path) {
+std::string readText(const std::string& path) {
   std::ifstream f(path);
   std::stringstream ss;
   ss << f.rdbuf();
@@ -31,7 +31,7 @@ TEST(SurfaceDeferred, ReportAfterTheMeshIsTheRunsReport) {
   for (const char* name : {"surface_p2_holes", "surface_two_patch_c", "surface_torus"})
     for (const bool quads : {false, true}) {
       SCOPED_TRACE(std::string(name) + (quads ? " quads" : ""));
-      const std::string text = slurp(std::string(ANISOMESH_SOURCE_DIR) + "/examples/surface/" + name + ".json");
+      const std::string text = readText(std::string(ANISOMESH_SOURCE_DIR) + "/examples/surface/" + name + ".json");
       RunCaseOptions o;
       o.quads = quads;
       const CaseRun full = runCase(text, o);

@@ -13,7 +13,7 @@ using namespace anisomesh;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPiGeometry = 3.14159265358979323846;
 
 std::array<std::array<Vec3, 4>, 4> curvedBezierPoints() {
   std::array<std::array<Vec3, 4>, 4> cp;
@@ -53,7 +53,7 @@ void expectVecNear(const Vec3& a, const Vec3& b, double tol, const std::string& 
 std::shared_ptr<ExpressionSurface> expressionSphere(double r) {
   const std::string R = std::to_string(r);
   return std::make_shared<ExpressionSurface>(R + "*cos(v)*cos(u)", R + "*cos(v)*sin(u)", R + "*sin(v)",
-                                             Box2{{0, -1.4}, {2 * kPi, 1.4}}, "expression sphere");
+                                             Box2{{0, -1.4}, {2 * kPiGeometry, 1.4}}, "expression sphere");
 }
 
 }  // namespace
@@ -143,7 +143,7 @@ TEST(SurfaceGeometry, TorusCurvatureAtEquators) {
   EXPECT_NEAR(outer.k1, -1 / (R + r), 1e-13);  // along the parallel
   EXPECT_NEAR(outer.k2, -1 / r, 1e-13);        // along the meridian
   EXPECT_GT(outer.gaussian, 0);
-  const SurfaceCurvature inner = curvature(s, {1.1, kPi});
+  const SurfaceCurvature inner = curvature(s, {1.1, kPiGeometry});
   EXPECT_NEAR(inner.k1, 1 / (R - r), 1e-13);  // saddle: the parallel bends the other way
   EXPECT_NEAR(inner.k2, -1 / r, 1e-13);
   EXPECT_LT(inner.gaussian, 0);
@@ -238,11 +238,11 @@ TEST(SurfaceGeometry, PaperP2IsTheHeightField) {
 }
 
 TEST(SurfaceGeometry, DegeneratePointThrowsInvalidSurfaceNamingThePoint) {
-  const SphereSurface s(1.0, Vec3::Zero(), Box2{{0, -kPi / 2}, {2 * kPi, kPi / 2}});
-  EXPECT_TRUE(isDegenerate(s.derivatives({0.5, kPi / 2})));
+  const SphereSurface s(1.0, Vec3::Zero(), Box2{{0, -kPiGeometry / 2}, {2 * kPiGeometry, kPiGeometry / 2}});
+  EXPECT_TRUE(isDegenerate(s.derivatives({0.5, kPiGeometry / 2})));
   EXPECT_FALSE(isDegenerate(s.derivatives({0.5, 1.5})));
   try {
-    curvature(s, {0.5, kPi / 2});
+    curvature(s, {0.5, kPiGeometry / 2});
     ADD_FAILURE() << "expected InvalidSurface";
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ErrorCode::InvalidSurface);
@@ -250,7 +250,7 @@ TEST(SurfaceGeometry, DegeneratePointThrowsInvalidSurfaceNamingThePoint) {
     EXPECT_NE(m.find("surface 'sphere' at (u, v) = (0.5, 1.570796327)"), std::string::npos) << m;
     EXPECT_NE(m.find("degenerate"), std::string::npos) << m;
   }
-  EXPECT_THROW(unitNormal(s, {0.5, -kPi / 2}), Error);
+  EXPECT_THROW(unitNormal(s, {0.5, -kPiGeometry / 2}), Error);
 }
 
 TEST(SurfaceGeometry, NonFiniteExpressionThrowsInvalidSurface) {

@@ -33,7 +33,7 @@ EdgeKey key(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
 // Conformity of a merged surface mesh: shared edges used by exactly two triangles, no
 // edge used more than twice, open edges exactly the mesh's (non-shared) boundary edges,
 // no element inverted in its parameter plane, no unused or duplicated vertex.
-void expectConforming(const Mesh& mesh, const SurfaceMeshReport& r) {
+void expectConformingSurface(const Mesh& mesh, const SurfaceMeshReport& r) {
   std::map<EdgeKey, int> uses;
   for (const auto& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) ++uses[key(t[size_t(k)], t[size_t((k + 1) % 3)])];
@@ -90,7 +90,7 @@ TEST(SurfaceMesh, SphereBandClosedAcrossSeam) {
   SurfaceMeshReport r;
   const Mesh mesh = meshSurfaceCase(readExample("surface_sphere.json"), &r);
   print("sphere", r);
-  expectConforming(mesh, r);
+  expectConformingSurface(mesh, r);
   // Only the two polar circles remain open; every point lies on the unit sphere.
   for (const auto& e : mesh.edges) {
     EXPECT_NEAR(std::abs(mesh.points[size_t(e[0])].z()), std::sin(1.2), 1e-9);
@@ -118,7 +118,7 @@ TEST(SurfaceMesh, ChordSafetyOneIsThePaperSizing) {
     spec.options.chordSafety = 1.0;
     const Mesh mesh = meshSurfaceCase(spec, &paper);
     print(f, paper);
-    if (!paper.sharedEdgeList.empty()) expectConforming(mesh, paper);
+    if (!paper.sharedEdgeList.empty()) expectConformingSurface(mesh, paper);
     EXPECT_EQ(paper.quality.inverted, 0);
     EXPECT_GE(paper.quality.edgesWithinSqrt2, 0.96);  // p2: 0.969
     EXPECT_GE(paper.quality.qualityMean, 0.9);
@@ -132,7 +132,7 @@ TEST(SurfaceMesh, TorusClosedWithoutBoundary) {
   SurfaceMeshReport r;
   const Mesh mesh = meshSurfaceCase(readExample("surface_torus.json"), &r);
   print("torus", r);
-  expectConforming(mesh, r);
+  expectConformingSurface(mesh, r);
   EXPECT_TRUE(mesh.edges.empty());
   // Closed surface: Euler characteristic 0.
   std::set<EdgeKey> edges;
@@ -160,8 +160,8 @@ TEST(SurfaceMesh, TwoPatchCConformingAndAdaptationSmoothsAcross) {
   const Mesh b = meshSurfaceCase(readExample("surface_two_patch_c_noadapt.json"), &without);
   print("two-patch C, adaptation", with);
   print("two-patch C, no adaptation", without);
-  expectConforming(a, with);
-  expectConforming(b, without);
+  expectConformingSurface(a, with);
+  expectConformingSurface(b, without);
   // Shared edges separate the two patches.
   for (const Mesh* m : {&a, &b}) {
     std::map<EdgeKey, std::set<int>> refs;
@@ -252,7 +252,7 @@ TEST(SurfaceMesh, TwoFlatPatchesShareIdenticalVertices) {
   o.metric.hmax = 0.15;
   SurfaceMeshReport r;
   const Mesh mesh = meshSurfaceModel(m, o, &r);
-  expectConforming(mesh, r);
+  expectConformingSurface(mesh, r);
   EXPECT_EQ(r.sharedEdges, int(std::round(1.0 / 0.15)));
   // B's parameterization is mirrored: it was flipped so both sides agree in 3D
   // (every shared edge traversed once each way).
@@ -362,7 +362,7 @@ TEST(SurfaceMesh, Source3DRefinesAroundItsCenter) {
   spec.model.sources3d.push_back({Vec3(1, 0, 0.3), 0.025, 0.15});
   SurfaceMeshReport r;
   const Mesh mesh = meshSurfaceCase(spec, &r);
-  expectConforming(mesh, r);
+  expectConformingSurface(mesh, r);
   // Edges inside the source's ball are about h; far away they follow the curvature (~0.11;
   // ~0.066 along the polar circles, whose 3D curvature is 1 / cos 1.2).
   double nearMax = 0, farMin = 1e9;
@@ -391,7 +391,7 @@ TEST(SurfaceMesh, EverySurfaceExampleParses) {
 
 // --- errors ---------------------------------------------------------------------------
 
-void expectError(const std::string& json, ErrorCode code, const std::vector<std::string>& substrings) {
+void expectSurfaceError(const std::string& json, ErrorCode code, const std::vector<std::string>& substrings) {
   try {
     meshSurfaceCase(json);
     FAIL() << "no error for " << json;
@@ -404,54 +404,54 @@ void expectError(const std::string& json, ErrorCode code, const std::vector<std:
 const char* kMetric = R"("metric": {"chordTolerance": 0.05, "hmax": 0.3, "hmin": 0.01})";
 
 TEST(SurfaceMeshErrors, ParseErrorsNameThePath) {
-  expectError(R"({"patches": [{"surface": {"type": "sphere"}}]})", ErrorCode::ParseError,
-              {"patches[0].surface.radius", "missing"});
-  expectError(R"({"patches": [{"surface": {"type": "plane", "colour": 1}}]})", ErrorCode::ParseError,
-              {"patches[0].surface.colour", "unknown field"});
-  expectError(R"({"patches": [{"surface": {"type": "cone"}}]})", ErrorCode::ParseError,
-              {"patches[0].surface.type", "unknown surface type"});
-  expectError(R"({"patches": [{"surface": {"type": "plane"}, "outer": [{"type": "line", "p1": [0, 0]}]}]})",
-              ErrorCode::ParseError, {"patches[0].outer[0].p2", "missing"});
-  expectError(
+  expectSurfaceError(R"({"patches": [{"surface": {"type": "sphere"}}]})", ErrorCode::ParseError,
+                     {"patches[0].surface.radius", "missing"});
+  expectSurfaceError(R"({"patches": [{"surface": {"type": "plane", "colour": 1}}]})", ErrorCode::ParseError,
+                     {"patches[0].surface.colour", "unknown field"});
+  expectSurfaceError(R"({"patches": [{"surface": {"type": "cone"}}]})", ErrorCode::ParseError,
+                     {"patches[0].surface.type", "unknown surface type"});
+  expectSurfaceError(R"({"patches": [{"surface": {"type": "plane"}, "outer": [{"type": "line", "p1": [0, 0]}]}]})",
+                     ErrorCode::ParseError, {"patches[0].outer[0].p2", "missing"});
+  expectSurfaceError(
       R"({"patches": [{"surface": {"type": "plane"}}], "shared": [{"a": {"patch": "X", "curve": 0}, "b": {"patch": 0, "curve": 1}}]})",
       ErrorCode::ParseError, {"shared[0].a.patch", "no patch named 'X'"});
-  expectError(R"({"patches": [{"surface": {"type": "plane"}}], "adaptation": "yes"})", ErrorCode::ParseError,
-              {"adaptation", "expected true or false"});
-  expectError("{\"patches\": [", ErrorCode::ParseError, {"malformed JSON"});
+  expectSurfaceError(R"({"patches": [{"surface": {"type": "plane"}}], "adaptation": "yes"})", ErrorCode::ParseError,
+                     {"adaptation", "expected true or false"});
+  expectSurfaceError("{\"patches\": [", ErrorCode::ParseError, {"malformed JSON"});
 }
 
 TEST(SurfaceMeshErrors, BadExpressionNamesTheColumn) {
-  expectError(
+  expectSurfaceError(
       R"J({"patches": [{"surface": {"type": "expression", "x": "u", "y": "v", "z": "sin(u +* v)", "domain": [[0,0],[1,1]]}}]})J",
       ErrorCode::ParseError, {"patches[0].surface.z", "z(u,v)", "column"});
 }
 
 TEST(SurfaceMeshErrors, NaNSurfaceNamesPatchAndPlace) {
-  expectError(
+  expectSurfaceError(
       std::string(R"({)") + kMetric +
           R"J(, "patches": [{"name": "bad", "surface": {"type": "expression", "x": "u", "y": "v", "z": "sqrt(u - 0.5)", "domain": [[0,0],[1,1]]}}]})J",
       ErrorCode::InvalidSurface, {"patch 'bad'", "(u, v) = ("});
 }
 
 TEST(SurfaceMeshErrors, DegenerateParameterizationNamesPatchAndPlace) {
-  expectError(
+  expectSurfaceError(
       std::string(R"({)") + kMetric +
           R"(, "patches": [{"name": "flat", "surface": {"type": "expression", "x": "u+v", "y": "u+v", "z": "u+v", "domain": [[0,0],[1,1]]}}]})",
       ErrorCode::InvalidSurface, {"patch 'flat'", "degenerate", "(u, v) = ("});
 }
 
 TEST(SurfaceMeshErrors, ContourOffTheDomainNamesPatch) {
-  expectError(std::string(R"({)") + kMetric + R"(, "patches": [{"name": "P", "surface": {"type": "plane"},
+  expectSurfaceError(std::string(R"({)") + kMetric + R"(, "patches": [{"name": "P", "surface": {"type": "plane"},
       "outer": [{"type": "polyline", "points": [[0, 0], [1.5, 0], [1.5, 1], [0, 1], [0, 0]]}]}]})",
-              ErrorCode::InvalidDomain, {"patch 'P'", "outer", "parameter domain", "(u, v) = (1."});
+                     ErrorCode::InvalidDomain, {"patch 'P'", "outer", "parameter domain", "(u, v) = (1."});
 }
 
 TEST(SurfaceMeshErrors, SharedCurvesThatDoNotMatchNameBothPatches) {
-  expectError(std::string(R"({)") + kMetric + R"(, "patches": [
+  expectSurfaceError(std::string(R"({)") + kMetric + R"(, "patches": [
       {"name": "A", "surface": {"type": "plane"}},
       {"name": "B", "surface": {"type": "plane", "origin": [1.2, 0, 0]}}],
       "shared": [{"a": {"patch": "A", "curve": 1}, "b": {"patch": "B", "curve": 3}}]})",
-              ErrorCode::InvalidSurface, {"patch 'A'", "patch 'B'", "shared curve mismatch"});
+                     ErrorCode::InvalidSurface, {"patch 'A'", "patch 'B'", "shared curve mismatch"});
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ using namespace anisomesh;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPiMetric = 3.14159265358979323846;
 
 // 3D length of the parameter vector of unit metric length in direction angle.
 double size3D(const Surface& s, const Vec2& uv, const Metric& m, double angle) {
@@ -37,7 +37,7 @@ TEST(SurfaceMetric, SphereGivesChordSizeInEveryTangentDirection) {
   const double R = 2.0, tol = 1e-3, h = std::sqrt(8 * tol * R);
   const SphereSurface s(R);
   std::mt19937 rng(1);
-  std::uniform_real_distribution<double> u(0, 2 * kPi), v(-1.35, 1.35), a(0, kPi);
+  std::uniform_real_distribution<double> u(0, 2 * kPiMetric), v(-1.35, 1.35), a(0, kPiMetric);
   for (int i = 0; i < 50; ++i) {
     const Vec2 uv(u(rng), v(rng));
     const Metric m = parameterMetric(s, uv, looseBounds(tol));
@@ -69,12 +69,12 @@ TEST(SurfaceMetric, CylinderAxialSizeIsHmaxOrTheAspectCap) {
   o.hmax = 0.5;
   o.maxAspectRatio = 100;  // hmax binds: 0.5 < 100 hc
   Metric m = parameterMetric(s, uv, o);
-  EXPECT_NEAR(size3D(s, uv, m, 0.0), hc, 1e-12);          // around (u)
-  EXPECT_NEAR(size3D(s, uv, m, kPi / 2), o.hmax, 1e-12);  // along the axis (v)
-  o.maxAspectRatio = 3;                                   // the cap binds: 3 hc < 0.5
+  EXPECT_NEAR(size3D(s, uv, m, 0.0), hc, 1e-12);                // around (u)
+  EXPECT_NEAR(size3D(s, uv, m, kPiMetric / 2), o.hmax, 1e-12);  // along the axis (v)
+  o.maxAspectRatio = 3;                                         // the cap binds: 3 hc < 0.5
   m = parameterMetric(s, uv, o);
   EXPECT_NEAR(size3D(s, uv, m, 0.0), hc, 1e-12);
-  EXPECT_NEAR(size3D(s, uv, m, kPi / 2), 3 * hc, 1e-12);
+  EXPECT_NEAR(size3D(s, uv, m, kPiMetric / 2), 3 * hc, 1e-12);
   // The 3D metric agrees: h1 belongs to k1 = 0 (axis), h2 to k2 = -1/R.
   const TangentMetric t = requestedMetric3D(s, uv, o);
   EXPECT_NEAR(t.h1, 3 * hc, 1e-12);
@@ -110,7 +110,7 @@ TEST(SurfaceMetric, PaperP2MetricIsFiniteAndSpdOnAGrid) {
       ASSERT_TRUE(t.allFinite()) << uv.transpose();
       Eigen::SelfAdjointEigenSolver<Mat2> es(t);
       ASSERT_GT(es.eigenvalues().minCoeff(), 0) << uv.transpose();
-      for (double a = 0; a < kPi; a += kPi / 6) {
+      for (double a = 0; a < kPiMetric; a += kPiMetric / 6) {
         const double h = size3D(*p2, uv, m, a);
         EXPECT_GE(h, o.hmin * (1 - 1e-9));
         EXPECT_LE(h, o.hmax * (1 + 1e-9));
@@ -121,18 +121,19 @@ TEST(SurfaceMetric, PaperP2MetricIsFiniteAndSpdOnAGrid) {
 }
 
 TEST(SurfaceMetric, DegeneratePointIsInvalidSurfaceWithThePoint) {
-  const auto s = std::make_shared<SphereSurface>(1.0, Vec3::Zero(), Box2{{0, -kPi / 2}, {2 * kPi, kPi / 2}});
+  const auto s =
+      std::make_shared<SphereSurface>(1.0, Vec3::Zero(), Box2{{0, -kPiMetric / 2}, {2 * kPiMetric, kPiMetric / 2}});
   try {
-    parameterMetric(*s, {0.3, kPi / 2}, SurfaceMetricOptions{});
+    parameterMetric(*s, {0.3, kPiMetric / 2}, SurfaceMetricOptions{});
     ADD_FAILURE() << "expected InvalidSurface";
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ErrorCode::InvalidSurface);
     EXPECT_NE(std::string(e.what()).find("(u, v) = (0.3, 1.570796327)"), std::string::npos) << e.what();
   }
   const SurfaceCurvatureControlSpace cs(s, SurfaceMetricOptions{});
-  EXPECT_THROW(cs.metricAt({0.3, kPi / 2}), Error);
+  EXPECT_THROW(cs.metricAt({0.3, kPiMetric / 2}), Error);
   EXPECT_NO_THROW(cs.metricAt({0.3, 1.0}));
-  EXPECT_FALSE(cs.tryMetricAt({0.3, kPi / 2}).has_value());
+  EXPECT_FALSE(cs.tryMetricAt({0.3, kPiMetric / 2}).has_value());
   ASSERT_TRUE(cs.tryMetricAt({0.3, 1.0}).has_value());
   EXPECT_LT((cs.tryMetricAt({0.3, 1.0})->tensor() - cs.metricAt({0.3, 1.0}).tensor()).norm(), 1e-15);
 }
@@ -176,7 +177,7 @@ TEST(SurfaceMetric, ControlSpaceMatchesMetricAndIntersectsUserMetrics) {
   cs.setUserMetric([&](const Vec2&) { return user; });
   m = cs.metricAt(uv);
   EXPECT_NEAR(m.sizeAlong(Vec2(1, 0)), 1e-3, 1e-12);
-  EXPECT_NEAR(size3D(*s, uv, m, kPi / 2), 0.5 * h, 1e-9 * h);
+  EXPECT_NEAR(size3D(*s, uv, m, kPiMetric / 2), 0.5 * h, 1e-9 * h);
 }
 
 TEST(SurfaceMetric, EdgeLengthAndQualityIn3D) {

@@ -105,7 +105,7 @@ struct SurfaceRun {
   SurfaceMeshReport report;
 };
 
-SurfaceRun run(const std::string& json) {
+SurfaceRun runReuse(const std::string& json) {
   SurfaceRun r;
   r.mesh = meshSurfaceCase(json, &r.report);
   return r;
@@ -126,16 +126,16 @@ void expectSameRun(const SurfaceRun& a, const SurfaceRun& b) {
 // start from the kept curvature stage; they give what a fresh build gives (the first
 // run of this process at each key is one), counters included.
 TEST(SurfaceReuse, RepeatedRunsWithAMovedSourceGiveTheBitsOfFreshOnes) {
-  const SurfaceRun a = run(p2WithSource(0.0));
-  const SurfaceRun b = run(p2WithSource(2.5));
-  const SurfaceRun a2 = run(p2WithSource(0.0));
+  const SurfaceRun a = runReuse(p2WithSource(0.0));
+  const SurfaceRun b = runReuse(p2WithSource(2.5));
+  const SurfaceRun a2 = runReuse(p2WithSource(0.0));
   expectSameRun(a, a2);
   EXPECT_NE(a.mesh.triangles, b.mesh.triangles);  // the source moved the mesh
   // Another sizing is another stage: a finer chord tolerance refines the curvature stage.
-  const SurfaceRun fine = run(p2WithSource(0.0, 0.02));
+  const SurfaceRun fine = runReuse(p2WithSource(0.0, 0.02));
   EXPECT_GT(fine.report.curvatureEvaluations, a.report.curvatureEvaluations);
   EXPECT_GT(fine.mesh.triangles.size(), a.mesh.triangles.size());
-  expectSameRun(a, run(p2WithSource(0.0)));
+  expectSameRun(a, runReuse(p2WithSource(0.0)));
 }
 
 // The kept stage holds the contours' curvature: a moved hole is another stage. A run after
@@ -144,10 +144,10 @@ TEST(SurfaceReuse, RepeatedRunsWithAMovedSourceGiveTheBitsOfFreshOnes) {
 // not the other hole's stage.
 TEST(SurfaceReuse, AMovedHoleIsAnotherStage) {
   const double chord = 0.045;  // a sizing no other test uses: the first run of each key is fresh
-  (void)run(p2WithSource(0.0, chord, -4.0));
-  const SurfaceRun afterOther = run(p2WithSource(0.0, chord, -1.0));
-  for (double other : {0.044, 0.043, 0.042, 0.041, 0.040}) (void)run(p2WithSource(0.0, other, -1.0));
-  const SurfaceRun fresh = run(p2WithSource(0.0, chord, -1.0));
+  (void)runReuse(p2WithSource(0.0, chord, -4.0));
+  const SurfaceRun afterOther = runReuse(p2WithSource(0.0, chord, -1.0));
+  for (double other : {0.044, 0.043, 0.042, 0.041, 0.040}) (void)runReuse(p2WithSource(0.0, other, -1.0));
+  const SurfaceRun fresh = runReuse(p2WithSource(0.0, chord, -1.0));
   expectSameRun(afterOther, fresh);
 }
 

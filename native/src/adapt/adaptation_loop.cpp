@@ -12,9 +12,9 @@
 namespace anisomesh {
 namespace {
 
-constexpr double kInterpolationConstant = 2.0 / 9.0;
+constexpr double kP1InterpolationConstant = 2.0 / 9.0;
 
-double secondsSince(std::chrono::steady_clock::time_point t) {
+double secondsSinceStart(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
@@ -50,7 +50,7 @@ AdaptResult runLoop(const Mesh& mesh, std::vector<std::vector<double>> fields, c
     FieldMetricOptions mo = o.metric;
     if (mo.targetVertices > 0) mo.targetVertices *= correction;
     const FieldMetric metric = metricFromFields(result.mesh, result.fields, mo);
-    it.secondsMetric = secondsSince(t);
+    it.secondsMetric = secondsSinceStart(t);
     std::unique_ptr<AdaptiveControlSpace> cs;
     Mesh adapted = remesh(result.mesh, metric.metrics, remeshOptions(metric, o), &it.remesh, &cs);
     std::vector<std::vector<double>> adaptedFields = next(adapted, result.mesh, result.fields);
@@ -77,7 +77,7 @@ AdaptResult runLoop(const Mesh& mesh, std::vector<std::vector<double>> fields, c
     result.mesh = std::move(adapted);
     result.fields = std::move(adaptedFields);
     result.controlSpace = std::move(cs);
-    it.seconds = secondsSince(t);
+    it.seconds = secondsSinceStart(t);
     result.iterations.push_back(it);
     if (o.onIteration && !o.onIteration(k, result.mesh)) break;
   }
@@ -172,7 +172,7 @@ double estimatedInterpolationError(const Mesh& mesh, const std::vector<Mat2>& ab
       worst = std::max(worst, e.dot(h * e));
     }
   }
-  return kInterpolationConstant * worst;
+  return kP1InterpolationConstant * worst;
 }
 
 }  // namespace anisomesh

@@ -10,7 +10,7 @@ namespace anisomesh {
 namespace {
 
 // Parameters splitting a curve into its smooth pieces: 0, breakpoints..., 1.
-std::vector<double> pieceBounds(const Curve& c) {
+std::vector<double> smoothPieceBounds(const Curve& c) {
   std::vector<double> b{0.0};
   for (double t : c.breakpoints())
     if (t > b.back() && t < 1.0) b.push_back(t);
@@ -33,7 +33,7 @@ void sampleUse(const CurveUse& use, int samples, std::vector<Vec2>* out) {
     out->insert(out->end(), pts.begin(), pts.end() - 1);
     return;
   }
-  const std::vector<double> b = pieceBounds(c);
+  const std::vector<double> b = smoothPieceBounds(c);
   std::vector<double> ts;
   const int per = isStraight(c) ? 1 : std::max(1, samples);
   for (size_t k = 0; k + 1 < b.size(); ++k)

@@ -11,7 +11,7 @@ namespace anisomesh {
 
 namespace {
 
-std::string fmt(double x) {
+std::string fmtParam(double x) {
   std::ostringstream os;
   os << std::setprecision(10) << x;
   return os.str();
@@ -48,14 +48,14 @@ Surface::Surface(std::string name, const Box2& domain) : name_(std::move(name)) 
 void Surface::setDomain(const Box2& domain) {
   if (!(domain.lo.allFinite() && domain.hi.allFinite() && domain.lo.x() < domain.hi.x() &&
         domain.lo.y() < domain.hi.y()))
-    throw Error(ErrorCode::InvalidDomain, "surface '" + name_ + "': parameter domain [" + fmt(domain.lo.x()) + ", " +
-                                              fmt(domain.hi.x()) + "] x [" + fmt(domain.lo.y()) + ", " +
-                                              fmt(domain.hi.y()) + "] is empty or not finite");
+    throw Error(ErrorCode::InvalidDomain, "surface '" + name_ + "': parameter domain [" + fmtParam(domain.lo.x()) +
+                                              ", " + fmtParam(domain.hi.x()) + "] x [" + fmtParam(domain.lo.y()) +
+                                              ", " + fmtParam(domain.hi.y()) + "] is empty or not finite");
   domain_ = domain;
 }
 
 std::string Surface::where(const Vec2& uv) const {
-  return "surface '" + name_ + "' at (u, v) = (" + fmt(uv.x()) + ", " + fmt(uv.y()) + ")";
+  return "surface '" + name_ + "' at (u, v) = (" + fmtParam(uv.x()) + ", " + fmtParam(uv.y()) + ")";
 }
 
 void Surface::checkFinite(const SurfaceDerivatives& d, const Vec2& uv) const {
@@ -125,7 +125,7 @@ CylinderSurface::CylinderSurface(double radius, const Vec3& center, const Box2& 
     : Surface("cylinder", domain), r_(radius), c_(center) {
   if (!(std::isfinite(radius) && radius > 0.0 && center.allFinite()))
     throw Error(ErrorCode::InvalidArgument,
-                "surface 'cylinder': radius must be finite and positive, got " + fmt(radius));
+                "surface 'cylinder': radius must be finite and positive, got " + fmtParam(radius));
 }
 
 Vec3 CylinderSurface::point(const Vec2& uv) const {
@@ -148,7 +148,8 @@ SurfaceDerivatives CylinderSurface::derivatives(const Vec2& uv) const {
 SphereSurface::SphereSurface(double radius, const Vec3& center, const Box2& domain)
     : Surface("sphere", domain), r_(radius), c_(center) {
   if (!(std::isfinite(radius) && radius > 0.0 && center.allFinite()))
-    throw Error(ErrorCode::InvalidArgument, "surface 'sphere': radius must be finite and positive, got " + fmt(radius));
+    throw Error(ErrorCode::InvalidArgument,
+                "surface 'sphere': radius must be finite and positive, got " + fmtParam(radius));
 }
 
 Vec3 SphereSurface::point(const Vec2& uv) const {
@@ -176,7 +177,7 @@ TorusSurface::TorusSurface(double majorRadius, double minorRadius, const Vec3& c
   if (!(std::isfinite(majorRadius) && std::isfinite(minorRadius) && minorRadius > 0.0 && majorRadius > minorRadius &&
         center.allFinite()))
     throw Error(ErrorCode::InvalidArgument, "surface 'torus': need finite radii with major > minor > 0, got " +
-                                                fmt(majorRadius) + " and " + fmt(minorRadius));
+                                                fmtParam(majorRadius) + " and " + fmtParam(minorRadius));
 }
 
 Vec3 TorusSurface::point(const Vec2& uv) const {
@@ -429,7 +430,7 @@ Vec3 normalOrThrow(const SurfaceDerivatives& d, const Surface& s, const Vec2& uv
   const Vec3 c = d.su.cross(d.sv);
   if (!(!isDegenerate(d)))
     throw Error(ErrorCode::InvalidSurface,
-                "degenerate parameterization (|Su x Sv| = " + fmt(c.norm()) + ", no normal) on " + s.where(uv));
+                "degenerate parameterization (|Su x Sv| = " + fmtParam(c.norm()) + ", no normal) on " + s.where(uv));
   return c.normalized();
 }
 

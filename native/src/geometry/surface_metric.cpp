@@ -10,7 +10,7 @@ namespace anisomesh {
 
 namespace {
 
-std::string fmt(double x) {
+std::string fmtBound(double x) {
   std::ostringstream os;
   os << x;
   return os.str();
@@ -54,11 +54,11 @@ void validate(const SurfaceMetricOptions& o) {
   if (!(std::isfinite(o.chordTolerance) && std::isfinite(o.angleTolerance)))
     throw Error(ErrorCode::InvalidArgument, "surface metric: tolerances must be finite");
   if (!(std::isfinite(o.hmin) && o.hmin > 0.0 && std::isfinite(o.hmax) && o.hmax >= o.hmin))
-    throw Error(ErrorCode::InvalidArgument,
-                "surface metric: need 0 < hmin <= hmax, got hmin = " + fmt(o.hmin) + ", hmax = " + fmt(o.hmax));
+    throw Error(ErrorCode::InvalidArgument, "surface metric: need 0 < hmin <= hmax, got hmin = " + fmtBound(o.hmin) +
+                                                ", hmax = " + fmtBound(o.hmax));
   if (!(std::isfinite(o.maxAspectRatio) && o.maxAspectRatio >= 1.0))
     throw Error(ErrorCode::InvalidArgument,
-                "surface metric: maxAspectRatio must be >= 1, got " + fmt(o.maxAspectRatio));
+                "surface metric: maxAspectRatio must be >= 1, got " + fmtBound(o.maxAspectRatio));
 }
 
 double curvatureSize(double k, const SurfaceMetricOptions& o) {

@@ -206,8 +206,8 @@ void skipKeyword(BinaryReader& r, std::int64_t next, size_t positionAt, size_t s
 }
 
 template <size_t N>
-void readElements(BinaryReader& r, const char* name, int vertexCount, std::vector<std::array<int, N>>* elems,
-                  std::vector<int>* refs) {
+void readBinaryElements(BinaryReader& r, const char* name, int vertexCount, std::vector<std::array<int, N>>* elems,
+                        std::vector<int>* refs) {
   const long long n = r.count(name, (N + 1) * r.intBytes());
   elems->reserve(elems->size() + size_t(n));
   refs->reserve(refs->size() + size_t(n));
@@ -229,8 +229,8 @@ void readElements(BinaryReader& r, const char* name, int vertexCount, std::vecto
 }
 
 template <size_t N>
-void writeElements(BinaryWriter& w, int code, const std::vector<std::array<int, N>>& elems,
-                   const std::vector<int>& refs) {
+void writeBinaryElements(BinaryWriter& w, int code, const std::vector<std::array<int, N>>& elems,
+                         const std::vector<int>& refs) {
   if (elems.empty()) return;
   w.keyword(code, 4 + elems.size() * (N + 1) * 4);
   putWord(&w.out, std::uint32_t(elems.size()), 4);
@@ -263,9 +263,9 @@ std::string writeMeditBinary(const Mesh& mesh) {
     for (size_t k = 0; k < d; ++k) putReal(&w.out, mesh.points[i][int(k)]);
     putWord(&w.out, std::uint32_t(i < mesh.pointRefs.size() ? mesh.pointRefs[i] : 0), 4);
   }
-  writeElements<2>(w, kEdges, mesh.edges, mesh.edgeRefs);
-  writeElements<3>(w, kTriangles, mesh.triangles, mesh.triangleRefs);
-  writeElements<4>(w, kQuadrilaterals, mesh.quads, mesh.quadRefs);
+  writeBinaryElements<2>(w, kEdges, mesh.edges, mesh.edgeRefs);
+  writeBinaryElements<3>(w, kTriangles, mesh.triangles, mesh.triangleRefs);
+  writeBinaryElements<4>(w, kQuadrilaterals, mesh.quads, mesh.quadRefs);
   w.keyword(kEnd, 0);
   return w.out;
 }
@@ -310,9 +310,9 @@ Mesh parseMeditBinary(const std::string& bytes) {
     } else if (code == kEdges || code == kTriangles || code == kQuadrilaterals) {
       if (!haveVertices) r.fail("expected Vertices before " + keywordName(code));
       const int nv = mesh.vertexCount();
-      if (code == kEdges) readElements<2>(r, "Edges", nv, &mesh.edges, &mesh.edgeRefs);
-      if (code == kTriangles) readElements<3>(r, "Triangles", nv, &mesh.triangles, &mesh.triangleRefs);
-      if (code == kQuadrilaterals) readElements<4>(r, "Quadrilaterals", nv, &mesh.quads, &mesh.quadRefs);
+      if (code == kEdges) readBinaryElements<2>(r, "Edges", nv, &mesh.edges, &mesh.edgeRefs);
+      if (code == kTriangles) readBinaryElements<3>(r, "Triangles", nv, &mesh.triangles, &mesh.triangleRefs);
+      if (code == kQuadrilaterals) readBinaryElements<4>(r, "Quadrilaterals", nv, &mesh.quads, &mesh.quadRefs);
     } else if (code == kCorners || code == kRidges || code == kRequiredVertices) {
       const long long n = r.count(keywordName(code), r.intBytes());
       r.seek(r.offset() + size_t(n) * r.intBytes());

@@ -17,12 +17,12 @@ namespace anisomesh {
 namespace {
 
 // One piece of a contour: a line (2 points) or a cubic Bezier (4 points).
-struct Piece {
+struct PathPiece {
   std::vector<Vec2> p;
 };
 
 struct Subpath {
-  std::vector<Piece> pieces;
+  std::vector<PathPiece> pieces;
   bool closed = false;
   std::string where;  // element and subpath, for messages
 };
@@ -114,11 +114,12 @@ class Scanner {
   size_t i_ = 0;
 };
 
-Piece line(const Vec2& a, const Vec2& b) { return {{a, b}}; }
-Piece cubic(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) { return {{a, b, c, d}}; }
+PathPiece line(const Vec2& a, const Vec2& b) { return {{a, b}}; }
+PathPiece cubic(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) { return {{a, b, c, d}}; }
 
 // The SVG elliptical arc from p0 to p1 (endpoint form, SVG 1.1 F.6.5) as cubic pieces of <= 90 degrees.
-void appendArc(std::vector<Piece>& out, Vec2 p0, double rx, double ry, double phiDeg, bool large, bool sweep, Vec2 p1) {
+void appendArc(std::vector<PathPiece>& out, Vec2 p0, double rx, double ry, double phiDeg, bool large, bool sweep,
+               Vec2 p1) {
   if ((p1 - p0).norm() == 0.0) return;
   rx = std::abs(rx), ry = std::abs(ry);
   if (rx == 0.0 || ry == 0.0) {
@@ -305,7 +306,7 @@ nlohmann::json domainJsonFromSvg(const std::string& svgText, const SvgImportOpti
   Box2 box{Vec2::Constant(std::numeric_limits<double>::infinity()),
            Vec2::Constant(-std::numeric_limits<double>::infinity())};
   for (const Subpath& sp : paths)
-    for (const Piece& pc : sp.pieces)
+    for (const PathPiece& pc : sp.pieces)
       for (const Vec2& p : pc.p) box.lo = box.lo.cwiseMin(p), box.hi = box.hi.cwiseMax(p);
   const double extent = box.size().maxCoeff();
   require(extent > 0, ErrorCode::InvalidDomain, "SVG: the shapes have no extent");
@@ -323,7 +324,7 @@ nlohmann::json domainJsonFromSvg(const std::string& svgText, const SvgImportOpti
   std::vector<std::vector<Vec2>> polygons;
   for (Subpath& sp : paths) {
     std::vector<Vec2> poly;
-    for (Piece& pc : sp.pieces) {
+    for (PathPiece& pc : sp.pieces) {
       for (Vec2& p : pc.p) p = map(p);
       if (pc.p.size() == 2) {
         poly.push_back(pc.p[0]);
@@ -358,7 +359,7 @@ nlohmann::json domainJsonFromSvg(const std::string& svgText, const SvgImportOpti
                                                 paths[size_t(parent[a])].where + "): a domain has one level of holes");
   auto contourJson = [&](const Subpath& sp) {
     nlohmann::json curves = nlohmann::json::array();
-    for (const Piece& pc : sp.pieces) {
+    for (const PathPiece& pc : sp.pieces) {
       if (pc.p.size() == 2)
         curves.push_back({{"type", "line"}, {"p1", pointJson(pc.p[0])}, {"p2", pointJson(pc.p[1])}});
       else {

@@ -14,7 +14,7 @@
 namespace anisomesh {
 namespace {
 // Not M_PI: strict C++17 headers (libc++/musl under Emscripten) need not define it.
-constexpr double kPiValue = 3.14159265358979323846;
+constexpr double kPiCase = 3.14159265358979323846;
 
 // Source sizes near discrete sources: elements of a quarter of the source's extent keep
 // the source's edge sharp (without gradation the paper's fig. 6 shows abrupt jumps).
@@ -31,9 +31,9 @@ bool layerMetric(const AnalyticFieldSpec& f, double alpha, double d, Metric* out
 }
 
 // One analytic field as a function; false where the field does not act.
-using FieldFunction = std::function<bool(const Vec2&, Metric*)>;
+using CaseFieldFunction = std::function<bool(const Vec2&, Metric*)>;
 
-FieldFunction fieldFunction(const AnalyticFieldSpec& f) {
+CaseFieldFunction fieldFunction(const AnalyticFieldSpec& f) {
   if (f.field == "point")
     return [f](const Vec2& p, Metric* out) {
       *out = Metric::isotropic(f.h0 + f.growth * (p - f.center).norm());
@@ -48,7 +48,7 @@ FieldFunction fieldFunction(const AnalyticFieldSpec& f) {
   if (f.field == "shear_layer_circle")
     return [f](const Vec2& p, Metric* out) {
       const Vec2 r = p - f.center;
-      return layerMetric(f, pm::atan2(r.y(), r.x()) + kPiValue / 2, std::abs(r.norm() - f.radius), out);
+      return layerMetric(f, pm::atan2(r.y(), r.x()) + kPiCase / 2, std::abs(r.norm() - f.radius), out);
     };
   if (f.field == "expression") {
     ExpressionOptions o;
@@ -77,7 +77,7 @@ FieldFunction fieldFunction(const AnalyticFieldSpec& f) {
 }  // namespace
 
 MetricFunction caseAnalyticMetric(const CaseSpec& spec) {
-  std::vector<FieldFunction> fields;
+  std::vector<CaseFieldFunction> fields;
   for (const SourceSpec& s : spec.sources)
     if (s.type == SourceType::Analytic) fields.push_back(fieldFunction(s.analytic));
   const double hmin = spec.controlSpace.hmin;
@@ -85,7 +85,7 @@ MetricFunction caseAnalyticMetric(const CaseSpec& spec) {
   return [fields, hmin, background](const Vec2& p) {
     Metric m = background;
     Metric s;
-    for (const FieldFunction& f : fields)
+    for (const CaseFieldFunction& f : fields)
       if (f(p, &s)) m = intersect(m, s);
     // The background already bounds every size by hmax.
     return hmin > 0 ? clampMetricSizes(m, hmin, std::numeric_limits<double>::infinity()) : m;

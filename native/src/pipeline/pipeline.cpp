@@ -28,7 +28,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double stageSeconds(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Runs f on cs, through a section 4 query cache when tolerance > 0 (a fresh one per call:
 // cs may have changed since), adding the cache's counts to the report.
@@ -113,7 +113,7 @@ class PlanarCaseSteps final : public Algorithm1Steps {
   void buildControlSpaces() override {
     const auto t = Clock::now();
     cs_ = withStage("control-space construction", [&] { return buildCaseControlSpace(spec_, progress_); });
-    r_.secondsControlSpace = secondsSince(t);
+    r_.secondsControlSpace = stageSeconds(t);
     analytic_ = caseAnalyticMetric(spec_);
     mesher_ = mesherOptionsFromCase(spec_);
     mesher_.progress = progress_;
@@ -143,7 +143,7 @@ class PlanarCaseSteps final : public Algorithm1Steps {
     } else {
       fresh_.assign(loops_.size(), 0);
     }
-    r_.secondsDiscretization += secondsSince(t);
+    r_.secondsDiscretization += stageSeconds(t);
   }
 
   bool checkBoundaries(int /*round*/) override {
@@ -175,7 +175,7 @@ class PlanarCaseSteps final : public Algorithm1Steps {
     r_.refinedElements += refined;
     const bool changed = !sources.empty() || refined > 0;
     if (changed) addCaseSources(*cs_, spec_, sources);
-    r_.secondsUpdates += secondsSince(t);
+    r_.secondsUpdates += stageSeconds(t);
     return changed;
   }
 
@@ -194,7 +194,7 @@ class PlanarCaseSteps final : public Algorithm1Steps {
     finalOptions.timings = &r_.mesherTimings;
     Mesh mesh = throughCache(*cs_, cacheTolerance(), r_,
                              [&](const ControlSpace& q) { return meshPlanarBoundary(loops_, q, finalOptions); });
-    r_.secondsMeshing = secondsSince(t);
+    r_.secondsMeshing = stageSeconds(t);
     return mesh;
   }
 
@@ -223,7 +223,7 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   PipelineReport& r = report ? *report : local;
   const auto t = Clock::now();
   validateDomain(spec.domain);
-  r.secondsGeometry = secondsSince(t);
+  r.secondsGeometry = stageSeconds(t);
   PlanarCaseSteps steps(spec, updates, r, progress);
   Algorithm1Report a;
   Mesh mesh = runAlgorithm1(steps, updates, &a);
@@ -299,12 +299,12 @@ Mesh remeshImpl(const Mesh& input, const std::vector<Metric>& metrics, const Rem
     loopOptions.cornerAngle = 0.7853981633974483;  // pi / 4
   const Domain domain = domainFromBoundaryLoops(boundaryLoopsFromMesh(input), loopOptions);
   validateDomain(domain);
-  r.secondsGeometry = secondsSince(t);
+  r.secondsGeometry = stageSeconds(t);
   stage("control space");
   t = Clock::now();
   std::unique_ptr<AdaptiveControlSpace> cs =
       withStage("control-space construction", [&] { return buildRemeshControlSpace(input, metrics, options); });
-  r.secondsControlSpace = secondsSince(t);
+  r.secondsControlSpace = stageSeconds(t);
   if (releaseInput) releaseInput();
   r.controlElements = cs->elementCount();
   r.controlNodes = cs->nodeCount();
@@ -318,7 +318,7 @@ Mesh remeshImpl(const Mesh& input, const std::vector<Metric>& metrics, const Rem
   std::vector<BoundaryLoop> loops =
       throughCache(*cs, options.queryCache, r, [&](const ControlSpace& q) { return discretizeDomain(domain, q, d); });
   if (options.hausdorff > 0) hausdorffRounds(domain, options, d, *cs, loops, r);
-  r.secondsDiscretization = secondsSince(t);
+  r.secondsDiscretization = stageSeconds(t);
   countBoundary(loops, report);
   stage("meshing");
   t = Clock::now();
@@ -326,7 +326,7 @@ Mesh remeshImpl(const Mesh& input, const std::vector<Metric>& metrics, const Rem
   finalOptions.timings = &r.mesherTimings;
   Mesh mesh = throughCache(*cs, options.queryCache, r,
                            [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, finalOptions); });
-  r.secondsMeshing = secondsSince(t);
+  r.secondsMeshing = stageSeconds(t);
   if (controlSpace) *controlSpace = std::move(cs);
   return mesh;
 }
