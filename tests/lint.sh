@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Static checks, one pass/fail line each in node --test's "# pass N / # fail N" form so that
 # run-all.sh counts them: clang-format (every C++ file), clang-tidy (bugprone and performance
-# checks of .clang-tidy over the core and the CLI, through build/native/compile_commands.json),
+# checks of .clang-tidy over the core and the CLI, through build/lint/compile_commands.json),
 # ESLint (eslint.config.js over the package, the page and the JS tests).
 set -uo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -21,7 +21,10 @@ mapfile -t cxx < <(git ls-files '*.cpp' '*.h' '*.hpp')
 check "clang-format (${#cxx[@]} files)" clang-format --dry-run --Werror "${cxx[@]}"
 
 tidy() {
-  [ -f build/native/compile_commands.json ] || { echo "no build/native/compile_commands.json"; return 1; }
+  # One compile command per source file, from a tree that is configured only (a few seconds):
+  # run-all.sh builds build/native as a unity build, whose database lists the batches instead.
+  cmake -S . -B build/lint -DCMAKE_BUILD_TYPE=Release -DANISOMESH_WERROR=ON -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
+    -DCMAKE_UNITY_BUILD=OFF -DANISOMESH_BUILD_TESTS=OFF -DANISOMESH_BUILD_BENCHMARKS=OFF >/dev/null || return 1
   # A file passes when clang-tidy reports nothing of ours (WarningsAsErrors turns findings into
   # errors) and exits 0: a crash that prints no finding fails too (xargs exits 123 or 125).
   # Only files whose key (tests/tidy_keys.mjs: clang-tidy's version, .clang-tidy, the compile
@@ -32,7 +35,7 @@ tidy() {
   mapfile -t files < <(git ls-files 'native/src/*.cpp' 'native/cli/*.cpp')
   declare -A keyOf=()
   if [ "$cache" != off ] && mkdir -p "$cache" 2>/dev/null; then
-    while read -r k f; do keyOf[$f]=$k; done < <(node tests/tidy_keys.mjs build/native/compile_commands.json "${files[@]}")
+    while read -r k f; do keyOf[$f]=$k; done < <(node tests/tidy_keys.mjs build/lint/compile_commands.json "${files[@]}")
   fi
   for f in "${files[@]}"; do
     k="${keyOf[$f]:-}"
@@ -41,7 +44,7 @@ tidy() {
   done
   [ ${#todo[@]} -eq 0 ] && return 0
   local out status
-  out=$(printf '%s\n' "${todo[@]}" | xargs -P"$(nproc)" -n1 clang-tidy -p build/native --quiet 2>/dev/null)
+  out=$(printf '%s\n' "${todo[@]}" | xargs -P"$(nproc)" -n1 clang-tidy -p build/lint --quiet 2>/dev/null)
   status=$?
   grep -E 'error:|warning:' <<<"$out" && return 1
   [ "$status" -eq 0 ] || { echo "clang-tidy exited with status $status"; echo "$out" | tail -20; return 1; }

@@ -15,8 +15,13 @@ rm -f "$logs"/*.log
 # Runs a test layer, keeping its output to count passes and failures at the end.
 run_layer() { local name="$1"; shift; "$@" 2>&1 | tee "$logs/$name.log"; }
 
+# Unity builds (CMake batches of 8 sources per compiler run) for native, sanitize and wasm:
+# Eigen, gtest, nlohmann::json and their inline code are parsed and compiled once per batch
+# instead of once per file. Cold builds on the 2-core machine, CPU seconds: Release 911 -> 375,
+# ASan + UBSan 1367 -> 696. Names private to a source file must be unique across the target.
 stage "native: build and ctest"
-cmake -S . -B build/native -DCMAKE_BUILD_TYPE=Release -DANISOMESH_WERROR=ON -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >/dev/null
+cmake -S . -B build/native -DCMAKE_BUILD_TYPE=Release -DANISOMESH_WERROR=ON -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
+  -DCMAKE_UNITY_BUILD=ON >/dev/null
 cmake --build build/native -j"$jobs"
 run_layer native bash -c 'cd build/native && ctest --output-on-failure -j"$0"' "$jobs"
 
@@ -25,7 +30,7 @@ run_layer lint bash tests/lint.sh
 
 stage "native under ASan + UBSan: build and ctest"
 cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" -DANISOMESH_SANITIZE=ON \
-  -DANISOMESH_BUILD_BENCHMARKS=OFF >/dev/null
+  -DANISOMESH_BUILD_BENCHMARKS=OFF -DCMAKE_UNITY_BUILD=ON >/dev/null
 cmake --build build/sanitize -j"$jobs"
 run_layer sanitize bash -c 'cd build/sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j"$0"' "$jobs"
 

@@ -4,7 +4,7 @@
 // checkout's path taken out, and its preprocessed text: every header it includes), so that
 // tests/lint.sh runs clang-tidy only on files whose key has not passed before (as ccache does
 // for compilers). A file that cannot be preprocessed gets no key and is always checked.
-// Usage: node tests/tidy_keys.mjs build/native/compile_commands.json FILE...
+// Usage: node tests/tidy_keys.mjs build/lint/compile_commands.json FILE...
 import { execFileSync, spawn } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import { readFileSync, realpathSync } from 'node:fs';

@@ -9,7 +9,8 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   emcmake cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_CROSSCOMPILING_EMULATOR=/usr/bin/node \
     -DEigen3_DIR=/usr/share/eigen3/cmake \
-    -DANISOMESH_BUILD_TESTS=OFF -DANISOMESH_BUILD_BENCHMARKS=OFF >/dev/null
+    -DANISOMESH_BUILD_TESTS=OFF -DANISOMESH_BUILD_BENCHMARKS=OFF \
+    -DCMAKE_UNITY_BUILD=ON >/dev/null  # see tests/run-all.sh
 fi
 cmake --build "$build" -j"$(nproc)"
 node "$root/wasm/embed.mjs"   # the base64 copy the browser entry falls back to
