@@ -6,6 +6,7 @@
 #include <string>
 
 #include "anisomesh/adapt/solution_transfer.h"
+#include "anisomesh/core/clock.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/geometry/curve.h"
 
@@ -13,10 +14,6 @@ namespace anisomesh {
 namespace {
 
 constexpr double kP1InterpolationConstant = 2.0 / 9.0;
-
-double secondsSinceStart(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 RemeshOptions remeshOptions(const FieldMetric& metric, const AdaptOptions& o) {
   RemeshOptions r;
@@ -45,12 +42,12 @@ AdaptResult runLoop(const Mesh& mesh, std::vector<std::vector<double>> fields, c
   // 1.05 V (measured on the four example functions, adapted meshes); then the ratio obtained.
   double correction = 1.0 / 1.05;
   for (int k = 0; k < o.iterations; ++k) {
-    const auto t = std::chrono::steady_clock::now();
+    const auto t = Clock::now();
     AdaptIteration it;
     FieldMetricOptions mo = o.metric;
     if (mo.targetVertices > 0) mo.targetVertices *= correction;
     const FieldMetric metric = metricFromFields(result.mesh, result.fields, mo);
-    it.secondsMetric = secondsSinceStart(t);
+    it.secondsMetric = secondsSince(t);
     std::unique_ptr<AdaptiveControlSpace> cs;
     Mesh adapted = remesh(result.mesh, metric.metrics, remeshOptions(metric, o), &it.remesh, &cs);
     std::vector<std::vector<double>> adaptedFields = next(adapted, result.mesh, result.fields);
@@ -77,7 +74,7 @@ AdaptResult runLoop(const Mesh& mesh, std::vector<std::vector<double>> fields, c
     result.mesh = std::move(adapted);
     result.fields = std::move(adaptedFields);
     result.controlSpace = std::move(cs);
-    it.seconds = secondsSinceStart(t);
+    it.seconds = secondsSince(t);
     result.iterations.push_back(it);
     if (o.onIteration && !o.onIteration(k, result.mesh)) break;
   }

@@ -189,9 +189,7 @@ double chordDeviation(const Surface& s, const Vec2& a, const Vec2& b, const Chor
   double worst = 0.0;
   for (int i = 1; i <= options.samples; ++i) {
     const double t = static_cast<double>(i) / (options.samples + 1);
-    const Vec3 x = s.point((1.0 - t) * a + t * b);
-    const double tau = ee > 0.0 ? std::min(std::max((x - pa).dot(e) / ee, 0.0), 1.0) : 0.0;
-    worst = std::max(worst, (x - (pa + tau * e)).norm());
+    worst = std::max(worst, chordGap(s.point((1.0 - t) * a + t * b), pa, e, ee));
   }
   return worst;
 }

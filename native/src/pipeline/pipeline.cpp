@@ -14,6 +14,7 @@
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/controlspace/control_space_spec.h"
 #include "anisomesh/controlspace/query_cache.h"
+#include "anisomesh/core/clock.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/number_text.h"
 #include "anisomesh/core/portable_math.h"
@@ -25,10 +26,6 @@
 
 namespace anisomesh {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double stageSeconds(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Runs f on cs, through a section 4 query cache when tolerance > 0 (a fresh one per call:
 // cs may have changed since), adding the cache's counts to the report.
@@ -113,7 +110,7 @@ class PlanarCaseSteps final : public Algorithm1Steps {
   void buildControlSpaces() override {
     const auto t = Clock::now();
     cs_ = withStage("control-space construction", [&] { return buildCaseControlSpace(spec_, progress_); });
-    r_.secondsControlSpace = stageSeconds(t);
+    r_.secondsControlSpace = secondsSince(t);
     analytic_ = caseAnalyticMetric(spec_);
     mesher_ = mesherOptionsFromCase(spec_);
     mesher_.progress = progress_;
@@ -143,7 +140,7 @@ class PlanarCaseSteps final : public Algorithm1Steps {
     } else {
       fresh_.assign(loops_.size(), 0);
     }
-    r_.secondsDiscretization += stageSeconds(t);
+    r_.secondsDiscretization += secondsSince(t);
   }
 
   bool checkBoundaries(int /*round*/) override {
@@ -175,7 +172,7 @@ class PlanarCaseSteps final : public Algorithm1Steps {
     r_.refinedElements += refined;
     const bool changed = !sources.empty() || refined > 0;
     if (changed) addCaseSources(*cs_, spec_, sources);
-    r_.secondsUpdates += stageSeconds(t);
+    r_.secondsUpdates += secondsSince(t);
     return changed;
   }
 
@@ -194,7 +191,7 @@ class PlanarCaseSteps final : public Algorithm1Steps {
     finalOptions.timings = &r_.mesherTimings;
     Mesh mesh = throughCache(*cs_, cacheTolerance(), r_,
                              [&](const ControlSpace& q) { return meshPlanarBoundary(loops_, q, finalOptions); });
-    r_.secondsMeshing = stageSeconds(t);
+    r_.secondsMeshing = secondsSince(t);
     return mesh;
   }
 
@@ -223,7 +220,7 @@ Mesh meshCase(const CaseSpec& spec, PipelineReport* report, const BoundaryUpdate
   PipelineReport& r = report ? *report : local;
   const auto t = Clock::now();
   validateDomain(spec.domain);
-  r.secondsGeometry = stageSeconds(t);
+  r.secondsGeometry = secondsSince(t);
   PlanarCaseSteps steps(spec, updates, r, progress);
   Algorithm1Report a;
   Mesh mesh = runAlgorithm1(steps, updates, &a);
@@ -299,12 +296,12 @@ Mesh remeshImpl(const Mesh& input, const std::vector<Metric>& metrics, const Rem
     loopOptions.cornerAngle = 0.7853981633974483;  // pi / 4
   const Domain domain = domainFromBoundaryLoops(boundaryLoopsFromMesh(input), loopOptions);
   validateDomain(domain);
-  r.secondsGeometry = stageSeconds(t);
+  r.secondsGeometry = secondsSince(t);
   stage("control space");
   t = Clock::now();
   std::unique_ptr<AdaptiveControlSpace> cs =
       withStage("control-space construction", [&] { return buildRemeshControlSpace(input, metrics, options); });
-  r.secondsControlSpace = stageSeconds(t);
+  r.secondsControlSpace = secondsSince(t);
   if (releaseInput) releaseInput();
   r.controlElements = cs->elementCount();
   r.controlNodes = cs->nodeCount();
@@ -318,7 +315,7 @@ Mesh remeshImpl(const Mesh& input, const std::vector<Metric>& metrics, const Rem
   std::vector<BoundaryLoop> loops =
       throughCache(*cs, options.queryCache, r, [&](const ControlSpace& q) { return discretizeDomain(domain, q, d); });
   if (options.hausdorff > 0) hausdorffRounds(domain, options, d, *cs, loops, r);
-  r.secondsDiscretization = stageSeconds(t);
+  r.secondsDiscretization = secondsSince(t);
   countBoundary(loops, report);
   stage("meshing");
   t = Clock::now();
@@ -326,7 +323,7 @@ Mesh remeshImpl(const Mesh& input, const std::vector<Metric>& metrics, const Rem
   finalOptions.timings = &r.mesherTimings;
   Mesh mesh = throughCache(*cs, options.queryCache, r,
                            [&](const ControlSpace& q) { return meshPlanarBoundary(loops, q, finalOptions); });
-  r.secondsMeshing = stageSeconds(t);
+  r.secondsMeshing = secondsSince(t);
   if (controlSpace) *controlSpace = std::move(cs);
   return mesh;
 }

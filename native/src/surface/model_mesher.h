@@ -22,6 +22,7 @@
 #include "anisomesh/boundary/discretize.h"
 #include "anisomesh/controlspace/control_space_algorithms.h"
 #include "anisomesh/controlspace/quadtree_control_space.h"
+#include "anisomesh/core/clock.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/portable_math.h"
 #include "anisomesh/pipeline/algorithm1.h"
@@ -29,10 +30,6 @@
 
 namespace anisomesh {
 namespace surface_mesher {
-
-using Clock = std::chrono::steady_clock;
-
-inline double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 inline std::string fmt(double x) {
   std::ostringstream os;
@@ -66,7 +63,7 @@ class CountingControlSpace : public ControlSpace {
     if ((c_.queries++ & 31) != 0) return inner_.metricAt(p);
     const auto t0 = Clock::now();
     Metric m = inner_.metricAt(p);
-    c_.querySeconds += 32.0 * since(t0);
+    c_.querySeconds += 32.0 * secondsSince(t0);
     return m;
   }
   Mat2 parameterizationAt(const Vec2& p) const override {

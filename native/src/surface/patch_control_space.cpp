@@ -85,7 +85,7 @@ std::unique_ptr<AdaptiveControlSpace> buildCurvatureStage(const SurfacePatch& pa
     if ((counters.curvature++ & 31) != 0) return curv.tryMetricAt(p);
     const auto t0 = Clock::now();
     std::optional<Metric> m = curv.tryMetricAt(p);
-    counters.curvatureSeconds += 32.0 * since(t0);
+    counters.curvatureSeconds += 32.0 * secondsSince(t0);
     return m;
   };
 

@@ -92,7 +92,7 @@ void DeferredMeasures::measureElements() {
   if (!q.edges) q.edgeLengthMin = 0.0;
   if (!count) q.qualityMin = 0.0;
   elementsDone = true;
-  seconds += since(t0);
+  seconds += secondsSince(t0);
 }
 
 void DeferredMeasures::measureChords() {
@@ -145,7 +145,7 @@ void DeferredMeasures::measureChords() {
   q.chordDeviationMax = std::max(q.chordDeviationMax, q.edgeChordDeviationMax);
   q.chordDeviationMaxRelative = chordTolerance > 0 ? q.chordDeviationMax / chordTolerance : 0.0;
   chordsDone = true;
-  seconds += since(t0);
+  seconds += secondsSince(t0);
 }
 
 void DeferredMeasures::fill(SurfaceMeshReport& report) const {

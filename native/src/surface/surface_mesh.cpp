@@ -82,7 +82,7 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
     report->proximitySources = updateCounts_[1];
     report->shortSegmentSources = updateCounts_[2];
     report->invalidations = invalidations_;
-    report->secondsTotal = since(t0);
+    report->secondsTotal = secondsSince(t0);
   }
   return out;
 }

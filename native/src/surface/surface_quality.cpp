@@ -31,8 +31,7 @@ EdgeChordGaps edgeChordGaps(const Surface& s, const Vec2& u0, const Vec2& u1, co
   for (int i = 1; i <= 7; ++i) {
     const double t = i / 8.0;
     const SurfaceDerivatives d = s.firstDerivatives((1.0 - t) * u0 + t * u1);
-    const double tau = ee > 0.0 ? std::min(std::max((d.p - pa).dot(e) / ee, 0.0), 1.0) : 0.0;
-    g.iso = std::max(g.iso, (d.p - (pa + tau * e)).norm());
+    g.iso = std::max(g.iso, chordGap(d.p, pa, e, ee));
     const Vec3 n = d.su.cross(d.sv);
     if (!(n.norm() > 0)) continue;
     g.normal = std::max(g.normal, std::abs(n.normalized().dot(d.p - ((1.0 - t) * x0 + t * x1))));

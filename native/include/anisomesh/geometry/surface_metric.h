@@ -17,6 +17,7 @@
 // Mapping into (u, v): a 3D tangent metric M3 pulls back through J = [Su Sv] as
 // M_uv = J^T M3 J, so the metric length of a parameter vector du equals the M3 length
 // of its 3D image J du (for an isotropic size h, M_uv = G / h^2).
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -129,5 +130,12 @@ struct ChordDeviationOptions {
 // Largest distance between the straight 3D segment S(a)S(b) and the surface curve
 // S((1-t) a + t b), t in [0, 1], sampled at evenly spaced t.
 double chordDeviation(const Surface& s, const Vec2& a, const Vec2& b, const ChordDeviationOptions& options = {});
+
+// chordDeviation()'s gap at one sample: the distance from x to the segment pa + [0, 1] e
+// (ee = |e|^2).
+inline double chordGap(const Vec3& x, const Vec3& pa, const Vec3& e, double ee) {
+  const double tau = ee > 0.0 ? std::min(std::max((x - pa).dot(e) / ee, 0.0), 1.0) : 0.0;
+  return (x - (pa + tau * e)).norm();
+}
 
 }  // namespace anisomesh

@@ -27,15 +27,13 @@
 #include <vector>
 
 #include "../mesh_internal.h"
+#include "anisomesh/core/clock.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/mesh/planar_mesher.h"
 #include "anisomesh/mesh/predicates.h"
 
 namespace anisomesh {
 namespace planar {
-
-using Clock = std::chrono::steady_clock;
-inline double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 constexpr int kSuper = 4;                                // super-box corners are vertices 0..3
 constexpr double kIdealRadius = 0.57735026918962576;     // circumradius of the unit equilateral triangle
