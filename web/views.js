@@ -11,6 +11,7 @@ import { sourceOverlay } from './overlays.js';
 
 const BG = 0xf7f7f5;
 const SVG_NS = 'http://www.w3.org/2000/svg';
+const GUIDE_DASH = [6, 4];  // dash and gap of a source's guide lines, CSS pixels (WebGL and the drag overlay)
 const FACE_PLAIN = [0.80, 0.85, 0.92];
 const HANDLE_PICK_PX = 12;
 
@@ -640,7 +641,7 @@ export class Views {
     if (!this.showSources) { this.dragOverlay.innerHTML = ''; this.requestRender(); return; }
     const du = this.sourceShift();
     const px = this.pixelSize2();
-    for (const m of [this.mats.srcGuide, this.mats.srcGuideSel]) { m.dashSize = 6 * px; m.gapSize = 4 * px; }
+    for (const m of [this.mats.srcGuide, this.mats.srcGuideSel]) { m.dashSize = GUIDE_DASH[0] * px; m.gapSize = GUIDE_DASH[1] * px; }
     const handlePos = [], handleCol = [];
     this.sources.forEach((s, i) => {
       const sel = i === this.selected;
@@ -734,7 +735,7 @@ export class Views {
       const pts = [];
       for (let i = 0; i < pos.count; i++) pts.push(px(pos.getX(i), pos.getY(i)).slice(0, 2).map((c) => c.toFixed(1)).join(','));
       const m = o.material;
-      const dash = m.isLineDashedMaterial ? ' stroke-dasharray="6 4"' : '';
+      const dash = m.isLineDashedMaterial ? ` stroke-dasharray="${GUIDE_DASH.join(' ')}"` : '';
       parts.push(`<polyline points="${pts.join(' ')}" fill="none" stroke="${css(m)}" stroke-opacity="${m.transparent ? m.opacity : 1}" stroke-width="1"${dash}/>`);
     }
     svg.innerHTML = parts.join('');
