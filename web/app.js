@@ -34,6 +34,8 @@ const state = {
   laneJobs: 0,          // mesh jobs the second lane ran (inputs that did not wait for a stale job)
   staleResults: 0,      // results older than the mesh already drawn (the other lane's was newer)
   drawnVersions: [],    // case versions of the last 50 meshes drawn, in drawing order
+  meshesDrawn: 0,       // meshes drawn since the page opened
+  recolours: 0,         // meshes recoloured in place once their report came in (a surface drag)
   lastStats: null,
   lastError: null,      // { code, message, target }
   lastJob: null,        // { meshMs, workerMs, totalMs, drawMs }
@@ -611,6 +613,7 @@ async function remesh(runner = runnerForLatest()) {
       if (r.result.measures && views.result === result) {
         Object.assign(result.measures, r.result.measures);
         views.setStyle(styleOf());
+        state.recolours++;
       }
     }
     const t0 = wallNow();
@@ -664,6 +667,7 @@ function draw(result, version, editAt, marks, receivedAt, overlay) {
   state.meshedVersion = version;
   state.drawnVersions.push(version);
   if (state.drawnVersions.length > 50) state.drawnVersions.shift();
+  state.meshesDrawn++;
   const core = result.core ?? {};
   const b = {
     version,
