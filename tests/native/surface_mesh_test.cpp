@@ -2,6 +2,8 @@
 // 3D quality, adaptation across patches, the JSON surface case format and its errors.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -286,6 +288,16 @@ TEST(SurfaceMesh, Metric3DFromParameterKeepsLengths) {
   }
   // Pulling the 3D metric back gives the metric again.
   EXPECT_LT(difference(pullBackMetric(t, d), m), 1e-9);
+  // Along the normal: the finest tangent size (the largest eigenvalue of the tangent part,
+  // found here by the iterative 3x3 solver the closed form replaced), so the two largest
+  // eigenvalues of t are equal and the normal is an eigenvector of theirs.
+  const Vec3 n = d.su.cross(d.sv).normalized();
+  const Vec3 ev = Eigen::SelfAdjointEigenSolver<Mat3>(t).eigenvalues();
+  const Mat3 p = Mat3::Identity() - n * n.transpose();
+  const double tangentMax = Eigen::SelfAdjointEigenSolver<Mat3>(p * t * p).eigenvalues().maxCoeff();
+  EXPECT_NEAR(n.dot(t * n), tangentMax, 1e-12 * tangentMax);
+  EXPECT_NEAR(ev(1), ev(2), 1e-12 * ev(2));
+  EXPECT_LT((t * n - tangentMax * n).norm(), 1e-12 * tangentMax);
 }
 
 TEST(SurfaceMesh, PatchControlSpaceFollowsCurvature) {
