@@ -420,8 +420,10 @@ test('a drag on a surface meshes its latest input in a second worker while the f
   });
   assert.equal(r.error, null);
   assert.ok(r.lane > before.lane, `inputs meshed in the second lane: ${r.lane - before.lane}`);
-  // drawnVersions keeps the last 50 only; meshesDrawn counts them all.
-  const drawn = r.drawn.slice(-(r.count - before.drawn));
+  // drawnVersions keeps the last 50 only; meshesDrawn counts them all (none drawn: none
+  // taken, where slice(-0) would take the whole list).
+  const fresh = r.count - before.drawn;
+  const drawn = fresh > 0 ? r.drawn.slice(-fresh) : [];
   assert.ok(drawn.length >= 3, `meshes drawn: ${drawn}`);
   for (let k = 1; k < drawn.length; k++) assert.ok(drawn[k] > drawn[k - 1], `meshes drawn out of order: ${drawn}`);
   assert.equal(r.meshed, r.version);
