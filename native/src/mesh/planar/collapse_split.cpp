@@ -92,6 +92,7 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
       pb = target / static_cast<double>(count);
       mb = queryMetric(pb);
     }
+    if (colSearch_) placeMergedVertex(ring, k1, k2, ballB, b, pb, mb);
   }
   const double floor = std::min(before, colMinQuality_);
   for (int k = 0; k < deg; ++k) {
@@ -100,7 +101,7 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
     if (k == k1 || k == k2) continue;
     const int c = ring[(k + 1) % deg];
     if (orient(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
-    if (quality(r, c) < floor) return false;
+    if (!(quality(r, c) >= floor + colMinGain_)) return false;
   }
   for (const int u : ballB) {
     const auto& tv = tri_[u].v;
@@ -108,7 +109,7 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
     const int r = tv[next3(i)], c = tv[prev3(i)];
     if (tooLong(r)) return false;
     if (orient(pb, vx_[r].p, vx_[c].p) <= 0.0) return false;
-    if (quality(r, c) < floor) return false;
+    if (!(quality(r, c) >= floor + colMinGain_)) return false;
   }
   // Apply.
   vx_[b].p = pb;

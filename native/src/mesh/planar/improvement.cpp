@@ -90,6 +90,18 @@ void Mesher::improve() {
     dedupe(work);
     swaps();
   }
+  // Triangles polishing could not raise: one of their short edges collapsed, then the
+  // changed balls swapped and polished.
+  for (int round = 0; round < kRepairRounds && opt_.improvementPasses > 0; ++round) {
+    work.clear();
+    if (repairPass(work) == 0) break;
+    dedupe(work);
+    swaps();
+    work.clear();
+    polishPass(work);
+    dedupe(work);
+    swaps();
+  }
 }
 
 }  // namespace planar

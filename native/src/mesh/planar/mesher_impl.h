@@ -72,6 +72,17 @@ constexpr int kPolishRounds = 2;
 constexpr double kPolishMinLength = 0.73, kPolishMaxLength = 1.38;
 // The ball's other triangles may lose this much quality each (summed over the ball).
 constexpr double kPolishSumSlack = 0.01;
+// Eight unit directions (metric space), every 45 degrees: the compass search's moves.
+constexpr double kCompassDiag = 0.70710678118654752;
+constexpr double kCompassDirs[8][2] = {{1, 0},  {kCompassDiag, kCompassDiag},   {0, 1},  {-kCompassDiag, kCompassDiag},
+                                       {-1, 0}, {-kCompassDiag, -kCompassDiag}, {0, -1}, {kCompassDiag, -kCompassDiag}};
+// Repair (repair.cpp): triangles still below kRepairQuality after polishing lose one of
+// their edges shorter than kRepairCollapseLength when every new triangle beats the worst
+// one before by kRepairMinGain.
+constexpr double kRepairQuality = 0.8;
+constexpr double kRepairCollapseLength = 1.0;
+constexpr double kRepairMinGain = 0.01;
+constexpr int kRepairRounds = 2;
 
 // Swap sweeps per call, a bound only: chains along a boundary that crosses a stretched layer
 // obliquely took 11 to 18 sweeps (6 left fans of slivers, min Q 0.02).
@@ -171,10 +182,16 @@ class Mesher {
   int swapSweep(const std::vector<int>& work, std::vector<int>& next);
   int smoothPass(std::vector<int>& touched);
   int polishPass(std::vector<int>& touched);
+  int repairPass(std::vector<int>& touched);
   template <class EdgeOp>
   int scanEdges(const std::vector<int>* list, EdgeOp&& op);
   int lengthPass(const std::vector<int>* list, std::vector<int>& touched);
   bool tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touched);
+  // For a midpoint collapse (tryCollapse's a onto b, ring and k1, k2 as there, ballB: b's
+  // other triangles): pb moved by a compass search to where the merged fan's worst triangle
+  // is best, its edges within [kCollapseLength, colMaxLength_]; mb queried there.
+  void placeMergedVertex(const std::vector<int>& ring, int k1, int k2, const std::vector<int>& ballB, int b, Vec2& pb,
+                         SymMt& mb);
   int shortEdgePass(const std::vector<int>* list, std::vector<int>& touched);
   bool trySplit(int t, int i, std::vector<int>& touched);
 
@@ -231,6 +248,9 @@ class Mesher {
   // its ring sees at unit metric length (as smoothing does) instead of the midpoint.
   double colMaxLength_ = kCollapseMaxLength, colMinQuality_ = kCollapseMinQuality;
   bool colOptimal_ = false;
+  double colMinGain_ = 0.0;  // new triangles must beat the floor by this much
+  bool colSearch_ = false;   // a midpoint collapse places the merged vertex by placeMergedVertex
+  std::vector<std::array<int, 2>> colFan_;
   std::vector<std::uint8_t> vdirty_;  // improvement: vertex whose surroundings changed
 
   double estimate_ = 0.0;

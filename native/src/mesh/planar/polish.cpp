@@ -4,15 +4,6 @@
 namespace anisomesh {
 namespace planar {
 
-namespace {
-
-// Eight unit directions (metric space), every 45 degrees.
-constexpr double kDiag = 0.70710678118654752;
-constexpr double kDirs[8][2] = {{1, 0},  {kDiag, kDiag},   {0, 1},  {-kDiag, kDiag},
-                                {-1, 0}, {-kDiag, -kDiag}, {0, -1}, {kDiag, -kDiag}};
-
-}  // namespace
-
 // The smoothing pass tries four fixed candidates per vertex; a free vertex of a triangle
 // still below kPolishQuality after the adaptation loop gets a compass search instead: steps
 // of kPolishFirstStep metric units in eight directions, halved down to kPolishLastStep, each
@@ -81,7 +72,7 @@ int Mesher::polishPass(std::vector<int>& touched) {
       bool improved = true;
       for (int moves = 0; improved && moves < 32; ++moves) {  // 32: a bound only
         improved = false;
-        for (const auto& d : kDirs) {
+        for (const auto& d : kCompassDirs) {
           const Vec2 x = best + m.solve(Vec2(step * d[0], step * d[1]));
           if (!x.allFinite()) continue;
           const double q = ballQuality(x);
