@@ -102,7 +102,12 @@ Metric intersect(const Metric& a, const Metric& b) {
   const SymEigen2 e = symEigenValues(n);
   if (e.l2 >= 1.0) return b;  // b is at least as fine in every direction
   if (e.l1 <= 1.0) return a;  // a is at least as fine in every direction
-  const Mat2 q = fromEigen(std::max(e.l1, 1.0), std::max(e.l2, 1.0), symEigenAngle(n));
+  // Here l2 < 1 < l1: Q = I + (l1 - 1) v1 v1^T, and v1 v1^T = (N - l2 I) / (l1 - l2).
+  const double w = (e.l1 - 1.0) / (e.l1 - e.l2);
+  Mat2 q = w * n;
+  q(0, 0) += 1.0 - w * e.l2;
+  q(1, 1) += 1.0 - w * e.l2;
+  q(0, 1) = q(1, 0) = 0.5 * (q(0, 1) + q(1, 0));
   const Mat2 m = a.transform() * q * a.transform();
   return Metric::fromTransformUnchecked(sqrtSpd(m));
 }
