@@ -298,7 +298,7 @@ for (const kind of cases)
       const r = timed('ffbamg', ['-b', 'in.mesh', '-M', 'in.mtr', '-o', 'bamg.mesh', '-v', '0', '-nbv', nbv], dir);
       if (r.failed) pushRow({ label, tool: 'ffbamg', note: r.failed });
       else pushRow(measured({ label, tool: 'ffbamg', ...r }, join(dir, 'bamg.mesh'), c.metric));
-    } else if (bamg) pushRow({ label, tool: 'ffbamg', note: haveBamg ? `skipped (> ${bamgMax})` : 'ffbamg not installed' });
+    } else if (bamg) pushRow({ label, tool: 'ffbamg', note: haveBamg ? `skipped (> ${bamgMax})` : 'ffbamg not installed (apt-get install freefem++)' });
     if (!keep) rmSync(dir, { recursive: true, force: true });
   }
 
