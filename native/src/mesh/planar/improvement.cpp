@@ -90,8 +90,8 @@ void Mesher::improve() {
     dedupe(work);
     swaps();
   }
-  // Triangles polishing could not raise: one of their short edges collapsed, then the
-  // changed balls swapped and polished.
+  // Triangles polishing could not raise: one of their short edges collapsed, then swaps on
+  // the changed triangles and a polish round (of every triangle still poor).
   for (int round = 0; round < kRepairRounds && opt_.improvementPasses > 0; ++round) {
     work.clear();
     if (repairPass(work) == 0) break;

@@ -4,14 +4,6 @@
 namespace anisomesh {
 namespace planar {
 
-// Polishing moves one free vertex at a time, so a triangle caught between a short and a
-// long edge (a front meeting a boundary, a steep gradation) can stay poor: every place of
-// its free vertex spoils a neighbour. Removing a vertex changes the topology instead. Each
-// triangle below kRepairQuality, worst first, has its edges shorter than
-// kRepairCollapseLength collapsed (shortest first; onto the unit-length point of the merged
-// ring, the midpoint, or either end), taken only when every new triangle beats the worst
-// one of the balls before by kRepairMinGain and no new edge is longer than
-// kFinalCollapseMaxLength. Returns the collapses made; their triangles go to touched.
 void Mesher::placeMergedVertex(const std::vector<int>& ring, int k1, int k2, const std::vector<int>& ballB, int b,
                                Vec2& pb, SymMt& mb) {
   const int deg = static_cast<int>(ring.size());
@@ -31,7 +23,9 @@ void Mesher::placeMergedVertex(const std::vector<int>& ring, int k1, int k2, con
       if (!(orient(x, vx_[r].p, vx_[c].p) > 0.0)) return -1.0;
       const double l = SymMt::average2(mb, vx_[r].m).length(vx_[r].p - x);
       if (!(l >= kCollapseLength && l <= colMaxLength_)) return -1.0;
-      q = std::min(q, metricTriangleQuality(SymMt::average3(mb, vx_[r].m, vx_[c].m), x, vx_[r].p, vx_[c].p));
+      const double qk = metricTriangleQuality(SymMt::average3(mb, vx_[r].m, vx_[c].m), x, vx_[r].p, vx_[c].p);
+      if (!(qk > 0.0)) return -1.0;  // also NaN
+      q = std::min(q, qk);
     }
     return q;
   };
@@ -59,11 +53,30 @@ void Mesher::placeMergedVertex(const std::vector<int>& ring, int k1, int k2, con
   }
 }
 
+// Polishing moves one free vertex at a time, so a triangle caught between a short and a
+// long edge (a front meeting a boundary, a steep gradation) can stay poor: every place of
+// its free vertex spoils a neighbour. Removing a vertex changes the topology instead. Each
+// triangle below kRepairQuality, worst first, has its edges shorter than
+// kRepairCollapseLength collapsed (shortest first; for two free ends onto the place the
+// compass search finds from the unit-length point of the merged ring, else onto either
+// end), taken only when every new triangle beats the worst one of the balls before by
+// kRepairMinGain and no new edge is longer than kFinalCollapseMaxLength. Returns the
+// collapses made; their triangles go to touched.
 int Mesher::repairPass(std::vector<int>& touched) {
   std::vector<std::pair<double, int>> poor;
   for (int t = 0; t < static_cast<int>(tri_.size()); ++t)
     if (tri_[t].v[0] >= 0 && tq_[t] < kRepairQuality) poor.push_back({tq_[t], t});
   std::sort(poor.begin(), poor.end());  // worst first, ties by index: deterministic
+  // The collapse limits of the repair, the adaptation loop's back on every way out.
+  struct Limits {
+    Mesher& m;
+    ~Limits() {
+      m.colMaxLength_ = kCollapseMaxLength;
+      m.colMinQuality_ = kCollapseMinQuality;
+      m.colMinGain_ = 0.0;
+      m.colOptimal_ = m.colSearch_ = false;
+    }
+  } restore{*this};
   colMaxLength_ = kFinalCollapseMaxLength;
   colMinQuality_ = std::numeric_limits<double>::infinity();  // the floor is the balls' worst
   colMinGain_ = kRepairMinGain;
@@ -94,9 +107,6 @@ int Mesher::repairPass(std::vector<int>& touched) {
       }
     }
   }
-  colMaxLength_ = kCollapseMaxLength;
-  colMinQuality_ = kCollapseMinQuality;
-  colMinGain_ = 0.0;
   return repaired;
 }
 
