@@ -84,6 +84,32 @@ constexpr double kRepairCollapseLength = 1.0;
 constexpr double kRepairMinGain = 0.01;
 constexpr int kRepairRounds = 2;
 
+// Compass search in metric space from x (score0 = score(x)): steps of kPolishFirstStep
+// down to kPolishLastStep metric units under m in the eight kCompassDirs, each move taken
+// when score (negative: refused) rises by more than 1e-9. Returns the best score; x is
+// moved to its place.
+template <class Score>
+double compassSearch(const SymMt& m, Vec2& x, double score0, Score&& score) {
+  double best = score0;
+  for (double step = kPolishFirstStep; step >= kPolishLastStep; step *= 0.5) {
+    bool improved = true;
+    for (int moves = 0; improved && moves < 32; ++moves) {  // 32: a bound only
+      improved = false;
+      for (const auto& d : kCompassDirs) {
+        const Vec2 y = x + m.solve(Vec2(step * d[0], step * d[1]));
+        if (!y.allFinite()) continue;
+        const double q = score(y);
+        if (q > best + 1e-9) {
+          best = q;
+          x = y;
+          improved = true;
+        }
+      }
+    }
+  }
+  return best;
+}
+
 // Swap sweeps per call, a bound only: chains along a boundary that crosses a stretched layer
 // obliquely took 11 to 18 sweeps (6 left fans of slivers, min Q 0.02).
 constexpr int kMaxSwapSweeps = 256;

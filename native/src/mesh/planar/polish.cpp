@@ -68,22 +68,7 @@ int Mesher::polishPass(std::vector<int>& touched) {
     // The ball's other triangles pay for its worst one, within kPolishSumSlack each.
     sumFloor = sum0 - kPolishSumSlack * static_cast<double>(deg);
     const SymMt& m = vx_[v].m;
-    for (double step = kPolishFirstStep; step >= kPolishLastStep; step *= 0.5) {
-      bool improved = true;
-      for (int moves = 0; improved && moves < 32; ++moves) {  // 32: a bound only
-        improved = false;
-        for (const auto& d : kCompassDirs) {
-          const Vec2 x = best + m.solve(Vec2(step * d[0], step * d[1]));
-          if (!x.allFinite()) continue;
-          const double q = ballQuality(x);
-          if (q > bestQ + 1e-9) {
-            bestQ = q;
-            best = x;
-            improved = true;
-          }
-        }
-      }
-    }
+    bestQ = compassSearch(m, best, bestQ, [&](const Vec2& x) { return ballQuality(x); });
     if (!(bestQ > before + kSmoothMinGain)) continue;
     // Judged again under the metric at the new place, as the next passes and the quality
     // report see it: the worst triangle better, no ring edge newly outside [1/sqrt2, sqrt2].

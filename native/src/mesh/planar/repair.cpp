@@ -30,23 +30,7 @@ void Mesher::placeMergedVertex(const std::vector<int>& ring, int k1, int k2, con
     return q;
   };
   Vec2 best = pb;
-  double bestQ = worst(pb);
-  for (double step = kPolishFirstStep; step >= kPolishLastStep; step *= 0.5) {
-    bool improved = true;
-    for (int moves = 0; improved && moves < 32; ++moves) {  // 32: a bound only
-      improved = false;
-      for (const auto& d : kCompassDirs) {
-        const Vec2 x = best + mb.solve(Vec2(step * d[0], step * d[1]));
-        if (!x.allFinite()) continue;
-        const double q = worst(x);
-        if (q > bestQ + 1e-9) {
-          bestQ = q;
-          best = x;
-          improved = true;
-        }
-      }
-    }
-  }
+  compassSearch(mb, best, worst(pb), worst);
   if (best != pb) {
     pb = best;
     mb = queryMetric(pb);
