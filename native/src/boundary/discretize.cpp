@@ -18,18 +18,18 @@ struct Leaf {
 
 // Adaptive bisection that keeps its leaves, so the cumulative metric length can be
 // inverted locally; leaves are also capped in width so the inversion stays accurate.
-void collectLeaves(const Integrand& f, double a, double b, double whole, double tol, double maxWidth, int depth,
-                   std::vector<Leaf>* out) {
+void collectLeaves(const Integrand& f, double a, double b, double whole, double tol, double absTol, double maxWidth,
+                   int depth, std::vector<Leaf>* out) {
   const double m = 0.5 * (a + b);
   const double left = gaussLegendre5(f, a, m), right = gaussLegendre5(f, m, b);
-  const bool converged = std::abs(left + right - whole) <= tol * (1.0 + std::abs(left + right));
+  const bool converged = std::abs(left + right - whole) <= std::max(tol * (1.0 + std::abs(left + right)), absTol);
   if (depth <= 0 || (converged && b - a <= maxWidth)) {
     out->push_back({a, m, left});
     out->push_back({m, b, right});
     return;
   }
-  collectLeaves(f, a, m, left, tol, maxWidth, depth - 1, out);
-  collectLeaves(f, m, b, right, tol, maxWidth, depth - 1, out);
+  collectLeaves(f, a, m, left, tol, absTol, maxWidth, depth - 1, out);
+  collectLeaves(f, m, b, right, tol, absTol, maxWidth, depth - 1, out);
 }
 
 // Solves start + integral_{leaf.a}^{t} f = target for t inside the leaf (Newton, bracketed).
@@ -92,7 +92,8 @@ std::vector<double> discretizeCurve(const Curve& c, const ControlSpace& cs, int 
   for (size_t k = 0; k + 1 < bounds.size(); ++k) {
     Piece p{bounds[k], bounds[k + 1], {}, 0.0, 1};
     const double w = p.b - p.a;
-    collectLeaves(f, p.a, p.b, gaussLegendre5(f, p.a, p.b), options.tolerance, w / 16.0, 24, &p.leaves);
+    collectLeaves(f, p.a, p.b, gaussLegendre5(f, p.a, p.b), options.tolerance, options.absoluteTolerance, w / 16.0, 24,
+                  &p.leaves);
     for (const Leaf& l : p.leaves) p.length += l.value;
     require(std::isfinite(p.length), ErrorCode::InvalidMetric,
             std::string("metric length of a ") + c.typeName() + " curve is not finite");

@@ -15,8 +15,15 @@ struct DiscretizeOptions {
   int minSegmentsClosedCurve = 3;       // a contour made of a single curve gets at least this many segments
   std::int64_t maxSegments = 10000000;  // ElementBudgetExceeded above this many boundary segments in total
   double tolerance = 1e-8;              // relative tolerance of the metric length quadrature
-  bool refineCrossings = true;          // refine curves whose chords cross (coarse metric near close curves)
-  int maxRefinementRounds = 10;         // then SelfIntersectingContour
+  // Absolute tolerance (metric length) of each bisection step: the quadrature stops refining
+  // where the step's error estimate is below it even if not below the relative one. The
+  // control space's interpolation has kinks at its cell edges, which the relative test alone
+  // chased down to 1e-8 metric units (~19 leaves per boundary segment on p2); points are
+  // placed by inverting the same estimates, so a segment's length is off by at most the
+  // tolerances of its own leaves (~1e-5 for ~10 leaves), not by a sum over the curve.
+  double absoluteTolerance = 1e-6;
+  bool refineCrossings = true;   // refine curves whose chords cross (coarse metric near close curves)
+  int maxRefinementRounds = 10;  // then SelfIntersectingContour
 };
 
 // Metric length of c between parameters a and b: the integral of |Mt(c(t)) c'(t)| dt.
