@@ -28,12 +28,6 @@ inline SymEigen2 symEigenValues(const Mat2& m) {
   return {mean + r, mean - r, 0.0};
 }
 
-// symEigen(m).theta.
-inline double symEigenAngle(const Mat2& m) {
-  const double a = m(0, 0), b = 0.5 * (m(0, 1) + m(1, 0)), c = m(1, 1);
-  return 0.5 * pm::atan2(2.0 * b, a - c);
-}
-
 // The symmetric matrix with eigenvalues l1, l2 and l1's eigenvector at angle theta.
 inline Mat2 fromEigen(double l1, double l2, double theta) {
   const double c = pm::cos(theta), s = pm::sin(theta);
