@@ -268,6 +268,12 @@ class Mesher {
   // frontal state
   std::vector<TriCache> cache_;
   std::vector<std::uint32_t> stamp_, queued_;
+  // swapSweep: per triangle, the swap clock at its last visit and at its last flip.
+  struct SwapSeen {
+    std::uint32_t visit, flip;
+  };
+  std::vector<SwapSeen> swapSeen_;
+  std::uint32_t swapClock_ = 0;
   std::vector<double> tq_;  // triangle metric quality (improvement stage)
   std::vector<int> colBall_, colRing_, colBallB_;
   // tryCollapse limits; colOptimal_: a midpoint collapse puts the merged vertex at the point
