@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "anisomesh/io/medit.h"
 #include "anisomesh/io/report_json.h"
 #include "anisomesh/mesh/quality.h"
+#include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
 
 using namespace anisomesh;
@@ -157,5 +159,50 @@ TEST(Parallel, RemeshOutputIdenticalForOneTwoAndFourThreads) {
     }
     EXPECT_EQ(text, first) << threads << " threads";
     EXPECT_EQ(q.dump(), firstReport) << threads << " threads";
+  }
+}
+
+// largestNeighbourSizeRatio works in chunks of 65,536 vertices: on a graded grid of about
+// 103k vertices (a chunk and a part) it equals a plain per-edge map, for 1, 2 and 4 threads.
+TEST(Parallel, NeighbourSizeRatioOverChunksMatchesAPlainEdgeMap) {
+  ThreadCountGuard guard;
+  Mesh m;
+  const int n = 320;
+  // Rows shrink towards the top, fastest in the last rows: the largest ratio lies in the
+  // last chunk of vertices.
+  std::vector<double> ys(n + 1);
+  for (int j = 0; j <= n; ++j) ys[j] = 1.0 - std::pow(1.0 - double(j) / n, 2.0) + 1e-6 * j;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.points.push_back(Vec3(double(i) / n, ys[j], 0));
+  const auto id = [&](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      // The diagonal alternates, so the two triangles of a cell differ from their neighbours'.
+      if ((i + j) % 2) {
+        m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+        m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      } else {
+        m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+        m.triangles.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+    }
+  // Reference: the first owner of each edge against every later one, through a std::map.
+  std::map<std::pair<int, int>, std::vector<double>> owners;
+  for (const auto& t : m.triangles) {
+    const Vec3 a = m.points[t[0]], b = m.points[t[1]], c = m.points[t[2]];
+    const double size =
+        std::sqrt(std::abs(0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()))));
+    for (int k = 0; k < 3; ++k)
+      owners[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}].push_back(size);
+  }
+  double expected = 1.0;
+  for (const auto& [edge, sizes] : owners)
+    for (size_t k = 1; k < sizes.size(); ++k)
+      expected = std::max(expected, std::max(sizes[0], sizes[k]) / std::min(sizes[0], sizes[k]));
+  ASSERT_GT(expected, 1.01);
+  ASSERT_GT(m.points.size(), size_t(65536));
+  for (int threads : {1, 2, 4}) {
+    setThreadCount(threads);
+    EXPECT_EQ(largestNeighbourSizeRatio(m), expected) << threads << " threads";
   }
 }
