@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -162,10 +163,11 @@ TEST(Parallel, RemeshOutputIdenticalForOneTwoAndFourThreads) {
   }
 }
 
-// largestNeighbourSizeRatio works in chunks of 65,536 vertices: on a graded grid of about
-// 103k vertices (a chunk and a part) it equals a plain per-edge map, for 1, 2 and 4 threads.
-TEST(Parallel, NeighbourSizeRatioOverChunksMatchesAPlainEdgeMap) {
-  ThreadCountGuard guard;
+namespace {
+
+// A grid of about 103k vertices (a chunk of 65,536 and a part for the report's parallel
+// loops) whose rows shrink towards the top, fastest in the last rows, with alternating diagonals.
+Mesh gradedGrid() {
   Mesh m;
   const int n = 320;
   // Rows shrink towards the top, fastest in the last rows: the largest ratio lies in the
@@ -186,6 +188,16 @@ TEST(Parallel, NeighbourSizeRatioOverChunksMatchesAPlainEdgeMap) {
         m.triangles.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
       }
     }
+  return m;
+}
+
+}  // namespace
+
+// largestNeighbourSizeRatio works in chunks of 65,536 vertices: on gradedGrid(), whose
+// largest ratio lies in the last chunk, it equals a plain per-edge map for 1, 2 and 4 threads.
+TEST(Parallel, NeighbourSizeRatioOverChunksMatchesAPlainEdgeMap) {
+  ThreadCountGuard guard;
+  const Mesh m = gradedGrid();
   // Reference: the first owner of each edge against every later one, through a std::map.
   std::map<std::pair<int, int>, std::vector<double>> owners;
   for (const auto& t : m.triangles) {
@@ -204,5 +216,20 @@ TEST(Parallel, NeighbourSizeRatioOverChunksMatchesAPlainEdgeMap) {
   for (int threads : {1, 2, 4}) {
     setThreadCount(threads);
     EXPECT_EQ(largestNeighbourSizeRatio(m), expected) << threads << " threads";
+  }
+}
+
+// distinctElementEdges sorts and writes its buckets in chunks of 65,536 vertices: on
+// gradedGrid() it gives the edges of a std::set, in (a, b) order, for 1, 2 and 4 threads.
+TEST(Parallel, DistinctElementEdgesOverChunksMatchAnOrderedSet) {
+  ThreadCountGuard guard;
+  const Mesh m = gradedGrid();
+  std::set<std::array<int, 2>> reference;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) reference.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+  const std::vector<std::array<int, 2>> expected(reference.begin(), reference.end());
+  for (int threads : {1, 2, 4}) {
+    setThreadCount(threads);
+    EXPECT_EQ(distinctElementEdges(m), expected) << threads << " threads";
   }
 }

@@ -59,19 +59,36 @@ std::vector<std::array<int, 2>> distinctElementEdges(const Mesh& mesh) {
     std::vector<int> fill(start.begin(), start.end() - 1);
     forEachEdge([&](int a, int b) { other[size_t(fill[size_t(std::min(a, b))]++)] = std::max(a, b); });
   }
-  edges.reserve(other.size() / 2 + 16);
-  for (size_t v = 0; v < n; ++v) {
-    int* const b = other.data() + start[v];
-    int* const e = other.data() + start[v + 1];
-    for (int* k = b + 1; k < e; ++k) {  // insertion sort (about six ends per vertex)
-      const int x = *k;
-      int* m = k;
-      for (; m > b && m[-1] > x; --m) *m = m[-1];
-      *m = x;
+  // Buckets sorted and their distinct ends counted per chunk of vertices, then written at
+  // each chunk's offset: the same list for any thread count.
+  constexpr size_t kChunk = 65536;
+  std::vector<size_t> offset(chunkCount(n, kChunk) + 1, 0);
+  parallelChunks(n, kChunk, [&](size_t chunk, size_t vb, size_t ve) {
+    size_t distinct = 0;
+    for (size_t v = vb; v < ve; ++v) {
+      int* const b = other.data() + start[v];
+      int* const e = other.data() + start[v + 1];
+      for (int* k = b + 1; k < e; ++k) {  // insertion sort (about six ends per vertex)
+        const int x = *k;
+        int* m = k;
+        for (; m > b && m[-1] > x; --m) *m = m[-1];
+        *m = x;
+      }
+      for (int* k = b; k < e; ++k) distinct += (k == b || *k != k[-1]) ? 1 : 0;
     }
-    for (int* k = b; k < e; ++k)
-      if (k == b || *k != k[-1]) edges.push_back({int(v), *k});
-  }
+    offset[chunk + 1] = distinct;
+  });
+  for (size_t c = 1; c < offset.size(); ++c) offset[c] += offset[c - 1];
+  edges.resize(offset.back());
+  parallelChunks(n, kChunk, [&](size_t chunk, size_t vb, size_t ve) {
+    size_t out = offset[chunk];
+    for (size_t v = vb; v < ve; ++v) {
+      const int* const b = other.data() + start[v];
+      const int* const e = other.data() + start[v + 1];
+      for (const int* k = b; k < e; ++k)
+        if (k == b || *k != k[-1]) edges[out++] = {int(v), *k};
+    }
+  });
   return edges;
 }
 
