@@ -9,6 +9,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "anisomesh/core/number_text.h"
 
@@ -106,4 +107,23 @@ TEST(FormatG17, MatchesPrintfOnRandomDoubles) {
 }
 
 }  // namespace
+// appendDoubleBits writes a double's bits as "%016" PRIx64 " " does: checked on special
+// values and random bit patterns (NaNs with payloads, subnormals, negative zero included).
+TEST(DoubleBits, MatchesPrintfHex) {
+  std::mt19937_64 rng(7);
+  std::vector<std::uint64_t> bits = {0, 0x8000000000000000ull, 0x7ff0000000000000ull, 0xfff8000000000001ull,
+                                     1, 0x000fffffffffffffull, 0x3ff0000000000000ull, ~0ull};
+  for (int k = 0; k < 20000; ++k) bits.push_back(rng());
+  std::string got, expected;
+  for (std::uint64_t u : bits) {
+    double x;
+    std::memcpy(&x, &u, sizeof x);
+    appendDoubleBits(got, x);
+    char buf[20];
+    std::snprintf(buf, sizeof buf, "%016llx ", static_cast<unsigned long long>(u));
+    expected += buf;
+  }
+  EXPECT_EQ(got, expected);
+}
+
 }  // namespace anisomesh

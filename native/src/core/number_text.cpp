@@ -2,7 +2,6 @@
 #include "anisomesh/core/number_text.h"
 
 #include <array>
-#include <cinttypes>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -124,9 +123,12 @@ int formatG17(double v, char* buf) {
 void appendDoubleBits(std::string& out, double x) {
   std::uint64_t u;
   std::memcpy(&u, &x, sizeof u);
-  char buf[20];
-  std::snprintf(buf, sizeof buf, "%016" PRIx64 " ", u);
-  out += buf;
+  // 16 lower-case hex digits and a space, as "%016" PRIx64 " " prints them (without
+  // snprintf: cache keys append thousands of these per surface run).
+  char buf[17];
+  for (int k = 15; k >= 0; --k, u >>= 4) buf[k] = "0123456789abcdef"[u & 0xfu];
+  buf[16] = ' ';
+  out.append(buf, sizeof buf);
 }
 
 }  // namespace anisomesh
