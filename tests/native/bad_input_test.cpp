@@ -98,9 +98,9 @@ TEST_P(BadInputCorpus, EndsWithItsOutcome) {
   const std::string errPath = clitest::tmp("stderr.txt");
   std::string cmd =
       "timeout -s KILL 120 \"" + std::string(ANISOMESH_CLI_PATH) + "\" " + args + " >/dev/null 2>\"" + errPath + "\"";
-  // 400 MB of address space: out_of_memory.json (~4.7M triangles) peaks near 520 MB. At the
-  // earlier 600 MB only its quality report ran out, and a report 5 MB leaner (edge lists
-  // sized exactly) meshed it in full.
+  // 400 MB of address space: out_of_memory.json (~4.7M triangles) peaks at 521 MB RSS. At
+  // the earlier 600 MB only its quality report ran out (583 MB peak then), and once the
+  // report's edge passes went to parallel chunks the case meshed in full.
   if (row.needs == "no-asan") cmd = "ulimit -v 400000; " + cmd;
   const auto t0 = std::chrono::steady_clock::now();
   const int status = std::system(("bash -c '" + cmd + "'").c_str());
