@@ -98,9 +98,10 @@ TEST_P(BadInputCorpus, EndsWithItsOutcome) {
   const std::string errPath = clitest::tmp("stderr.txt");
   std::string cmd =
       "timeout -s KILL 120 \"" + std::string(ANISOMESH_CLI_PATH) + "\" " + args + " >/dev/null 2>\"" + errPath + "\"";
-  // 400 MB of address space: out_of_memory.json (~4.7M triangles) peaks at 521 MB RSS. At
-  // the earlier 600 MB only its quality report ran out (583 MB peak then), and once the
-  // report's edge passes went to parallel chunks the case meshed in full.
+  // 400 MB of address space: out_of_memory.json (~4.7M triangles) peaks at 521 MB RSS and
+  // runs out in meshing. At the earlier 600 MB only its quality report ran out (583 MB peak
+  // then: the edge list's reserve was short of (3T + B) / 2 and doubled while the old buffer
+  // lived); sized exactly, the report fitted and the case meshed in full.
   if (row.needs == "no-asan") cmd = "ulimit -v 400000; " + cmd;
   const auto t0 = std::chrono::steady_clock::now();
   const int status = std::system(("bash -c '" + cmd + "'").c_str());

@@ -1,6 +1,6 @@
 // formatG17 (the wasm build's writer of mesh coordinates and metrics) gives the bytes of
 // printf's "%.17g" for every double: its exact integer path in [1e-5, ~1e17) and the
-// C library beyond.
+// C library beyond. appendDoubleBits (cache keys) gives those of "%016" PRIx64 " ".
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -106,7 +106,6 @@ TEST(FormatG17, MatchesPrintfOnRandomDoubles) {
   }
 }
 
-}  // namespace
 // appendDoubleBits writes a double's bits as "%016" PRIx64 " " does: checked on special
 // values and random bit patterns (NaNs with payloads, subnormals, negative zero included).
 TEST(DoubleBits, MatchesPrintfHex) {
@@ -126,4 +125,5 @@ TEST(DoubleBits, MatchesPrintfHex) {
   EXPECT_EQ(got, expected);
 }
 
+}  // namespace
 }  // namespace anisomesh

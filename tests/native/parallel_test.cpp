@@ -165,21 +165,21 @@ TEST(Parallel, RemeshOutputIdenticalForOneTwoAndFourThreads) {
 
 namespace {
 
-// A grid of about 103k vertices (a chunk of 65,536 and a part for the report's parallel
-// loops) whose rows shrink towards the top, fastest in the last rows, with alternating diagonals.
+// A grid of about 103k vertices (more than one chunk of the report's parallel loops, which
+// take 65,536) whose rows shrink towards the top, fastest in the last rows: the largest
+// neighbour size ratio (about 1.68) lies in the last chunk of vertices.
 Mesh gradedGrid() {
   Mesh m;
   const int n = 320;
-  // Rows shrink towards the top, fastest in the last rows: the largest ratio lies in the
-  // last chunk of vertices.
   std::vector<double> ys(n + 1);
+  // (+1e-6 j: the top row keeps a positive height.)
   for (int j = 0; j <= n; ++j) ys[j] = 1.0 - std::pow(1.0 - double(j) / n, 2.0) + 1e-6 * j;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) m.points.push_back(Vec3(double(i) / n, ys[j], 0));
   const auto id = [&](int i, int j) { return j * (n + 1) + i; };
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
-      // The diagonal alternates, so the two triangles of a cell differ from their neighbours'.
+      // The diagonal alternates: vertex buckets of different shapes.
       if ((i + j) % 2) {
         m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
         m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});

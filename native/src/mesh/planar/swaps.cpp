@@ -7,8 +7,9 @@ namespace planar {
 // One sweep of metric-quality edge swaps over the triangles in work; flipped triangles
 // go to next (they are the only ones whose edges can have become swappable).
 // An edge is judged from both of its triangles when both are in work: the second judgement
-// is skipped when the first rejected the swap and neither triangle flipped since (the same
-// vertices, metrics and qualities give the same answer), which halves the first sweep.
+// is skipped when the first kept the edge and neither triangle flipped since (the same
+// vertices, metrics and qualities give the same answer), which halves the first sweep's
+// judgements.
 int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
   int swaps = 0;
   if (swapSeen_.size() < tri_.size()) swapSeen_.resize(tri_.size(), SwapSeen{0, 0});
@@ -25,16 +26,19 @@ int Mesher::swapSweep(const std::vector<int>& work, std::vector<int>& next) {
     for (int i = 0; i < 3; ++i) {
       const int nb = tri_[t].n[i];
       if (nb < 0 || cons(t, i)) continue;
-      // nb was visited in this sweep without flipping, and neither flipped since: it judged
-      // this edge then and kept it.
+      const double before = std::min(tq_[t], tq_[nb]);
+      if (before >= kSwapSkipQuality) continue;  // both nearly ideal: nothing to gain
+      // nb was visited in this sweep without flipping, and neither flipped since: it (or an
+      // earlier visit, by this rule) judged this edge then and kept it. Not with a NaN
+      // quality: std::min then depends on the side it is judged from.
       const SwapSeen& seen = swapSeen_[nb];
-      if (seen.visit >= sweepStart && seen.flip < seen.visit && swapSeen_[t].flip < seen.visit) continue;
+      if (seen.visit >= sweepStart && seen.flip < seen.visit && swapSeen_[t].flip < seen.visit && !std::isnan(tq_[t]) &&
+          !std::isnan(tq_[nb]))
+        continue;
       const int p = tri_[t].v[i], u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
       int j = 0;
       while (tri_[nb].v[j] == u || tri_[nb].v[j] == w) ++j;
       const int q = tri_[nb].v[j];
-      const double before = std::min(tq_[t], tq_[nb]);
-      if (before >= kSwapSkipQuality) continue;  // both nearly ideal: nothing to gain
       const double qa = triQuality(p, u, q);
       if (!(qa > before + 1e-6)) continue;
       const double qb = triQuality(q, w, p);
