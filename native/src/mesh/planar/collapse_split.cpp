@@ -254,6 +254,20 @@ int Mesher::scanEdges(const std::vector<int>* list, EdgeOp&& op) {
   return changed;
 }
 
+bool Mesher::collapseEdge(int u, int w, MergedPlace place, std::vector<int>& touched) {
+  if (!vbnd_[u] && !vbnd_[w]) {  // two free ends: merged at a new place first
+    bool done = false;
+    if (place != MergedPlace::Midpoint) {
+      colOptimal_ = true;
+      colSearch_ = place == MergedPlace::Searched;
+      done = tryCollapse(u, w, true, touched);
+      colOptimal_ = colSearch_ = false;
+    }
+    if (done || (place != MergedPlace::Searched && tryCollapse(u, w, true, touched))) return true;
+  }
+  return tryCollapse(u, w, false, touched) || tryCollapse(w, u, false, touched);
+}
+
 // Collapses edges shorter than kCollapseLength (fronts meeting leave some), removing an
 // inner end point (onto the midpoint when both ends are inner, else onto the other end),
 // and splits inner edges longer than kSplitLength (new edges wait for the next pass).
@@ -262,9 +276,7 @@ int Mesher::lengthPass(const std::vector<int>* list, std::vector<int>& touched) 
   return scanEdges(list, [&](int t, int i, int u, int w) {
     const double len = SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p);
     if (len < kCollapseLength) {
-      const bool inner = !vbnd_[u] && !vbnd_[w];
-      return (inner && tryCollapse(u, w, true, touched)) || tryCollapse(u, w, false, touched) ||
-             tryCollapse(w, u, false, touched);
+      return collapseEdge(u, w, MergedPlace::Midpoint, touched);
     }
     return len > kSplitLength && tri_[t].n[i] >= 0 && trySplit(t, i, touched);
   });
@@ -281,15 +293,7 @@ int Mesher::shortEdgePass(const std::vector<int>* list, std::vector<int>& touche
   colMinQuality_ = kFinalCollapseMinQuality;
   const int changed = scanEdges(list, [&](int, int, int u, int w) {
     if (!(SymMt::average2(vx_[u].m, vx_[w].m).length(vx_[w].p - vx_[u].p) < kCollapseLength)) return false;
-    const bool inner = !vbnd_[u] && !vbnd_[w];
-    bool done = false;
-    if (inner) {
-      colOptimal_ = true;
-      done = tryCollapse(u, w, true, touched);
-      colOptimal_ = false;
-    }
-    return done || (inner && tryCollapse(u, w, true, touched)) || tryCollapse(u, w, false, touched) ||
-           tryCollapse(w, u, false, touched);
+    return collapseEdge(u, w, MergedPlace::UnitLengthThenMidpoint, touched);
   });
   colMaxLength_ = kCollapseMaxLength;
   colMinQuality_ = kCollapseMinQuality;

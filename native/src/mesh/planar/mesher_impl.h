@@ -213,6 +213,11 @@ class Mesher {
   int scanEdges(const std::vector<int>* list, EdgeOp&& op);
   int lengthPass(const std::vector<int>* list, std::vector<int>& touched);
   bool tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touched);
+  // Where collapseEdge merges two free ends: the midpoint; the unit-length point of the
+  // merged ring, else the midpoint; that point moved by placeMergedVertex (no midpoint).
+  enum class MergedPlace { Midpoint, UnitLengthThenMidpoint, Searched };
+  // Collapses edge (u, w): two free ends merged at `place`, else u onto w, else w onto u.
+  bool collapseEdge(int u, int w, MergedPlace place, std::vector<int>& touched);
   // For a midpoint collapse (tryCollapse's a onto b, ring and k1, k2 as there, ballB: b's
   // other triangles): pb moved by a compass search to where the merged fan's worst triangle
   // is best, its edges within [kCollapseLength, colMaxLength_]; mb queried there.

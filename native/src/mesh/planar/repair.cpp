@@ -76,16 +76,7 @@ int Mesher::repairPass(std::vector<int>& touched) {
     std::sort(edges.begin(), edges.end());
     for (const auto& [len, i] : edges) {
       if (!(len < kRepairCollapseLength) || cons(t, i)) continue;
-      const int u = tri_[t].v[next3(i)], w = tri_[t].v[prev3(i)];
-      const bool inner = !vbnd_[u] && !vbnd_[w];
-      bool done = false;
-      if (inner) {
-        colOptimal_ = colSearch_ = true;
-        done = tryCollapse(u, w, true, touched);
-        colOptimal_ = colSearch_ = false;
-      }
-      done = done || tryCollapse(u, w, false, touched) || tryCollapse(w, u, false, touched);
-      if (done) {
+      if (collapseEdge(tri_[t].v[next3(i)], tri_[t].v[prev3(i)], MergedPlace::Searched, touched)) {
         ++repaired;
         break;
       }
