@@ -117,23 +117,31 @@ void Mesher::insertInnerNodes() {
     const double rho = std::min(std::max(kIdealRadius, p), R);
     double d = rho + std::sqrt(std::max(0.0, rho * rho - p * p));
     d = std::min(d, 0.999 * (q + R));
-    const Vec2 x = mid + tc.m.solve(d * nrm);
-    bool ok = d > 0.0 && x.allFinite();
-    int t0 = ok ? locate(x, t, true) : -1;
-    ok = t0 >= 0 && cache_[t0].r2 > 0.0;
-    if (ok) {
-      ok = buildCavity(x, t0, [&](int nb) {
+    // A point is taken when it lies in the domain, its cavity is star-shaped, and no
+    // cavity vertex is closer than minNodeDistance in the front triangle's metric.
+    auto acceptable = [&](const Vec2& x) {
+      if (!x.allFinite()) return false;
+      const int t0 = locate(x, t, true);
+      if (t0 < 0 || !(cache_[t0].r2 > 0.0)) return false;
+      const bool star = buildCavity(x, t0, [&](int nb) {
         const TriCache& c = cache_[nb];
         return c.m.apply(x - Vec2(c.cx, c.cy)).squaredNorm() < c.r2;
       });
-    }
-    if (ok) {
-      for (const auto& be : bnd_) {
-        if (tc.m.apply(vx_[be.a].p - x).squaredNorm() < minDist2) {
-          ok = false;
-          break;
-        }
-      }
+      if (!star) return false;
+      for (const auto& be : bnd_)
+        if (tc.m.apply(vx_[be.a].p - x).squaredNorm() < minDist2) return false;
+      return true;
+    };
+    Vec2 x = mid + tc.m.solve(d * nrm);
+    bool ok = d > 0.0 && acceptable(x);
+    // Where the metric varies fast across a large triangle, Rebay's point (placed from one
+    // front edge, judged in the triangle's averaged metric) can fall next to a vertex;
+    // giving up there left pockets with edges up to 3x the unit length that the
+    // improvement could not split. The metric circumcentre lies R > kRetryRadius from the
+    // triangle's vertices.
+    if (!ok && R > kRetryRadius) {
+      x = Vec2(tc.cx, tc.cy);
+      ok = acceptable(x);
     }
     if (!ok) {
       tri_[t].acc = 1;  // give up on this triangle; its neighbours join the front

@@ -38,6 +38,7 @@ namespace planar {
 constexpr int kSuper = 4;                                // super-box corners are vertices 0..3
 constexpr double kIdealRadius = 0.57735026918962576;     // circumradius of the unit equilateral triangle
 constexpr double kAcceptRadius = 0.70710678118654752;    // triangles with metric radius below are done
+constexpr double kRetryRadius = 1.5;                     // larger ones try their circumcentre before giving up
 constexpr int kBucketOffset = 4 * 1100;                  // bucket index offset: covers every double exponent
 constexpr double kEstimateFactor = 1.0;                  // measured: within ~10% on the layer test cases
 constexpr double kCoarseEstimateLimit = 65536.0;         // larger meshes take the fine estimate (metric_area.cpp)
