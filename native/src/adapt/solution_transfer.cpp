@@ -6,6 +6,7 @@
 
 #include "anisomesh/adapt/hessian_recovery.h"
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/int_conversion.h"
 
 namespace anisomesh {
 
@@ -47,8 +48,8 @@ TriangleLocator::TriangleLocator(const Mesh& mesh) : tris_(meshTriangles(mesh)) 
 }
 
 int TriangleLocator::locate(const Vec2& p, std::array<double, 3>* bary, bool* inside) const {
-  const int cx = std::min(nx_ - 1, std::max(0, int(std::floor((p.x() - lo_.x()) / cell_.x()))));
-  const int cy = std::min(ny_ - 1, std::max(0, int(std::floor((p.y() - lo_.y()) / cell_.y()))));
+  const int cx = clampedCell((p.x() - lo_.x()) / cell_.x(), nx_);
+  const int cy = clampedCell((p.y() - lo_.y()) / cell_.y(), ny_);
   auto coords = [&](int t, const Vec2& q, double l[3]) {
     const auto& tri = tris_[size_t(t)];
     const Vec2 &a = pts_[size_t(tri[0])], &b = pts_[size_t(tri[1])], &c = pts_[size_t(tri[2])];

@@ -9,6 +9,7 @@
 
 #include "anisomesh/boundary/discretize.h"
 #include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/core/int_conversion.h"
 #include "anisomesh/core/portable_math.h"
 
 namespace anisomesh {
@@ -206,7 +207,7 @@ int refineNearSegments(AdaptiveControlSpace& cs, const std::vector<ShortSegment>
   const int side = std::clamp(int(std::sqrt(double(segments.size()))) + 1, 1, 256);
   const Vec2 cell = box.size() / double(side);
   std::vector<std::vector<int>> grid(size_t(side) * side);
-  auto cellOf = [&](double v, double lo, double h) { return std::clamp(int(std::floor((v - lo) / h)), 0, side - 1); };
+  auto cellOf = [&](double v, double lo, double h) { return clampedCell((v - lo) / h, side); };
   for (size_t k = 0; k < segments.size(); ++k) {
     const Vec2 lo = segments[k].p.cwiseMin(segments[k].q), hi = segments[k].p.cwiseMax(segments[k].q);
     for (int y = cellOf(lo.y(), box.lo.y(), cell.y()); y <= cellOf(hi.y(), box.lo.y(), cell.y()); ++y)

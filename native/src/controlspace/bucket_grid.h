@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "anisomesh/controlspace/control_space_algorithms.h"
+#include "anisomesh/core/int_conversion.h"
 
 namespace anisomesh {
 namespace controlspace_internal {
@@ -77,9 +78,7 @@ class BucketGrid {
     if (b.hi.x() < domain_.lo.x() || b.hi.y() < domain_.lo.y() || b.lo.x() > domain_.hi.x() ||
         b.lo.y() > domain_.hi.y())
       return false;
-    auto cell = [&](double v, double lo, double inv) {
-      return std::clamp(static_cast<int>(std::floor((v - lo) * inv)), 0, side_ - 1);
-    };
+    auto cell = [&](double v, double lo, double inv) { return clampedCell((v - lo) * inv, side_); };
     i0 = cell(b.lo.x(), domain_.lo.x(), inv_.x());
     i1 = cell(b.hi.x(), domain_.lo.x(), inv_.x());
     j0 = cell(b.lo.y(), domain_.lo.y(), inv_.y());

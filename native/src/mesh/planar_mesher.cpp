@@ -25,7 +25,7 @@ double Mesher::start() {
     const double metricArea = estimateMetricArea();
     timings_.boundary = secondsSince(t0);
     estimate_ = std::max(static_cast<double>(liveTriangles()), trianglesOfMetricArea(metricArea));
-    timings_.estimatedElements = static_cast<std::int64_t>(estimate_ * elementRatio_);
+    timings_.estimatedElements = saturatedInt64(estimate_ * elementRatio_);
     if (estimate_ * elementRatio_ > static_cast<double>(opt_.maxElements)) {
       std::ostringstream os;
       os << "meshPlanarBoundary: the requested mesh needs about " << timings_.estimatedElements

@@ -116,7 +116,9 @@ ControlSpaceSpec caseControlSpaceSpec(const CaseSpec& spec) {
     // Elements need not get smaller than the smallest size the case allows.
     const double side = std::max(box.size().x(), box.size().y());
     const double h = c.hmin > 0 ? c.hmin : c.hmax / 100.0;
-    s.maxLevel = std::clamp(int(std::ceil(pm::log2(side / h))), s.initialLevel, 14);
+    // (decided in double: side / h may overflow, and a huge or NaN level must not reach int)
+    const double level = std::ceil(pm::log2(side / h));
+    s.maxLevel = level > s.initialLevel ? (level < 14.0 ? static_cast<int>(level) : 14) : s.initialLevel;
   }
   return s;
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/int_conversion.h"
 #include "anisomesh/core/parallel.h"
 
 namespace anisomesh {
@@ -19,14 +20,6 @@ namespace {
 // the same control-space time within the noise; its 2,000-triangle case on 80k is fastest
 // with 1). The answers do not depend on it (metricAt's search is exact).
 double trianglesPerCell(size_t triangles) { return std::min(16.0, std::max(1.0, double(triangles) / 262144.0)); }
-
-// The cell index floor(t) clamped to [0, n - 1], decided in double so that NaN, infinite
-// and huge t never reach an int conversion.
-int clampedCell(double t, int n) {
-  if (!(t >= 1.0)) return 0;  // also NaN
-  if (t >= double(n - 1)) return n - 1;
-  return int(t);
-}
 
 // Each list entry's filter: its triangle's widened box in a kFilterSide^2 grid of the cell.
 constexpr int kFilterSide = 16;
@@ -226,9 +219,7 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
 }
 
 bool TriangleMeshMetricField::meets(const Box2& b) const {
-  auto cell = [](double v, double lo, double size, int n) {
-    return std::min(n - 1, std::max(0, int(std::floor((v - lo) / size))));
-  };
+  auto cell = [](double v, double lo, double size, int n) { return clampedCell((v - lo) / size, n); };
   if (!(b.lo.allFinite() && b.hi.allFinite())) return true;
   const int x0 = cell(b.lo.x(), box_.lo.x(), cell_.x(), nx_), x1 = cell(b.hi.x(), box_.lo.x(), cell_.x(), nx_);
   const int y0 = cell(b.lo.y(), box_.lo.y(), cell_.y(), ny_), y1 = cell(b.hi.y(), box_.lo.y(), cell_.y(), ny_);

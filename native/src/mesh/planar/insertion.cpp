@@ -172,7 +172,7 @@ void Mesher::insertInnerNodes() {
       if (live * elementRatio_ > budget) {
         std::ostringstream os;
         os << "meshPlanarBoundary: the mesh exceeds the element budget of " << opt_.maxElements
-           << " elements during insertion (estimate was " << static_cast<std::int64_t>(estimate_) << ")";
+           << " elements during insertion (estimate was " << saturatedInt64(estimate_) << ")";
         throw Error(ErrorCode::ElementBudgetExceeded, os.str());
       }
       checkProgress(0.1 + 0.7 * std::min(1.0, live / std::max(1.0, estimate_)));

@@ -29,6 +29,7 @@
 #include "../mesh_internal.h"
 #include "anisomesh/core/clock.h"
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/int_conversion.h"
 #include "anisomesh/mesh/planar_mesher.h"
 #include "anisomesh/mesh/predicates.h"
 
