@@ -21,10 +21,10 @@
 namespace anisomesh {
 
 struct DomainDecompositionOptions {
-  std::int64_t partElements = 150000;  // aim: parts of at least this many elements
-  int maxParts = 16;                   // at most this many parts (a power of 2)
-  int gridSide = 128;                  // metric-area samples along the cut axis (a quarter across)
-  double minChordAngle = 0.35;         // radians: chords closer to a boundary edge at their ends are rejected
+  std::int64_t partElements = 15000;  // aim: parts of at least this many elements
+  int maxParts = 64;                  // at most this many parts (a power of 2)
+  int gridSide = 128;                 // metric-area samples along the cut axis (a quarter across)
+  double minChordAngle = 0.35;        // radians: chords closer to a boundary edge at their ends are rejected
 };
 
 // One part: loops of global point ids, the outer one counter-clockwise first, then its
