@@ -144,8 +144,8 @@ void appendArc(std::vector<PathPiece>& out, Vec2 p0, double rx, double ry, doubl
   double delta = angle(u, v);
   if (!sweep && delta > 0) delta -= 2 * M_PI;
   if (sweep && delta < 0) delta += 2 * M_PI;
-  // (|delta| <= 2 pi: at most 4 pieces; NaN, from an overflowing radius, gives 1 and the
-  // non-finite points are refused downstream, never an out-of-range int conversion)
+  // (|delta| <= 2 pi: at most 4 pieces; decided in double, so that a NaN angle gives 1
+  // piece instead of an out-of-range int conversion)
   const double pieces = std::ceil(std::abs(delta) / (M_PI / 2) - 1e-9);
   const int n = pieces > 1.0 ? (pieces < 4.0 ? static_cast<int>(pieces) : 4) : 1;
   const double step = delta / n, kappa = 4.0 / 3.0 * std::tan(step / 4);
