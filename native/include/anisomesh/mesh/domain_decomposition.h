@@ -1,15 +1,19 @@
 #pragma once
 // Planar domain decomposition for the mesher (as ParMMG splits work for MMG, on one
 // machine): the domain is bisected recursively at the median of its metric area by
-// straight cuts whose chords join boundary points, each chord discretized once at unit
-// metric length; the parts are meshed independently (in parallel when threads allow) and
-// merged into one conforming mesh, since neighbouring parts share the chords' points and
-// the mesher never splits or moves a boundary edge.
+// straight cuts whose chords join boundary points, or, where no straight cut runs along
+// or across the stretching (a curved layer), by a cut along a line of the metric's
+// principal directions; each chord is discretized once at unit metric length. The parts
+// are meshed independently (in parallel when threads allow) and merged into one
+// conforming mesh, since neighbouring parts share the chords' points and the mesher never
+// splits or moves a boundary edge.
 //
 // The decomposition depends on the loops and the control space only, never on the thread
 // count: the same mesh for any number of threads. A cut is kept only when every chord is
-// valid (inside the part, crossing no edge, not sharing an end point, not too sharp
-// against the boundary), else nearby cut positions are tried and then the part stays whole.
+// valid (inside the part, crossing no edge or other chord, not sharing an end point, at
+// least minChordAngle from the boundary at its ends, within 2 degrees of a principal
+// direction wherever the metric's aspect ratio exceeds 1.5), else nearby cut positions
+// are tried and then the part stays whole.
 #include <cstdint>
 #include <vector>
 
@@ -24,7 +28,7 @@ struct DomainDecompositionOptions {
   std::int64_t partElements = 15000;  // aim: parts of at least this many elements
   int maxParts = 64;                  // at most this many parts (a power of 2)
   int gridSide = 128;                 // metric-area samples along the cut axis (a quarter across)
-  double minChordAngle = 0.35;        // radians: chords closer to a boundary edge at their ends are rejected
+  double minChordAngle = 0.7;         // radians (metric): chords closer to a boundary edge at their ends are rejected
 };
 
 // One part: loops of global point ids, the outer one counter-clockwise first, then its
