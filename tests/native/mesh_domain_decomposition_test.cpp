@@ -250,3 +250,38 @@ TEST(DomainDecomposition, CurvedLayerIsCutAlongItsPrincipalLines) {
     first = m;
   }
 }
+
+// A vortex (principal directions turning around the centre, aspect ratio 6): principal
+// lines circle instead of leaving a part, and straight cuts are refused near the centre.
+// The decomposition still ends with parts that tile the domain, and the merged mesh is
+// conforming.
+TEST(DomainDecomposition, VortexMetricEndsWithValidParts) {
+  AnalyticControlSpace cs(Box2{{0.0, 0.0}, {1.0, 1.0}}, [](const Vec2& p) {
+    const double r = std::hypot(p.x() - 0.5, p.y() - 0.5);
+    return Metric::fromSizes(std::atan2(p.y() - 0.5, p.x() - 0.5), 0.0025 + 0.012 * r, 0.015 + 0.07 * r);
+  });
+  const std::vector<BoundaryLoop> loops{metricPolygonLoop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, cs)};
+  DomainDecompositionOptions o;
+  o.partElements = 300;
+  o.maxParts = 16;
+  const DomainParts d = decomposeDomain(loops, cs, o);
+  std::cout << "estimated " << d.estimatedElements << " elements, " << d.parts.size() << " parts\n";
+  ASSERT_GE(d.estimatedElements, 9600.0);
+  EXPECT_GE(d.parts.size(), 2u);
+  double area = 0.0;
+  std::map<std::pair<int, int>, int> chordEdges;
+  for (const DomainPart& p : d.parts) {
+    EXPECT_GT(partArea(d, p), 0.0);
+    area += partArea(d, p);
+    for (size_t l = 0; l < p.loops.size(); ++l)
+      for (size_t i = 0; i < p.loops[l].size(); ++i)
+        if (p.chord[l][i]) ++chordEdges[{p.loops[l][i], p.loops[l][(i + 1) % p.loops[l].size()]}];
+  }
+  EXPECT_NEAR(area, 1.0, 1e-12);
+  for (const auto& [e, n] : chordEdges) EXPECT_EQ(chordEdges.count({e.second, e.first}), 1u);
+  PlanarMesherOptions split;
+  split.partElements = o.partElements;
+  const Mesh m = meshPlanarBoundary(loops, cs, split);
+  checkPlanarMesh(m, loops);
+  expectConforming(m);
+}
