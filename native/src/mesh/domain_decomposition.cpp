@@ -38,8 +38,8 @@ constexpr double kAlignAspect = 1.5;
 constexpr double kAlignAngle = 0.035;  // radians, 2 degrees
 constexpr int kAlignSamples = 32;      // metric samples along a chord
 // Cuts along principal lines: integration steps per part extent, seeds tried (across
-// positions on the median line and on a column each side of it), and the least share of
-// the part's metric area either side must get.
+// positions on the median line and on the sample columns one and two either side of it),
+// and the least share of the part's metric area either side must get.
 constexpr int kTraceSteps = 256;
 constexpr double kSeedAcross[] = {0.5, 0.3, 0.7};
 constexpr int kSeedColumns = 3;
