@@ -337,16 +337,24 @@ class TokenStream {
   const char* end_ = nullptr;
 };
 
-// Appends v with round-trip precision: the bytes of printf's %.17g (std::to_chars with
-// precision 17 is specified to match it; formatG17 where the library lacks floating to_chars).
+// Writes v at p with round-trip precision, the bytes of printf's %.17g (std::to_chars with
+// precision 17 is specified to match it; formatG17 where the library lacks floating
+// to_chars), and returns their end; p needs 32 chars of room.
+inline char* putNumber(char* p, double v) {
+#if defined(__cpp_lib_to_chars)
+  return std::to_chars(p, p + 32, v, std::chars_format::general, 17).ptr;
+#else
+  return p + formatG17(v, p);
+#endif
+}
+
+// Writes v at p in decimal and returns the end; p needs 24 chars of room.
+inline char* putInt(char* p, long long v) { return std::to_chars(p, p + 24, v).ptr; }
+
+// Appends v as putNumber writes it.
 inline void appendNumber(std::string* out, double v) {
   char buf[32];
-#if defined(__cpp_lib_to_chars)
-  const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 17);
-  out->append(buf, size_t(r.ptr - buf));
-#else
-  out->append(buf, size_t(formatG17(v, buf)));
-#endif
+  out->append(buf, size_t(putNumber(buf, v) - buf));
 }
 
 // Appends "x y z\n" (each as appendNumber writes it).
