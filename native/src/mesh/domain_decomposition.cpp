@@ -139,8 +139,10 @@ class Decomposer {
     if (!parts.empty()) return parts;
     const Samples second = sample(edges, 1 - first.axis);
     parts = splitAlong(edges, second);
-    if (parts.empty()) parts = splitTraced(edges, first);
-    if (parts.empty()) parts = splitTraced(edges, second);
+    if (!parts.empty()) return parts;
+    const EdgeIndex index = indexOf(edges);
+    parts = splitTraced(edges, index, first);
+    if (parts.empty()) parts = splitTraced(edges, index, second);
     return parts;
   }
 
@@ -170,12 +172,13 @@ class Decomposer {
     return {};
   }
 
-  // A cut along the principal line through a seed near the metric-area median: it runs
-  // along or across the stretching everywhere, as no straight cut through a curved layer can.
-  std::vector<DomainPart> splitTraced(const std::vector<Edge>& edges, const Samples& s) {
-    if (!(s.total > 0.0) || !std::isfinite(s.total)) return {};
-    const double median = medianOf(s);
-    const int across = 1 - s.axis;
+  // A part's edges bucketed by box, and its box in the frame's coordinates.
+  struct EdgeIndex {
+    Vec2 lo, hi;
+    BucketGrid grid;
+  };
+
+  EdgeIndex indexOf(const std::vector<Edge>& edges) const {
     Vec2 lo = local(pt(edges[0].a)), hi = lo;
     std::vector<Box2> boxes;
     Box2 all{pt(edges[0].a), pt(edges[0].a)};
@@ -185,7 +188,17 @@ class Decomposer {
       all.lo = all.lo.cwiseMin(b.lo), all.hi = all.hi.cwiseMax(b.hi);
       boxes.push_back(b);
     }
-    const BucketGrid grid(all, boxes);
+    return {lo, hi, BucketGrid(all, boxes)};
+  }
+
+  // A cut along the principal line through a seed near the metric-area median: it runs
+  // along or across the stretching everywhere, as no straight cut through a curved layer can.
+  std::vector<DomainPart> splitTraced(const std::vector<Edge>& edges, const EdgeIndex& index, const Samples& s) {
+    if (!(s.total > 0.0) || !std::isfinite(s.total)) return {};
+    const double median = medianOf(s);
+    const int across = 1 - s.axis;
+    const Vec2 &lo = index.lo, &hi = index.hi;
+    const BucketGrid& grid = index.grid;
     mesh_internal::PrincipalLineOptions o;
     o.step = (hi - lo).maxCoeff() / kTraceSteps;
     o.maxSteps = 4 * kTraceSteps;
@@ -234,9 +247,8 @@ class Decomposer {
     const mesh_internal::PrincipalLine line = mesh_internal::tracePrincipalLine(cs_, seed, along, exit, o);
     if (line.points.size() < 3) return false;
     auto square = [&](const Vec2& x, const Vec2& from, int k) {  // the exit at x, coming from 'from', across edge k
-      const Mat2 m = cs_.metricAt(x).transform();
-      const Vec2 u = m * (x - from), w = m * (pt(edges[k].b) - pt(edges[k].a));
-      return std::fabs(cross(u, w)) >= pm::sin(o_.minChordAngle) * u.norm() * w.norm();
+      const Vec2 w = pt(edges[k].b) - pt(edges[k].a);
+      return wideAngle(x, from - x, w) && wideAngle(x, from - x, -w);  // both angles it makes with the edge
     };
     const size_t last = line.points.size() - 1;
     if (!square(line.points[0], line.points[1], line.firstExit) ||
