@@ -8,6 +8,7 @@
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
+#include "spatial_order.h"
 
 namespace anisomesh {
 
@@ -345,11 +346,13 @@ void BackgroundMeshControlSpace::refine(const ElementPredicate& pred, const NewN
 }
 
 void BackgroundMeshControlSpace::refineConcurrently(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) {
-  refineImpl(pred, onNewNodes, threadCount() > 1);
+  refineImpl(pred, onNewNodes, true);
 }
 
+// readOnly: pred only reads (refineConcurrently), so the elements of a round may be judged
+// in any order and in parallel; otherwise in element order on this thread.
 void BackgroundMeshControlSpace::refineImpl(const ElementPredicate& pred, const NewNodesCallback& onNewNodes,
-                                            bool concurrent) {
+                                            bool readOnly) {
   std::vector<int> work(tri_.size());
   for (size_t t = 0; t < work.size(); ++t) work[t] = static_cast<int>(t);
   std::vector<int> split;
@@ -360,25 +363,40 @@ void BackgroundMeshControlSpace::refineImpl(const ElementPredicate& pred, const 
     const double l2 = std::max({edgeKey(v[0], v[1]), edgeKey(v[1], v[2]), edgeKey(v[2], v[0])});
     return l2 > min2 && pred(elementOf(t));
   };
+  std::vector<Vec2> centroids;
   while (!work.empty()) {
     split.clear();
-    if (concurrent) {
-      // The queries of pred must not rebuild the locator under each other's feet.
-      if (locatorStale_) rebuildLocator();
-      // Slices of the work list judged in parallel chunks (verdicts stored per element),
-      // the progress ticks and the split list in element order on this thread.
-      constexpr size_t kSlice = 16384, kGrain = 512;
-      verdict.resize(std::min(work.size(), kSlice));
+    if (readOnly) {
+      // Concurrent queries of pred must not rebuild the locator under each other's feet
+      // (on one thread, the first query rebuilds it, if any: a predicate that queries no
+      // point, as the continuous insertion's, never pays for it).
+      if (locatorStale_ && threadCount() > 1) rebuildLocator();
+      // Judged in the Z-order of the elements' centroids: neighbours query the same data
+      // one after another (a carrier mesh's triangles stay in cache instead of being
+      // fetched from memory again for each; the element order jumps across the domain).
+      // Slices of that order in parallel chunks (verdicts stored per element), the
+      // progress ticks on this thread; the split list in element order, as refine() makes it.
+      centroids.resize(work.size());
+      for (size_t k = 0; k < work.size(); ++k) {
+        const auto& v = tri_[size_t(work[k])];
+        centroids[k] = (pos_[v[0]] + pos_[v[1]] + pos_[v[2]]) / 3.0;
+      }
+      const std::vector<int> order = controlspace_internal::zOrder(centroids);
+      // (on one thread, short slices: the progress ticks, which may cancel, come every few ms)
+      const size_t kSlice = threadCount() > 1 ? 16384 : 1024, kGrain = 512;
+      verdict.resize(work.size());
       for (size_t s0 = 0; s0 < work.size(); s0 += kSlice) {
         const size_t n = std::min(kSlice, work.size() - s0);
         parallelChunks(n, kGrain, [&](size_t, size_t b, size_t e) {
-          for (size_t k = b; k < e; ++k) verdict[k] = wanted(work[s0 + k]) ? 1 : 0;
+          for (size_t k = b; k < e; ++k) {
+            const size_t at = size_t(order[s0 + k]);
+            verdict[at] = wanted(work[at]) ? 1 : 0;
+          }
         });
-        for (size_t k = 0; k < n; ++k) {
-          refinementTick();
-          if (verdict[k]) split.push_back(work[s0 + k]);
-        }
+        for (size_t k = 0; k < n; ++k) refinementTick();
       }
+      for (size_t k = 0; k < work.size(); ++k)
+        if (verdict[k]) split.push_back(work[k]);
     } else {
       for (int t : work) {
         refinementTick();
@@ -398,8 +416,16 @@ void BackgroundMeshControlSpace::refineImpl(const ElementPredicate& pred, const 
     checkRefinementEstimate(0, 0.0);
     locatorStale_ = true;  // rebuilt by the next query, or at the end
     if (onNewNodes) onNewNodes(nodesBefore, nodeCount());
-    work = touched_;
-    std::sort(work.begin(), work.end());
+    // The touched triangles in increasing order: read off their flags when they are many
+    // (a pass over the flags costs less than sorting them), sorted when they are few.
+    if (touched_.size() * 16 > touchedFlag_.size()) {
+      work.clear();
+      for (size_t t = 0; t < touchedFlag_.size(); ++t)
+        if (touchedFlag_[t]) work.push_back(static_cast<int>(t));
+    } else {
+      work = touched_;
+      std::sort(work.begin(), work.end());
+    }
   }
   touched_.clear();
   touchedFlag_.clear();

@@ -9,6 +9,7 @@
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
+#include "spatial_order.h"
 
 namespace anisomesh {
 
@@ -47,14 +48,19 @@ void insertMetricFunction(AdaptiveControlSpace& cs, const MetricFunction& f,
     return fresh ? v : intersect(original->metricAt(p), v);
   };
   std::vector<Metric> values;
+  std::vector<Vec2> positions;
   auto setFromFunction = [&](int first, int last) {
     if (options.concurrent && fresh) {
-      // f's values computed in parallel chunks, stored in node order (same result).
+      // f's values computed in parallel chunks, in the Z-order of the nodes (f's data stay
+      // in cache from a node to its neighbour), stored in node order (same result).
       values.resize(size_t(last - first));
+      positions.resize(values.size());
+      for (size_t k = 0; k < positions.size(); ++k) positions[k] = cs.nodePosition(first + int(k));
+      const std::vector<int> order = controlspace_internal::zOrder(positions);
       parallelChunks(values.size(), 1024, [&](size_t, size_t b, size_t e) {
         for (size_t k = b; k < e; ++k) {
-          const int i = first + int(k);
-          if (cs.nodeIsFree(i)) values[k] = f(cs.nodePosition(i));
+          const int i = first + order[k];
+          if (cs.nodeIsFree(i)) values[size_t(order[k])] = f(cs.nodePosition(i));
         }
       });
       for (int i = first; i < last; ++i)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
 
 #include "anisomesh/core/error.h"
@@ -23,6 +24,27 @@ double trianglesPerCell(size_t triangles) { return std::min(16.0, std::max(1.0, 
 
 // Each list entry's filter: its triangle's widened box in a kFilterSide^2 grid of the cell.
 constexpr int kFilterSide = 16;
+// Kept triangles whose points metricAt requests from memory together before testing them.
+constexpr int kTestBatch = 8;
+
+// The four filters packed in a word (the first in the low bits) are read with one load:
+// the packing is the memory order of little-endian targets (x86-64, WebAssembly).
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the filters are read four at a time");
+
+// The query word of sub-cell (sx, sy) for filtersKeep: its bytes sx, sy, sx, sy, ...
+std::uint64_t filterQuery(unsigned sx, unsigned sy) { return std::uint64_t(sx | sy << 8) * 0x0001000100010001ull; }
+
+// Of the four filters in w, those that keep the sub-cell of query q: bit 16 j + 7 set for
+// filter j. Without branches (a branch per filter, mispredicted at random, cost more than
+// the test): the nibbles are spread into bytes (x0, y0 and x1, y1 of each filter), whose
+// spare high bit lets one subtraction compare eight of them without borrows between them.
+std::uint64_t filtersKeep(std::uint64_t w, std::uint64_t q) {
+  constexpr std::uint64_t kLow = 0x0F0F0F0F0F0F0F0Full, kHigh = 0x8080808080808080ull;
+  const std::uint64_t first = w & kLow, last = w >> 4 & kLow;
+  const std::uint64_t ge = ((q | kHigh) - first) & ((last | kHigh) - q) & kHigh;
+  return ge & ge >> 8 & 0x0080008000800080ull;
+}
+
 // Items per parallel chunk of the index build (fixed: the same index for any thread count).
 constexpr size_t kBuildChunk = 65536;
 
@@ -109,7 +131,10 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
   };
   // Each triangle's cell range, computed once in parallel chunks and packed in 32 bits
   // (x0, y0: 12 bits each, nx, ny <= 2049; the widths x1 - x0, y1 - y0: 4 bits each, 15:
-  // wider, recomputed from the points).
+  // wider, recomputed from the points). On one thread, the cells' counts come with them
+  // (one pass over the triangles less); on several, each counts a band of rows after.
+  cellStart_.assign(size_t(nx_) * ny_ + 1, 0);
+  const bool countWithRanges = threadCount() == 1;
   std::vector<std::uint32_t> ranges(triCount_);
   parallelChunks(triCount_, kBuildChunk, [&](size_t, size_t b, size_t e) {
     int x0, x1, y0, y1;
@@ -117,6 +142,9 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
       range(tris_[t], &x0, &x1, &y0, &y1);
       ranges[t] = std::uint32_t(x0) | std::uint32_t(y0) << 12 | std::uint32_t(std::min(x1 - x0, 15)) << 24 |
                   std::uint32_t(std::min(y1 - y0, 15)) << 28;
+      if (countWithRanges)
+        for (int y = y0; y <= y1; ++y)
+          for (int x = x0; x <= x1; ++x) ++cellStart_[cellIndex(x, y) + 1];
     }
   });
   auto unpack = [&](size_t t, int* x0, int* x1, int* y0, int* y1) {
@@ -126,7 +154,6 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
     *x0 = int(r & 4095u), *y0 = int(r >> 12 & 4095u);
     *x1 = *x0 + w, *y1 = *y0 + h;
   };
-  cellStart_.assign(size_t(nx_) * ny_ + 1, 0);
   // Each thread owns a band of cell rows and scans every triangle's range for its rows:
   // the lists (each cell's triangles in increasing order) do not depend on the bands.
   const int bands = std::max(1, std::min(threadCount(), ny_));
@@ -137,19 +164,20 @@ void TriangleMeshMetricField::build(const Mesh& mesh) {
       f(r0, r1);
     });
   };
-  perBand([&](int r0, int r1) {
-    int x0, x1, y0, y1;
-    for (size_t t = 0; t < triCount_; ++t) {
-      unpack(t, &x0, &x1, &y0, &y1);
-      for (int y = std::max(y0, r0); y <= std::min(y1, r1 - 1); ++y)
-        for (int x = x0; x <= x1; ++x) ++cellStart_[cellIndex(x, y) + 1];
-    }
-  });
+  if (!countWithRanges)
+    perBand([&](int r0, int r1) {
+      int x0, x1, y0, y1;
+      for (size_t t = 0; t < triCount_; ++t) {
+        unpack(t, &x0, &x1, &y0, &y1);
+        for (int y = std::max(y0, r0); y <= std::min(y1, r1 - 1); ++y)
+          for (int x = x0; x <= x1; ++x) ++cellStart_[cellIndex(x, y) + 1];
+      }
+    });
   // cellStart_[c + 1] = the end of cell c; filled backwards from the ends (triangles in
   // decreasing order), each ends at its start with the triangles in increasing order.
   for (size_t c = 1; c < cellStart_.size(); ++c) cellStart_[c] += cellStart_[c - 1];
   cellTris_.resize(size_t(cellStart_.back()));
-  cellFilter_.resize(cellTris_.size());
+  cellFilter_.resize(cellTris_.size() + 3);  // (3 more: metricAt reads four from any entry on)
   // A triangle containing p (barycentric coordinates >= -1e-12) lies within 3e-12 of its
   // diameter from p, plus the rounding of the coordinates: the margin is far above both.
   const double extent =
@@ -286,22 +314,40 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     const double l1 = n1 / det, l2 = n2 / det;
     return l1 >= -1e-12 && l2 >= -1e-12 && 1.0 - l1 - l2 >= -1e-12;
   };
-  // (the triangles whose widened box misses p's sub-cell are skipped: they cannot contain p)
+  // (the triangles whose widened box misses p's sub-cell are skipped: they cannot contain
+  // p. The filters are tested four at a time; the kept triangles in order, by batches
+  // whose points are requested together: one wait for memory per batch, not per triangle)
   auto containsIn = [&](int x, int y) {
     if (cellDistance(x, y) > slack) return false;
     const int c = cellIndex(x, y);
     const Vec2 o = cellOrigin(x, y);
-    const unsigned sx = unsigned(clampedCell((p.x() - o.x()) * subScale_.x(), kFilterSide));
-    const unsigned sy = unsigned(clampedCell((p.y() - o.y()) * subScale_.y(), kFilterSide));
-    for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
-      const unsigned f = cellFilter_[size_t(k)];
-      if (sx < (f & 15u) || sx > (f >> 4 & 15u) || sy < (f >> 8 & 15u) || sy > (f >> 12)) continue;
-      if (contains(cellTris_[size_t(k)])) {
-        best = cellTris_[size_t(k)];
-        return true;
+    const std::uint64_t q = filterQuery(unsigned(clampedCell((p.x() - o.x()) * subScale_.x(), kFilterSide)),
+                                        unsigned(clampedCell((p.y() - o.y()) * subScale_.y(), kFilterSide)));
+    int batch[kTestBatch];
+    int n = 0;
+    auto testBatch = [&] {
+      for (int i = 0; i < n; ++i)
+        for (int v : tris_[size_t(batch[i])]) __builtin_prefetch(&pts_[v]);
+      for (int i = 0; i < n; ++i)
+        if (contains(batch[i])) {
+          best = batch[i];
+          return true;
+        }
+      n = 0;
+      return false;
+    };
+    const int end = cellStart_[c + 1];
+    for (int k = cellStart_[c]; k < end; k += 4) {
+      std::uint64_t w;
+      std::memcpy(&w, &cellFilter_[size_t(k)], sizeof w);
+      for (std::uint64_t keep = filtersKeep(w, q); keep != 0; keep &= keep - 1) {
+        const int at = k + (__builtin_ctzll(keep) >> 4);
+        if (at >= end) break;  // (the next cell's, or the padding)
+        batch[n++] = cellTris_[size_t(at)];
+        if (n == kTestBatch && testBatch()) return true;
       }
     }
-    return false;
+    return testBatch();
   };
   // A cell farther than the nearest point found cannot improve it (a triangle's nearest
   // point lies in a cell it is listed in, never farther than the point): skipped.
@@ -331,19 +377,36 @@ Metric TriangleMeshMetricField::metricAt(const Vec2& p) const {
     }
     return false;
   };
+  // The number of cells holding a triangle in columns x0..x1 of rows y0..y1 (in the grid).
+  auto covered = [&](int x0, int y0, int x1, int y1) {
+    auto sum = [&](int x, int y) { return coveredSum_[size_t(y) * (nx_ + 1) + x]; };
+    return sum(x1 + 1, y1 + 1) - sum(x0, y1 + 1) - sum(x1 + 1, y0) + sum(x0, y0);
+  };
   // Calls f on the cells of ring r around p's cell in row order; true when f ends the search.
+  // (Cells holding no triangle give f nothing: skipped, the ring's sides at once when the
+  // summed-area table finds them empty; far from the mesh, most of a ring is empty.)
   auto ring = [&](int r, auto&& f) {
-    auto visit = [&](int x, int y) { return x >= 0 && y >= 0 && x < nx_ && y < ny_ && f(x, y); };
-    for (int y = cy - r; y <= cy + r; ++y) {
-      if (y == cy - r || y == cy + r) {
-        for (int x = cx - r; x <= cx + r; ++x)
-          if (visit(x, y)) return true;
-      } else {
-        if (visit(cx - r, y)) return true;
-        if (r > 0 && visit(cx + r, y)) return true;
+    auto visit = [&](int x, int y) {
+      const int c = cellIndex(x, y);
+      return cellStart_[c + 1] > cellStart_[c] && f(x, y);
+    };
+    const int xa = std::max(cx - r, 0), xb = std::min(cx + r, nx_ - 1);
+    const int ya = std::max(cy - r + 1, 0), yb = std::min(cy + r - 1, ny_ - 1);
+    auto row = [&](int y) {
+      if (y < 0 || y >= ny_ || xa > xb || covered(xa, y, xb, y) == 0) return false;
+      for (int x = xa; x <= xb; ++x)
+        if (visit(x, y)) return true;
+      return false;
+    };
+    if (row(cy - r)) return true;
+    const bool left = cx - r >= 0 && ya <= yb && covered(cx - r, ya, cx - r, yb) > 0;
+    const bool right = r > 0 && cx + r < nx_ && ya <= yb && covered(cx + r, ya, cx + r, yb) > 0;
+    if (left || right)
+      for (int y = ya; y <= yb; ++y) {
+        if (left && visit(cx - r, y)) return true;
+        if (right && visit(cx + r, y)) return true;
       }
-    }
-    return false;
+    return r > 0 && row(cy + r);
   };
   // A lower bound of the distance from p to the cells of ring r (r >= 1): each of its
   // cells lies in one of its four sides beyond the block of the inner rings; infinite

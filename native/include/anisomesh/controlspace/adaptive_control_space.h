@@ -136,9 +136,9 @@ class AdaptiveControlSpace : public ControlSpace {
   // quadtree, conforming triangulation); new nodes take the interpolated metric and then
   // onNewNodes may overwrite free ones. Elements at the minimum size are never split.
   virtual void refine(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) = 0;
-  // As refine, but pred may be called from several threads at once (parallel.h): pred must
-  // only read (this structure's queries and its own pure functions). The same result as
-  // refine for any thread count. By default it is refine.
+  // As refine, but pred may be called from several threads at once (parallel.h) and in any
+  // order: pred must only read (this structure's queries and its own pure functions). The
+  // same result as refine for any thread count. By default it is refine.
   virtual void refineConcurrently(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) {
     refine(pred, onNewNodes);
   }

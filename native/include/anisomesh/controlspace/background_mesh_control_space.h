@@ -80,7 +80,7 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
   void splitPair(int t, int i);
   void bisectImpl(int t);
   void rebuildLocator();
-  void refineImpl(const ElementPredicate& pred, const NewNodesCallback& onNewNodes, bool concurrent);
+  void refineImpl(const ElementPredicate& pred, const NewNodesCallback& onNewNodes, bool readOnly);
   ControlElement elementOf(int t) const;
   double orient(int a, int b, const Vec2& p) const;
   SymMt mtIn(int t, const Vec2& q) const;  // Mt interpolated in triangle t at q (in the box)

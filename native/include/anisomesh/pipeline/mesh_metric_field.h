@@ -50,10 +50,11 @@ class TriangleMeshMetricField : public ControlSpace {
   Vec2 cell_{1, 1};
   std::vector<int> cellStart_;  // CSR: triangles of cell c are cellTris_[cellStart_[c] .. cellStart_[c + 1])
   std::vector<int> cellTris_;
-  // Per entry of cellTris_: the sub-cells (4 bits each: x0, x1, y0, y1 of a 16 x 16 grid
-  // of the cell) its triangle's box, widened by a margin far above the containment
-  // tolerance, meets; a triangle skipped for it cannot contain the query point. A graded
-  // or anisotropic carrier lists hundreds of triangles in its fine cells, few of them near p.
+  // Per entry of cellTris_ (and 3 more: metricAt reads four at a time): the sub-cells (4
+  // bits each: x0, x1, y0, y1 of a 16 x 16 grid of the cell) its triangle's box, widened
+  // by a margin far above the containment tolerance, meets; a triangle skipped for it
+  // cannot contain the query point. A graded or anisotropic carrier lists hundreds of
+  // triangles in its fine cells, few of them near p.
   std::vector<std::uint16_t> cellFilter_;
   Vec2 subScale_{1, 1};  // filter grid cells per unit length (multiplied: only monotonicity matters)
   Vec2 cellOrigin(int x, int y) const { return Vec2(box_.lo.x() + x * cell_.x(), box_.lo.y() + y * cell_.y()); }
