@@ -1,10 +1,12 @@
 // anisomesh remesh IN.mesh [-sol IN.sol] -o OUT ...: remeshes a mesh's domain under a
 // metric (MMG's flags where MMG has them).
 #include <sys/resource.h>
-#include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <exception>
 #include <iostream>
@@ -26,6 +28,41 @@ namespace anisomesh::cli {
 
 namespace {
 
+// A "Vm..." line of /proc/self/status in MiB (its unit is kB whatever the page size; the wasm
+// CLI under Node reads the host's file, where statm's pages are 4 KiB and not wasm's 64 KiB).
+double procStatusMiB(const char* key) {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return -1.0;
+  char line[256];
+  double kib = -1.0;
+  const std::size_t n = std::strlen(key);
+  while (std::fgets(line, sizeof line, f))
+    if (std::strncmp(line, key, n) == 0 && line[n] == ':') {
+      kib = std::strtod(line + n + 1, nullptr);
+      break;
+    }
+  std::fclose(f);
+  return kib < 0 ? -1.0 : kib / 1024.0;
+}
+
+// CPU seconds of the process. Natively clock(); Emscripten's clock() is wall time, so the wasm
+// CLI reads the host's /proc/self/stat (utime + stime in USER_HZ = 100 ticks: 10 ms steps).
+double processCpuSeconds() {
+#if defined(__EMSCRIPTEN__)
+  if (std::FILE* f = std::fopen("/proc/self/stat", "r")) {
+    char buf[1024];
+    const std::size_t len = std::fread(buf, 1, sizeof buf - 1, f);
+    std::fclose(f);
+    buf[len] = 0;
+    const char* p = std::strrchr(buf, ')');  // the command name may hold spaces
+    unsigned long long utime = 0, stime = 0;
+    if (p && std::sscanf(p + 1, " %*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %llu %llu", &utime, &stime) == 2)
+      return double(utime + stime) / 100.0;
+  }
+#endif
+  return double(std::clock()) / CLOCKS_PER_SEC;
+}
+
 // -v 1 and more: one stderr line per finished stage (wall and process CPU seconds), then
 // the peak RSS.
 class StageLog {
@@ -37,12 +74,12 @@ class StageLog {
     finish();
     name_ = name;
     wall0_ = std::chrono::steady_clock::now();
-    cpu0_ = std::clock();
+    cpu0_ = processCpuSeconds();
   }
   void finish() {
     if (!on_ || name_.empty()) return;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
-    const double cpu = double(std::clock() - cpu0_) / CLOCKS_PER_SEC;
+    const double cpu = processCpuSeconds() - cpu0_;
     std::fprintf(stderr, "anisomesh: stage %-14s wall %.3f s cpu %.3f s rss %.1f MiB peak %.1f MiB\n", name_.c_str(),
                  wall, cpu, currentRssMiB(), peakRssMiB());
     name_.clear();
@@ -52,26 +89,22 @@ class StageLog {
     finish();
     std::fprintf(stderr, "anisomesh: peak RSS %.1f MiB\n", peakRssMiB());
   }
+  // The peak resident set (VmHWM; getrusage where /proc is missing).
   static double peakRssMiB() {
+    const double hwm = procStatusMiB("VmHWM");
+    if (hwm >= 0) return hwm;
     struct rusage ru {};
     getrusage(RUSAGE_SELF, &ru);
     return double(ru.ru_maxrss) / 1024.0;
   }
-  // The resident set now (Linux /proc/self/statm; 0 where it is missing).
-  static double currentRssMiB() {
-    std::FILE* f = std::fopen("/proc/self/statm", "r");
-    if (!f) return 0.0;
-    long long pages = 0, resident = 0;
-    const bool ok = std::fscanf(f, "%lld %lld", &pages, &resident) == 2;
-    std::fclose(f);
-    return ok ? double(resident) * double(sysconf(_SC_PAGESIZE)) / 1048576.0 : 0.0;
-  }
+  // The resident set now (VmRSS; 0 where /proc is missing).
+  static double currentRssMiB() { return std::max(0.0, procStatusMiB("VmRSS")); }
 
  private:
   bool on_;
   std::string name_;
   std::chrono::steady_clock::time_point wall0_;
-  std::clock_t cpu0_ = 0;
+  double cpu0_ = 0;
 };
 
 int runRemesh(Args& args) {

@@ -58,3 +58,22 @@ test('errors: message on stderr, exit 1 for bad input, 2 for bad usage, no parti
   assert.match(budget.stderr, /ELEMENT_BUDGET_EXCEEDED/);
   assert.ok(!existsSync(out), 'no output file after a failed run');
 });
+
+// -v 1 stage lines: wasm's clock() is wall time and its page size 64 KiB, so the CLI reads
+// the host's /proc; the figures must match what Node itself measures for the process.
+test('remesh -v 1: the stage CPU and peak RSS are the process figures', () => {
+  const mesh = join(dir, 'v.mesh');
+  assert.equal(runNative('mesh', join(root, 'examples/point_source.json'), '-o', mesh).status, 0);
+  // The probe writes to a file: the wasm runtime closes the process's fd 2 when it exits.
+  const probe = join(dir, 'probe.cjs'), probed = join(dir, 'probe.txt');
+  writeFileSync(probe, `process.on('exit', () => { const u = process.resourceUsage();
+    require('fs').writeFileSync(${JSON.stringify(probed)}, u.maxRSS + ' ' + (u.userCPUTime + u.systemCPUTime)); });\n`);
+  const r = spawnSync(process.execPath, ['-r', probe, nodeCli, 'remesh', mesh, '-o', join(dir, 'v2.mesh'), '-hsiz', '0.01', '-v', '1'],
+    { encoding: 'utf8' });
+  assert.equal(r.status, 0, r.stderr);
+  const [maxRssKiB, cpuMicros] = readFileSync(probed, 'utf8').split(' ').map(Number);
+  const peak = Number(r.stderr.match(/peak RSS ([\d.]+) MiB/)[1]);
+  assert.ok(Math.abs(peak - maxRssKiB / 1024) <= 0.2 * (maxRssKiB / 1024), `peak ${peak} MiB, Node ${maxRssKiB} KiB`);
+  const cpu = [...r.stderr.matchAll(/ cpu ([\d.]+) s/g)].reduce((s, m) => s + Number(m[1]), 0);
+  assert.ok(cpu <= cpuMicros / 1e6 + 0.02, `stages ${cpu} s of CPU, the process ${cpuMicros / 1e6} s`);
+});
