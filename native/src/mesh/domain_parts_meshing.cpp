@@ -6,9 +6,11 @@
 #include <vector>
 
 #include "anisomesh/controlspace/concurrency.h"
+#include "anisomesh/core/clock.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/mesh/domain_decomposition.h"
+#include "mesh_internal.h"
 
 namespace anisomesh {
 
@@ -98,6 +100,7 @@ Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& 
     sum.estimatedElements += timings[p].estimatedElements;
   }
   // Boundary edges: the input loops' edges in input order, as the single-part mesher gives them.
+  // The loops' points come first, then the cuts' points (polished now that both sides are known).
   int base = 0;
   for (const BoundaryLoop& l : loops) {
     const int k = static_cast<int>(l.points.size());
@@ -106,6 +109,11 @@ Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& 
       m.edgeRefs.push_back(l.edgeRefs[i]);
     }
     base += k;
+  }
+  {
+    const auto t0 = Clock::now();
+    polishDecompositionSeams(m, base, static_cast<int>(parts.points.size()), cs, options);
+    sum.improvement += secondsSince(t0);
   }
   if (m.elementCount() > options.maxElements) {
     std::ostringstream os;

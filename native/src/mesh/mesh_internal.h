@@ -7,6 +7,7 @@
 #include "anisomesh/controlspace/control_space.h"
 #include "anisomesh/core/types.h"
 #include "anisomesh/mesh/mesh.h"
+#include "anisomesh/mesh/planar_mesher.h"
 #include "anisomesh/metric/sym_mt.h"
 
 namespace anisomesh {
@@ -37,5 +38,10 @@ inline double metricQuadQuality(const SymMt& m, const Vec2* p) {
 // Quad-dominant conversion (greedy merge of triangle pairs by metric quad quality, pairs
 // below minQuadQuality kept as triangles). vertexMt holds Mt per vertex.
 void convertToQuads(Mesh& mesh, const std::vector<SymMt>& vertexMt, double minQuadQuality);
+
+// Swaps and polish rounds on the triangles around the cut vertices [seamBegin, seamEnd) of a
+// decomposed domain's merged mesh, which neither part could move (planar/seam_polish.cpp).
+void polishDecompositionSeams(Mesh& merged, int seamBegin, int seamEnd, const ControlSpace& cs,
+                              const PlanarMesherOptions& options);
 
 }  // namespace anisomesh

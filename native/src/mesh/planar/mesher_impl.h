@@ -155,6 +155,9 @@ class Mesher {
     start();
     return finish();
   }
+  // After the parts of a decomposed domain are merged: swaps and polish rounds on the
+  // triangles around the cut vertices [seamBegin, seamEnd) of merged (seam_polish.cpp).
+  void polishSeam(Mesh& merged, int seamBegin, int seamEnd);
 
  private:
   // ---- setup and output ----
