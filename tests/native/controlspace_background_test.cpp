@@ -182,3 +182,40 @@ TEST(ControlSpaceBackground, ElementSampleMetricIsTheQueryAtTheSample) {
     EXPECT_EQ(checked, 4 * bg.elementCount());
   }
 }
+
+// metricAtNear (the mesher's queries, walked from the previous query's triangle) gives
+// metricAt's bits: along a path of small steps, at random jumps, on grid lines and nodes
+// (where a point lies on shared edges), and from a stale or foreign hint.
+TEST(ControlSpaceBackground, MetricAtNearIsMetricAt) {
+  for (auto interp : {BackgroundInterpolation::Linear, BackgroundInterpolation::InverseSquaredDistance}) {
+    BackgroundMeshOptions o;
+    o.interpolation = interp;
+    BackgroundMeshControlSpace bg(box(-1.0, 0.0, 1.0, 1.0), o);
+    bg.refine([&](const ControlElement& e) { return e.box.contains(Vec2(0.2, 0.4)) && e.size > 0.004; }, nullptr);
+    for (int i = 0; i < bg.nodeCount(); ++i) {
+      const Vec2 p = bg.nodePosition(i);
+      bg.setNodeMetric(i, Metric::fromSizes(3.0 * p.x() + p.y(), 0.001 + 0.05 * std::fabs(p.y() - 0.4), 1.2 + p.x()));
+    }
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> ux(-1.0, 1.0), uy(0.0, 1.0), step(-0.002, 0.002);
+    int hint = -1;
+    Vec2 p(0.2, 0.4);
+    auto check = [&](const Vec2& q) {
+      ASSERT_EQ(bg.metricAtNear(q, hint).transform(), bg.metricAt(q).transform()) << q.transpose();
+    };
+    for (int k = 0; k < 20000; ++k) {
+      p += Vec2(step(rng), step(rng));
+      p = p.cwiseMax(Vec2(-1.2, -0.2)).cwiseMin(Vec2(1.2, 1.2));
+      check(p);
+      if (k % 97 == 0) check(Vec2(ux(rng), uy(rng)));
+    }
+    for (int i = 0; i < bg.nodeCount(); ++i) {
+      const Vec2 n = bg.nodePosition(i);
+      check(n);
+      check(Vec2(n.x(), uy(rng)));
+      check(Vec2(ux(rng), n.y()));
+    }
+    hint = bg.elementCount() + 5;
+    check(Vec2(0.5, 0.5));
+  }
+}

@@ -28,6 +28,9 @@ BackgroundMeshControlSpace::BackgroundMeshControlSpace(const Box2& box, const Ba
   minSize_ = (sz / n).norm() / std::ldexp(1.0, options.maxLevel);
   const double eps = options.epsilon * sz.norm();
   eps2_ = eps * eps;
+  // 1e-9 of a triangle's size: far above the rounding of orient() (~1e-16 of it) in this
+  // triangle or in any neighbour (bisection keeps their sizes within a small factor).
+  margin2_ = 1e-18;
   const Metric placeholder = options.initialMetric ? *options.initialMetric : Metric::isotropic(sz.norm());
   const SymMt pm = toSymMt(placeholder);
   for (int j = 0; j <= n; ++j)
@@ -227,6 +230,46 @@ int BackgroundMeshControlSpace::locateTriangle(const Vec2& p) const {
   return t;
 }
 
+int BackgroundMeshControlSpace::locateTriangleFrom(const Vec2& q, int from, double* o) const {
+  if (locatorStale_ || from < 0 || from >= elementCount()) return -1;
+  // A query next to the previous one: 60 % of the mesher's fall in the same background
+  // triangle or a neighbour; farther ones are left to the grid (a longer walk costs more).
+  int t = from;
+  for (int step = 0; step < 3; ++step) {
+    const auto& v = tri_[t];
+    o[0] = orient(v[1], v[2], q);
+    o[1] = orient(v[2], v[0], q);
+    o[2] = orient(v[0], v[1], q);
+    if (o[0] > 0.0 && o[1] > 0.0 && o[2] > 0.0) {
+      // Clearly inside (each edge's line at least 1e-9 of the triangle's size away): the
+      // only triangle any walk can stop in, so locateTriangle's answer too.
+      const double l0 = (pos_[v[2]] - pos_[v[1]]).squaredNorm(), l1 = (pos_[v[0]] - pos_[v[2]]).squaredNorm(),
+                   l2 = (pos_[v[1]] - pos_[v[0]]).squaredNorm();
+      const double m = margin2_ * (l0 + l1 + l2);
+      return o[0] * o[0] > m * l0 && o[1] * o[1] > m * l1 && o[2] * o[2] > m * l2 ? t : -1;
+    }
+    int next = -1;
+    for (int k = 0; k < 3 && next < 0; ++k)
+      if (o[k] < 0.0) next = nbr_[t][k];
+    if (next < 0) return -1;
+    t = next;
+  }
+  return -1;
+}
+
+Metric BackgroundMeshControlSpace::metricAtNear(const Vec2& p, int& hint) const {
+  const Vec2 q = clampedToBox(p);
+  double o[3];
+  const int t = locateTriangleFrom(q, hint, o);
+  if (t < 0) {
+    hint = locateTriangle(q);
+    return toMetric(mtIn(hint, q));
+  }
+  hint = t;
+  // Linear weights: mtIn's orient() values, computed above (all positive).
+  return toMetric(options_.interpolation == BackgroundInterpolation::Linear ? weighted(t, o) : mtIn(t, q));
+}
+
 SymMt BackgroundMeshControlSpace::mtAt(const Vec2& p) const {
   const Vec2 q = clampedToBox(p);
   return mtIn(locateTriangle(q), q);
@@ -259,6 +302,11 @@ SymMt BackgroundMeshControlSpace::mtIn(int t, const Vec2& q) const {
       w[k] = 1.0 / d2;
     }
   }
+  return weighted(t, w);
+}
+
+SymMt BackgroundMeshControlSpace::weighted(int t, const double* w) const {
+  const auto& v = tri_[t];
   const double inv = 1.0 / (w[0] + w[1] + w[2]);
   SymMt r{0.0, 0.0, 0.0};
   for (int k = 0; k < 3; ++k) {

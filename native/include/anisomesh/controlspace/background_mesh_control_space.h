@@ -40,6 +40,8 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
 
   // Interpolated metric (eq. 11); points outside the box are clamped onto it.
   Metric metricAt(const Vec2& p) const override;
+  // metricAt(p), the walk started from the triangle in hint (then set to p's triangle).
+  Metric metricAtNear(const Vec2& p, int& hint) const override;
   // Interpolated Mt entries at p (the allocation-free core of metricAt).
   SymMt mtAt(const Vec2& p) const;
   InterpolationStencil stencilAt(const Vec2& p) const override;
@@ -83,12 +85,18 @@ class BackgroundMeshControlSpace : public AdaptiveControlSpace {
   void refineImpl(const ElementPredicate& pred, const NewNodesCallback& onNewNodes, bool readOnly);
   ControlElement elementOf(int t) const;
   double orient(int a, int b, const Vec2& p) const;
-  SymMt mtIn(int t, const Vec2& q) const;  // Mt interpolated in triangle t at q (in the box)
+  SymMt mtIn(int t, const Vec2& q) const;        // Mt interpolated in triangle t at q (in the box)
+  SymMt weighted(int t, const double* w) const;  // sum of w[k] Mt(v[k]) / sum of w[k]
+  // locateTriangle(q) for q in the box, walking from triangle `from` (a few steps): the
+  // triangle when the walk ends with q clearly inside it (o: its three orient() values),
+  // else -1.
+  int locateTriangleFrom(const Vec2& q, int from, double* o) const;
   Vec2 clampedToBox(const Vec2& p) const;  // p clamped onto the box; a non-finite p: its corner
 
   BackgroundMeshOptions options_;
   double minSize_ = 0.0;
   double eps2_ = 0.0;
+  double margin2_ = 0.0;  // locateTriangleFrom: (distance p keeps from the edges' lines)^2
   std::vector<std::array<int, 3>> tri_;
   std::vector<std::array<int, 3>> nbr_;
   std::vector<int> touched_;  // triangles changed by the current refinement batch

@@ -15,6 +15,10 @@ class ControlSpace {
   virtual ~ControlSpace() = default;
   // The requested metric at p (parameter-space coordinates).
   virtual Metric metricAt(const Vec2& p) const = 0;
+  // metricAt(p), the same value; hint (the caller's own, -1 at first) lets a structure that
+  // searches for p start where the caller's previous query ended (callers asking in
+  // spatial order, such as the mesher).
+  virtual Metric metricAtNear(const Vec2& p, int& /*hint*/) const { return metricAt(p); }
   // The parameterization matrix Mp at p (section 4.3); identity on planar domains.
   virtual Mat2 parameterizationAt(const Vec2& /*p*/) const { return Mat2::Identity(); }
   // The rectangle the control space is defined on.

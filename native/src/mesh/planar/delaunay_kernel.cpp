@@ -68,27 +68,35 @@ int Mesher::commitCavity(int v) {
     }
   }
   const size_t nb = bnd_.size();
-  for (size_t k = 0; k < nb; ++k) {
-    const int t = newTris_[k];
-    if (small) {
-      // Edge (b, v) borders the new triangle starting at b; edge (v, a) the one ending at a.
-      const int kb = bnd_[k].b, ka = bnd_[k].a;
-      int found = 0;
-      for (size_t j = 0; j < nb && found != 3; ++j) {
-        if (bnd_[j].a == kb) {
-          tri_[t].n[0] = newTris_[j];
-          found |= 1;
-        }
-        if (bnd_[j].b == ka) {
-          tri_[t].n[1] = newTris_[j];
-          found |= 2;
-        }
+  if (small) {
+    // The cavity boundary is a simple cycle: each of its vertices starts one edge. A table
+    // from start vertex to edge (64 slots, open addressing, tagged per cavity) finds each
+    // edge's successor: edge (b, v) borders the new triangle starting at b.
+    auto slotOf = [](int vtx) { return static_cast<int>((static_cast<std::uint32_t>(vtx) * 2654435761u) >> 26); };
+    const std::uint32_t tag = ++linkTag_;
+    for (size_t k = 0; k < nb; ++k) {
+      int s = slotOf(bnd_[k].a);
+      while (link_[s].tag == tag) s = (s + 1) & 63;
+      link_[s] = {tag, bnd_[k].a, static_cast<int>(k)};
+    }
+    for (size_t k = 0; k < nb; ++k) {
+      const int t = newTris_[k], b = bnd_[k].b;
+      int s = slotOf(b);
+      while (link_[s].tag == tag && link_[s].v != b) s = (s + 1) & 63;
+      if (link_[s].tag == tag) {
+        const int succ = newTris_[link_[s].k];
+        tri_[t].n[0] = succ;
+        tri_[succ].n[1] = t;
       }
-    } else {
+    }
+    for (size_t k = 0; k < nb; ++k) vtri_[bnd_[k].a] = newTris_[k];
+  } else {
+    for (size_t k = 0; k < nb; ++k) {
+      const int t = newTris_[k];
       tri_[t].n[0] = startAt_[bnd_[k].b];
       tri_[t].n[1] = endAt_[bnd_[k].a];
+      vtri_[bnd_[k].a] = t;
     }
-    vtri_[bnd_[k].a] = t;
   }
   vtri_[v] = newTris_[0];
   return newTris_[0];

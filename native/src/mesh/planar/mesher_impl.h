@@ -170,7 +170,9 @@ class Mesher {
   }
   std::uint64_t progressTicks_ = 0;
   double lastFraction_ = 0.0;
-  SymMt queryMetric(const Vec2& p) const { return SymMt::from(cs_.metricAt(p).transform()); }
+  // The control space's walk starts where the last query ended (queries come in spatial order).
+  SymMt queryMetric(const Vec2& p) const { return SymMt::from(cs_.metricAtNear(p, queryHint_).transform()); }
+  mutable int queryHint_ = -1;
   Mesh output() const;
 
   // ---- triangle storage ----
@@ -273,10 +275,18 @@ class Mesher {
   };
   std::vector<BndEdge> bnd_;
   std::vector<int> startAt_, endAt_, newTris_;
+  // commitCavity (small cavities): start vertex -> boundary edge, slots tagged by linkTag_.
+  struct LinkSlot {
+    std::uint32_t tag;
+    int v, k;
+  };
+  std::array<LinkSlot, 64> link_{};
+  std::uint32_t linkTag_ = 0;
   std::uint32_t rng_ = 12345u;
 
   // frontal state
   std::vector<TriCache> cache_;
+  bool improving_ = false;  // set by renumberSpatially: the insertion's per-triangle state is gone
   std::vector<std::uint32_t> stamp_, queued_;
   // swapSweep: per triangle, the swap clock at its last visit and at its last flip.
   struct SwapSeen {

@@ -75,10 +75,12 @@ int Mesher::allocTri() {
     return t;
   }
   tri_.push_back(Tri{{-1, -1, -1}, {-1, -1, -1}, 0, 0, 0});
-  forbid_.push_back(0);
   stamp_.push_back(0);
-  queued_.push_back(std::numeric_limits<std::uint32_t>::max());
-  cache_.emplace_back();
+  if (!improving_) {  // the cavity and frontal state: not used after the insertion
+    forbid_.push_back(0);
+    queued_.push_back(std::numeric_limits<std::uint32_t>::max());
+    cache_.emplace_back();
+  }
   return static_cast<int>(tri_.size()) - 1;
 }
 
