@@ -215,3 +215,34 @@ TEST(ControlSpaceQuadtree, OutsidePointsAreClamped) {
   const SymMt c = qt.mtAt(Vec2(std::nan(""), std::nan("")));
   EXPECT_TRUE(std::isfinite(c.a));
 }
+
+// refineNear (a dragged source's refinement) offers only the leaves near its boxes, and
+// splits exactly as refine with the same predicate: the same cells, nodes and values.
+TEST(ControlSpaceQuadtree, RefineNearSplitsAsRefine) {
+  for (auto interp : {QuadtreeInterpolation::Bilinear, QuadtreeInterpolation::Serendipity}) {
+    const std::vector<Box2> near{Box2{Vec2(0.3, 0.2), Vec2(0.5, 0.45)}, Box2{Vec2(1.6, 0.7), Vec2(1.6, 0.7)}};
+    int offered = 0;
+    const ElementPredicate pred = [&](const ControlElement& e) {
+      ++offered;
+      bool meets = false;
+      for (const Box2& r : near)
+        meets = meets || !(r.hi.x() < e.box.lo.x() || r.lo.x() > e.box.hi.x() || r.hi.y() < e.box.lo.y() ||
+                           r.lo.y() > e.box.hi.y());
+      return meets && e.size > 0.02;
+    };
+    QuadtreeControlSpace a = irregularTree(interp), b = irregularTree(interp);
+    a.refine(pred, nullptr);
+    const int all = offered;
+    offered = 0;
+    b.refineNear(near, pred, nullptr);
+    EXPECT_LT(offered, all);
+    ASSERT_EQ(a.nodeCount(), b.nodeCount());
+    ASSERT_EQ(a.leaves(), b.leaves());
+    for (int i = 0; i < a.nodeCount(); ++i) {
+      ASSERT_EQ(a.nodePosition(i), b.nodePosition(i));
+      ASSERT_EQ(a.nodeMt(i).a, b.nodeMt(i).a);
+      ASSERT_EQ(a.nodeMt(i).b, b.nodeMt(i).b);
+      ASSERT_EQ(a.nodeMt(i).c, b.nodeMt(i).c);
+    }
+  }
+}

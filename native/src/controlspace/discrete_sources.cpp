@@ -21,7 +21,8 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
                    const DiscreteInsertionOptions& options) {
   const Box2 box = cs.bounds();
   const std::vector<SourcePiece> pieces = sourcePieces(sources, box, options.source);
-  if (pieces.empty()) return;  // nothing inside the domain: no-op
+  if (pieces.empty()) return;        // nothing inside the domain: no-op
+  constexpr size_t kScanPieces = 4;  // up to this many pieces, no binning (a dragged source)
 
   // (a) Structure adaptation near the sources.
   {
@@ -38,20 +39,23 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
     std::vector<Slot> slots;
     slots.reserve(grid.items().size());
     for (int k : grid.items()) slots.push_back({boxes[k], pieces[k].targetSize, k});
-    cs.refine(
-        [&](const ControlElement& e) {
-          return grid.anySlot(e.box, [&](int k) {
-            const Slot& sl = slots[k];
-            if (!(e.size > sl.targetSize)) return false;
-            // Boxes apart: the piece is farther than its radius (cheap exact rejection).
-            if (sl.box.hi.x() < e.box.lo.x() || sl.box.lo.x() > e.box.hi.x() || sl.box.hi.y() < e.box.lo.y() ||
-                sl.box.lo.y() > e.box.hi.y())
-              return false;
-            const SourcePiece& p = pieces[sl.piece];
-            return segmentBoxDistance(p.a, p.b, e.box) <= p.radius;
-          });
-        },
-        nullptr);
+    const ElementPredicate nearPieces = [&](const ControlElement& e) {
+      return grid.anySlot(e.box, [&](int k) {
+        const Slot& sl = slots[k];
+        if (!(e.size > sl.targetSize)) return false;
+        // Boxes apart: the piece is farther than its radius (cheap exact rejection).
+        if (sl.box.hi.x() < e.box.lo.x() || sl.box.lo.x() > e.box.hi.x() || sl.box.hi.y() < e.box.lo.y() ||
+            sl.box.lo.y() > e.box.hi.y())
+          return false;
+        const SourcePiece& p = pieces[sl.piece];
+        return segmentBoxDistance(p.a, p.b, e.box) <= p.radius;
+      });
+    };
+    // A few pieces (a dragged source): only the elements near them are offered.
+    if (pieces.size() <= kScanPieces)
+      cs.refineNear(boxes, nearPieces, nullptr);
+    else
+      cs.refine(nearPieces, nullptr);
   }
 
   // (b) Weighted average of the sources reaching each free node. Free nodes are binned,
@@ -65,7 +69,6 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
   freeNodes.reserve(n);
   for (int i = 0; i < n; ++i)
     if (cs.nodeIsFree(i)) freeNodes.push_back(i);
-  constexpr size_t kScanPieces = 4;
   const bool scan = pieces.size() <= kScanPieces;
   std::optional<BucketGrid> nodeGrid;
   std::vector<int> binned;  // the free nodes in bin order (with the grid)

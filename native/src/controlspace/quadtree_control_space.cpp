@@ -461,6 +461,29 @@ std::vector<int> QuadtreeControlSpace::leaves() const {
   return out;
 }
 
+std::vector<int> QuadtreeControlSpace::leavesNear(const std::vector<Box2>& near) const {
+  // A cell's box holds its children's (cellBox rounds monotonically in the lattice
+  // coordinates), so a cell that meets no box is skipped with its subtree.
+  auto meets = [&](int c) {
+    const Box2 b = cellBox(c);
+    for (const Box2& r : near)
+      if (!(r.hi.x() < b.lo.x() || r.lo.x() > b.hi.x() || r.hi.y() < b.lo.y() || r.lo.y() > b.hi.y())) return true;
+    return false;
+  };
+  std::vector<int> out, stack(rootGrid_.begin(), rootGrid_.end());
+  while (!stack.empty()) {
+    const int c = stack.back();
+    stack.pop_back();
+    if (!meets(c)) continue;
+    if (child_[c] < 0)
+      out.push_back(c);
+    else
+      for (int k = 0; k < 4; ++k) stack.push_back(child_[c] + k);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 ControlElement QuadtreeControlSpace::elementOf(int cell) const {
   ControlElement e;
   e.id = cell;
@@ -477,8 +500,17 @@ ControlElement QuadtreeControlSpace::elementOf(int cell) const {
 }
 
 void QuadtreeControlSpace::refine(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) {
+  refineFrom(leaves(), pred, onNewNodes);
+}
+
+void QuadtreeControlSpace::refineNear(const std::vector<Box2>& near, const ElementPredicate& pred,
+                                      const NewNodesCallback& onNewNodes) {
+  refineFrom(leavesNear(near), pred, onNewNodes);
+}
+
+void QuadtreeControlSpace::refineFrom(std::vector<int> work, const ElementPredicate& pred,
+                                      const NewNodesCallback& onNewNodes) {
   rebuildConstraints();
-  std::vector<int> work = leaves();
   std::vector<int> split;
   while (!work.empty()) {
     split.clear();

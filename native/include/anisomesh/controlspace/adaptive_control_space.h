@@ -142,6 +142,14 @@ class AdaptiveControlSpace : public ControlSpace {
   virtual void refineConcurrently(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) {
     refine(pred, onNewNodes);
   }
+  // As refine, for a pred that is false on every element whose box meets none of the
+  // closed boxes `near`: the first pass may offer only the elements that meet one (a dragged
+  // source's few leaves instead of every leaf). The same result as refine.
+  virtual void refineNear(const std::vector<Box2>& near, const ElementPredicate& pred,
+                          const NewNodesCallback& onNewNodes) {
+    (void)near;
+    refine(pred, onNewNodes);
+  }
   // The metric at sample k of element e (an element of this structure as refine() passes
   // it): metricAt(e.samples[k]) by default; a structure whose field is continuous across
   // elements answers from e itself, without locating the point.

@@ -56,6 +56,8 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   int elementCount() const override { return leafCount_; }
   std::vector<std::vector<int>> elementNodes() const override;
   void refine(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) override;
+  void refineNear(const std::vector<Box2>& near, const ElementPredicate& pred,
+                  const NewNodesCallback& onNewNodes) override;
   std::vector<double> nodeElementSizes() const override;
   double minElementSize() const override;
   const char* kindName() const override { return "quadtree"; }
@@ -84,6 +86,8 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   int nodesPerLeaf() const { return nodesPerLeaf_; }
   // Leaf cell indices in increasing order.
   std::vector<int> leaves() const;
+  // The leaves whose boxes meet one of the closed boxes `near`, in increasing order.
+  std::vector<int> leavesNear(const std::vector<Box2>& near) const;
   // True when no two edge-neighbouring leaves differ by more than one level.
   bool isBalanced() const;
   // Number of bytes held by the structure (cells, nodes, lookup tables).
@@ -110,6 +114,8 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   SymMt interpolateInCell(int cell, double eta, double xi) const;
   void growMap();
   void splitLeafImpl(int cell);
+  // refine() with its first pass over the leaves `work` (increasing).
+  void refineFrom(std::vector<int> work, const ElementPredicate& pred, const NewNodesCallback& onNewNodes);
   void rebuildConstraints() const;
   // Mt of constraint k's hanging node from its masters (initialized once they all are).
   void applyConstraint(const Constraint& k);
