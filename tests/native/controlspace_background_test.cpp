@@ -45,6 +45,16 @@ void expectValidTriangulation(const BackgroundMeshControlSpace& bg) {
   EXPECT_NEAR(area, sz.x() * sz.y(), 1e-12 * sz.x() * sz.y());
 }
 
+// Refines bg down to 0.004 around (0.2, 0.4) and gives its nodes metrics varying in
+// direction, size and stretch (strongly stretched near y = 0.4).
+void refineWithVaryingField(BackgroundMeshControlSpace& bg) {
+  bg.refine([&](const ControlElement& e) { return e.box.contains(Vec2(0.2, 0.4)) && e.size > 0.004; }, nullptr);
+  for (int i = 0; i < bg.nodeCount(); ++i) {
+    const Vec2 p = bg.nodePosition(i);
+    bg.setNodeMetric(i, Metric::fromSizes(3.0 * p.x() + p.y(), 0.001 + 0.05 * std::fabs(p.y() - 0.4), 1.2 + p.x()));
+  }
+}
+
 }  // namespace
 
 TEST(ControlSpaceBackground, InvalidBoxIsRejected) {
@@ -160,11 +170,7 @@ TEST(ControlSpaceBackground, ElementSampleMetricIsTheQueryAtTheSample) {
     BackgroundMeshOptions o;
     o.interpolation = interp;
     BackgroundMeshControlSpace bg(box(-1.0, 0.0, 1.0, 1.0), o);
-    bg.refine([&](const ControlElement& e) { return e.box.contains(Vec2(0.2, 0.4)) && e.size > 0.004; }, nullptr);
-    for (int i = 0; i < bg.nodeCount(); ++i) {
-      const Vec2 p = bg.nodePosition(i);
-      bg.setNodeMetric(i, Metric::fromSizes(3.0 * p.x() + p.y(), 0.001 + 0.05 * std::fabs(p.y() - 0.4), 1.2 + p.x()));
-    }
+    refineWithVaryingField(bg);
     int checked = 0;
     bg.refine(
         [&](const ControlElement& e) {
@@ -191,11 +197,7 @@ TEST(ControlSpaceBackground, MetricAtNearIsMetricAt) {
     BackgroundMeshOptions o;
     o.interpolation = interp;
     BackgroundMeshControlSpace bg(box(-1.0, 0.0, 1.0, 1.0), o);
-    bg.refine([&](const ControlElement& e) { return e.box.contains(Vec2(0.2, 0.4)) && e.size > 0.004; }, nullptr);
-    for (int i = 0; i < bg.nodeCount(); ++i) {
-      const Vec2 p = bg.nodePosition(i);
-      bg.setNodeMetric(i, Metric::fromSizes(3.0 * p.x() + p.y(), 0.001 + 0.05 * std::fabs(p.y() - 0.4), 1.2 + p.x()));
-    }
+    refineWithVaryingField(bg);
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> ux(-1.0, 1.0), uy(0.0, 1.0), step(-0.002, 0.002);
     int hint = -1;
