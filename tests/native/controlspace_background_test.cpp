@@ -1,8 +1,10 @@
 // Background mesh control space: conforming bisection, point location, interpolation.
 #include <gtest/gtest.h>
+#include <memory>
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <random>
 
 #include "anisomesh/controlspace/background_mesh_control_space.h"
@@ -45,14 +47,19 @@ void expectValidTriangulation(const BackgroundMeshControlSpace& bg) {
   EXPECT_NEAR(area, sz.x() * sz.y(), 1e-12 * sz.x() * sz.y());
 }
 
-// Refines bg down to 0.004 around (0.2, 0.4) and gives its nodes metrics varying in
-// direction, size and stretch (strongly stretched near y = 0.4).
-void refineWithVaryingField(BackgroundMeshControlSpace& bg) {
+// A background mesh on [-1, 1] x [0, 1] refined down to 0.004 around (0.2, 0.4), its nodes'
+// metrics varying in direction, size and stretch (strongly stretched near y = 0.4).
+std::unique_ptr<BackgroundMeshControlSpace> refinedWithVaryingField(BackgroundInterpolation interp) {
+  BackgroundMeshOptions o;
+  o.interpolation = interp;
+  auto made = std::make_unique<BackgroundMeshControlSpace>(box(-1.0, 0.0, 1.0, 1.0), o);
+  BackgroundMeshControlSpace& bg = *made;
   bg.refine([&](const ControlElement& e) { return e.box.contains(Vec2(0.2, 0.4)) && e.size > 0.004; }, nullptr);
   for (int i = 0; i < bg.nodeCount(); ++i) {
     const Vec2 p = bg.nodePosition(i);
     bg.setNodeMetric(i, Metric::fromSizes(3.0 * p.x() + p.y(), 0.001 + 0.05 * std::fabs(p.y() - 0.4), 1.2 + p.x()));
   }
+  return made;
 }
 
 }  // namespace
@@ -167,10 +174,8 @@ TEST(ControlSpaceBackground, AdaptsToAnisotropicBoundaryLayer) {
 // field is continuous there); with inverse distance weights, metricAt's answer itself.
 TEST(ControlSpaceBackground, ElementSampleMetricIsTheQueryAtTheSample) {
   for (auto interp : {BackgroundInterpolation::Linear, BackgroundInterpolation::InverseSquaredDistance}) {
-    BackgroundMeshOptions o;
-    o.interpolation = interp;
-    BackgroundMeshControlSpace bg(box(-1.0, 0.0, 1.0, 1.0), o);
-    refineWithVaryingField(bg);
+    const auto made = refinedWithVaryingField(interp);
+    BackgroundMeshControlSpace& bg = *made;
     int checked = 0;
     bg.refine(
         [&](const ControlElement& e) {
@@ -194,10 +199,8 @@ TEST(ControlSpaceBackground, ElementSampleMetricIsTheQueryAtTheSample) {
 // (where a point lies on shared edges), and from a stale or foreign hint.
 TEST(ControlSpaceBackground, MetricAtNearIsMetricAt) {
   for (auto interp : {BackgroundInterpolation::Linear, BackgroundInterpolation::InverseSquaredDistance}) {
-    BackgroundMeshOptions o;
-    o.interpolation = interp;
-    BackgroundMeshControlSpace bg(box(-1.0, 0.0, 1.0, 1.0), o);
-    refineWithVaryingField(bg);
+    const auto made = refinedWithVaryingField(interp);
+    BackgroundMeshControlSpace& bg = *made;
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> ux(-1.0, 1.0), uy(0.0, 1.0), step(-0.002, 0.002);
     int hint = -1;
