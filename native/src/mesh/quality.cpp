@@ -103,12 +103,17 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace,
     uv[v] =
         mesh.params.size() == static_cast<size_t>(nv) ? mesh.params[v] : Vec2(mesh.points[v].x(), mesh.points[v].y());
   std::vector<SymMt> mt(nv);
+  // Meshes come out spatially ordered, so each query starts its search where the previous
+  // one of its chunk ended (metricAtNear: the same values as metricAt).
   if (queriesAreConcurrent(controlSpace))  // the vertices' metrics in parallel chunks
     parallelChunks(size_t(nv), 4096, [&](size_t, size_t b, size_t e) {
-      for (size_t v = b; v < e; ++v) mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
+      int hint = -1;
+      for (size_t v = b; v < e; ++v) mt[v] = SymMt::from(controlSpace.metricAtNear(uv[v], hint).transform());
     });
-  else
-    for (int v = 0; v < nv; ++v) mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
+  else {
+    int hint = -1;
+    for (int v = 0; v < nv; ++v) mt[v] = SymMt::from(controlSpace.metricAtNear(uv[v], hint).transform());
+  }
 
   const std::vector<std::array<int, 2>> edges = distinctElementEdges(mesh);
   r.edges = static_cast<int>(edges.size());
@@ -218,9 +223,10 @@ std::vector<double> triangleMetricAreas(const Mesh& mesh, const ControlSpace& co
   const bool useParams = mesh.params.size() == static_cast<size_t>(nv);
   std::vector<Vec2> uv(nv);
   std::vector<SymMt> mt(nv);
+  int hint = -1;  // metricAtNear: the same values, the search started at the previous vertex
   for (int v = 0; v < nv; ++v) {
     uv[v] = useParams ? mesh.params[v] : Vec2(mesh.points[v].x(), mesh.points[v].y());
-    mt[v] = SymMt::from(controlSpace.metricAt(uv[v]).transform());
+    mt[v] = SymMt::from(controlSpace.metricAtNear(uv[v], hint).transform());
   }
   std::vector<double> out;
   out.reserve(mesh.triangles.size());
