@@ -80,10 +80,12 @@ class Decomposer {
     Mat2 stretch = Mat2::Zero();  // sum of area x (1 - 1/aspect) x e e^T, e the small-size direction
   };
 
-  Samples sample(const std::vector<Edge>& edges, int axis = -1) const {
+  // withStretch: s.stretch too (only the whole domain's frame needs it; the splits do not).
+  Samples sample(const std::vector<Edge>& edges, int axis = -1, bool withStretch = false) const {
     Samples s;
-    Vec2 lo = local(pt(edges[0].a)), hi = lo;
-    for (const Edge& e : edges) lo = lo.cwiseMin(local(pt(e.a))), hi = hi.cwiseMax(local(pt(e.a)));
+    const std::vector<Vec2> ends = localEnds(edges);  // each edge's a, then its b
+    Vec2 lo = ends[0], hi = lo;
+    for (size_t k = 0; k < edges.size(); ++k) lo = lo.cwiseMin(ends[2 * k]), hi = hi.cwiseMax(ends[2 * k]);
     const Vec2 size = hi - lo;
     s.axis = axis >= 0 ? axis : (size.y() > size.x() ? 1 : 0);
     const int across = 1 - s.axis;
@@ -94,11 +96,12 @@ class Decomposer {
     s.column.assign(nc, 0.0);
     if (!(s.width > 0.0) || !(dr > 0.0)) return s;
     std::vector<double> xs;
+    int hint = -1;  // the samples of a row follow each other: hinted queries
     for (int r = 0; r < nr; ++r) {
       const double y = lo[across] + (r + 0.5) * dr;
       xs.clear();
-      for (const Edge& e : edges) {
-        const Vec2 p = local(pt(e.a)), q = local(pt(e.b));
+      for (size_t k = 0; k < edges.size(); ++k) {
+        const Vec2 &p = ends[2 * k], &q = ends[2 * k + 1];
         if ((p[across] > y) != (q[across] > y))
           xs.push_back(p[s.axis] + (y - p[across]) / (q[across] - p[across]) * (q[s.axis] - p[s.axis]));
       }
@@ -112,11 +115,12 @@ class Decomposer {
           Vec2 p;
           p[s.axis] = 0.5 * (c0 + c1);
           p[across] = y;
-          const Mat2 mt = cs_.metricAt(frame_ * p).transform();
+          const Mat2 mt = cs_.metricAtNear(frame_ * p, hint).transform();
           const double d = mt.determinant();
           if (!std::isfinite(d)) continue;
           const double w = (c1 - c0) * dr * std::fabs(d);
           s.column[j] += w;
+          if (!withStretch) continue;
           const SymEigen2 e = symEigen(mt);
           if (e.l2 > 0.0) {
             const Vec2 dir(pm::cos(e.theta), pm::sin(e.theta));
@@ -163,10 +167,11 @@ class Decomposer {
   std::vector<DomainPart> splitAlong(const std::vector<Edge>& edges, const Samples& s) {
     if (!(s.total > 0.0) || !std::isfinite(s.total)) return {};
     const double median = medianOf(s);
+    const std::vector<Vec2> ends = localEnds(edges);  // for every position tried
     const int tries = 1 + 2 * static_cast<int>(kCutReach * static_cast<double>(s.column.size()) / kCutStep);
     for (int k = 0; k < tries; ++k) {
       const int step = (k + 1) / 2 * (k % 2 == 1 ? 1 : -1);  // 0, +1, -1, +2, -2, ...
-      std::vector<DomainPart> parts = cutAt(edges, s.axis, median + kCutStep * step * s.width);
+      std::vector<DomainPart> parts = cutAt(edges, ends, s.axis, median + kCutStep * step * s.width);
       if (!parts.empty()) return parts;
     }
     return {};
@@ -279,9 +284,10 @@ class Decomposer {
     // Every piece: aligned, crossing no edge (but at its own end points) and no other piece.
     const size_t n = poly.size() - 1;
     std::vector<Box2> pieceBoxes;
+    int hint = -1;  // the pieces follow each other
     for (size_t i = 0; i < n; ++i) {
       const Vec2 &p = poly[i], &q = poly[i + 1];
-      if (!alignedAt(0.5 * (p + q), (q - p).normalized())) return false;
+      if (!alignedAt(0.5 * (p + q), (q - p).normalized(), hint)) return false;
       const Box2 box{p.cwiseMin(q), p.cwiseMax(q)};
       const bool meets = grid.any(box, [&](int k) {
         const Edge& e = edges[k];
@@ -351,10 +357,13 @@ class Decomposer {
   }
 
   // Where the metric at p is anisotropic, the unit direction d runs near a principal direction.
-  bool alignedAt(const Vec2& p, const Vec2& d) const {
-    const SymEigen2 e = symEigen(cs_.metricAt(p).transform());
-    if (!(e.l2 > 0.0) || !std::isfinite(e.l1)) return false;
-    if (e.l1 <= kAlignAspect * e.l2) return true;
+  // (hint: the caller's query hint, for points that follow each other.)
+  bool alignedAt(const Vec2& p, const Vec2& d, int& hint) const {
+    const Mat2 mt = cs_.metricAtNear(p, hint).transform();
+    const SymEigen2 v = symEigenValues(mt);  // the same l1, l2 as symEigen; its angle only when needed
+    if (!(v.l2 > 0.0) || !std::isfinite(v.l1)) return false;
+    if (v.l1 <= kAlignAspect * v.l2) return true;
+    const SymEigen2 e = symEigen(mt);
     const Vec2 u(pm::cos(e.theta), pm::sin(e.theta));
     // |sin 2 theta| between d and u: zero along either principal direction.
     return 2.0 * std::fabs(d.dot(u) * (d.x() * u.y() - d.y() * u.x())) <= pm::sin(2.0 * kAlignAngle);
@@ -363,20 +372,32 @@ class Decomposer {
   // Where the metric along [a, b] is anisotropic, the chord runs near a principal direction.
   bool aligned(const Vec2& a, const Vec2& b) const {
     const Vec2 d = (b - a).normalized();
+    int hint = -1;  // the samples follow each other along the chord
     for (int k = 0; k < kAlignSamples; ++k)
-      if (!alignedAt(a + (b - a) * ((k + 0.5) / kAlignSamples), d)) return false;
+      if (!alignedAt(a + (b - a) * ((k + 0.5) / kAlignSamples), d, hint)) return false;
     return true;
   }
 
   // p in the frame's coordinates.
   Vec2 local(const Vec2& p) const { return frame_.transpose() * p; }
 
-  // The chords of the cut line {x[axis] = c} across the part, or empty when one is invalid.
-  std::vector<Chord> chordsAt(const std::vector<Edge>& edges, int axis, double c) const {
+  // The edges' end points in the frame's coordinates: edge k's a at 2 k, its b at 2 k + 1.
+  std::vector<Vec2> localEnds(const std::vector<Edge>& edges) const {
+    std::vector<Vec2> ends(2 * edges.size());
+    for (size_t k = 0; k < edges.size(); ++k)
+      ends[2 * k] = local(pt(edges[k].a)), ends[2 * k + 1] = local(pt(edges[k].b));
+    return ends;
+  }
+
+  // The chords of the cut line {x[axis] = c} across the part, or empty when one is invalid
+  // (framed: localEnds(edges)).
+  std::vector<Chord> chordsAt(const std::vector<Edge>& edges, const std::vector<Vec2>& framed, int axis,
+                              double c) const {
     const int across = 1 - axis;
     std::vector<std::pair<double, int>> crossings;  // (across coordinate, chosen end point)
-    for (const Edge& e : edges) {
-      const Vec2 pa = local(pt(e.a)), pb = local(pt(e.b));
+    for (size_t k = 0; k < edges.size(); ++k) {
+      const Edge& e = edges[k];
+      const Vec2 &pa = framed[2 * k], &pb = framed[2 * k + 1];
       const double da = pa[axis] - c, db = pb[axis] - c;
       if (da == 0.0 || db == 0.0) return {};  // a point on the line: try another position
       if ((da > 0.0) == (db > 0.0)) continue;
@@ -433,8 +454,8 @@ class Decomposer {
     return (w - v).dot(du - v) < 0 ? 1 : 3;
   }
 
-  std::vector<DomainPart> cutAt(const std::vector<Edge>& edges, int axis, double c) {
-    std::vector<Chord> chords = chordsAt(edges, axis, c);
+  std::vector<DomainPart> cutAt(const std::vector<Edge>& edges, const std::vector<Vec2>& ends, int axis, double c) {
+    std::vector<Chord> chords = chordsAt(edges, ends, axis, c);
     if (chords.empty()) return {};
     return cutWith(edges, chords);
   }
@@ -600,7 +621,7 @@ DomainParts decomposeDomain(const std::vector<BoundaryLoop>& loops, const Contro
   for (size_t l = 0; l < whole.loops.size(); ++l)
     for (size_t i = 0; i < whole.loops[l].size(); ++i)
       all.push_back({whole.loops[l][i], whole.loops[l][(i + 1) % whole.loops[l].size()], 0, 0});
-  const Decomposer::Samples s = d.sample(all);
+  const Decomposer::Samples s = d.sample(all, -1, true);
   out.estimatedElements = s.total / kTriangleArea;
   // Cut along the dominant stretching (a rotated layer gets cuts along and across it);
   // within 1e-6 rad of the coordinate axes the frame stays exactly the identity.

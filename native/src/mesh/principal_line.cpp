@@ -12,9 +12,9 @@ namespace {
 
 // The unit principal direction at p closest to d (d unit), with d's sign, blended with d
 // where the metric is nearly isotropic (its directions mean little there); false when the
-// metric is not usable.
-bool principalStep(const ControlSpace& cs, const Vec2& p, const Vec2& d, double isotropicAspect, Vec2& out) {
-  const SymEigen2 e = symEigen(cs.metricAt(p).transform());
+// metric is not usable. hint: the caller's query hint (the steps follow each other).
+bool principalStep(const ControlSpace& cs, const Vec2& p, const Vec2& d, double isotropicAspect, Vec2& out, int& hint) {
+  const SymEigen2 e = symEigen(cs.metricAtNear(p, hint).transform());
   if (!(e.l2 > 0.0) || !std::isfinite(e.l1)) return false;
   const Vec2 u(pm::cos(e.theta), pm::sin(e.theta)), v(-u.y(), u.x());
   Vec2 w = std::fabs(u.dot(d)) >= std::fabs(v.dot(d)) ? u : v;
@@ -32,10 +32,11 @@ bool principalStep(const ControlSpace& cs, const Vec2& p, const Vec2& d, double 
 bool traceOneWay(const ControlSpace& cs, const Vec2& seed, Vec2 d, const RegionExit& exit,
                  const PrincipalLineOptions& o, std::vector<Vec2>& points, int& exitId) {
   Vec2 p = seed;
+  int hint = -1;
   for (int k = 0; k < o.maxSteps; ++k) {
     Vec2 d1, d2;
-    if (!principalStep(cs, p, d, o.isotropicAspect, d1)) return false;
-    if (!principalStep(cs, p + 0.5 * o.step * d1, d1, o.isotropicAspect, d2)) return false;
+    if (!principalStep(cs, p, d, o.isotropicAspect, d1, hint)) return false;
+    if (!principalStep(cs, p + 0.5 * o.step * d1, d1, o.isotropicAspect, d2, hint)) return false;
     const Vec2 q = p + o.step * d2;
     double t = 0.0;
     if (exit(p, q, t, exitId)) {
@@ -55,7 +56,9 @@ PrincipalLine tracePrincipalLine(const ControlSpace& cs, const Vec2& seed, const
                                  const PrincipalLineOptions& options) {
   PrincipalLine line;
   Vec2 d0;
-  if (!(options.step > 0.0) || !principalStep(cs, seed, along.normalized(), options.isotropicAspect, d0)) return line;
+  int hint = -1;
+  if (!(options.step > 0.0) || !principalStep(cs, seed, along.normalized(), options.isotropicAspect, d0, hint))
+    return line;
   std::vector<Vec2> back, ahead;
   if (!traceOneWay(cs, seed, -d0, exit, options, back, line.firstExit) ||
       !traceOneWay(cs, seed, d0, exit, options, ahead, line.lastExit))
