@@ -72,27 +72,55 @@ Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& 
   }
   m.points.resize(total);
   m.params.resize(total);
-  for (size_t i = 0; i < parts.points.size(); ++i) {
-    m.params[i] = parts.points[i];
-    m.points[i] = Vec3(parts.points[i].x(), parts.points[i].y(), 0.0);
-  }
   m.pointRefs.assign(total, 0);
-  MesherTimings sum;
+  // Each part's triangles and quads at offsets known beforehand: the parts write their own
+  // ranges concurrently (the same arrays as appending them part by part).
+  std::vector<size_t> triBase(n + 1, 0), triRefBase(n + 1, 0), quadBase(n + 1, 0), quadRefBase(n + 1, 0);
   for (size_t p = 0; p < n; ++p) {
-    const Mesh& pm = meshes[p];
+    triBase[p + 1] = triBase[p] + meshes[p].triangles.size();
+    triRefBase[p + 1] = triRefBase[p] + meshes[p].triangleRefs.size();
+    quadBase[p + 1] = quadBase[p] + meshes[p].quads.size();
+    quadRefBase[p + 1] = quadRefBase[p] + meshes[p].quadRefs.size();
+  }
+  m.triangles.resize(triBase[n]);
+  m.triangleRefs.resize(triRefBase[n]);
+  m.quads.resize(quadBase[n]);
+  m.quadRefs.resize(quadRefBase[n]);
+  // Chunks: the loops' and chords' points first, then one per part.
+  const size_t shared = parts.points.size();
+  parallelChunks(n + 1, 1, [&](size_t c, size_t, size_t) {
+    if (c == 0) {
+      for (size_t i = 0; i < shared; ++i) {
+        m.params[i] = parts.points[i];
+        m.points[i] = Vec3(parts.points[i].x(), parts.points[i].y(), 0.0);
+      }
+      return;
+    }
+    const size_t p = c - 1;
+    Mesh pm = std::move(meshes[p]);  // released here, on the thread that merged it
     std::vector<int> map;
     for (const auto& l : parts.parts[p].loops) map.insert(map.end(), l.begin(), l.end());
     const size_t nb = map.size();
+    map.reserve(pm.points.size());
     for (size_t v = nb; v < pm.points.size(); ++v) {
       const size_t g = innerBase[p] + (v - nb);
       map.push_back(static_cast<int>(g));
       m.points[g] = pm.points[v];
       m.params[g] = pm.points[v].head<2>();
     }
-    for (const auto& t : pm.triangles) m.triangles.push_back({map[t[0]], map[t[1]], map[t[2]]});
-    m.triangleRefs.insert(m.triangleRefs.end(), pm.triangleRefs.begin(), pm.triangleRefs.end());
-    for (const auto& q : pm.quads) m.quads.push_back({map[q[0]], map[q[1]], map[q[2]], map[q[3]]});
-    m.quadRefs.insert(m.quadRefs.end(), pm.quadRefs.begin(), pm.quadRefs.end());
+    for (size_t k = 0; k < pm.triangles.size(); ++k) {
+      const auto& t = pm.triangles[k];
+      m.triangles[triBase[p] + k] = {map[t[0]], map[t[1]], map[t[2]]};
+    }
+    std::copy(pm.triangleRefs.begin(), pm.triangleRefs.end(), m.triangleRefs.begin() + triRefBase[p]);
+    for (size_t k = 0; k < pm.quads.size(); ++k) {
+      const auto& q = pm.quads[k];
+      m.quads[quadBase[p] + k] = {map[q[0]], map[q[1]], map[q[2]], map[q[3]]};
+    }
+    std::copy(pm.quadRefs.begin(), pm.quadRefs.end(), m.quadRefs.begin() + quadRefBase[p]);
+  });
+  MesherTimings sum;
+  for (size_t p = 0; p < n; ++p) {
     sum.boundary += timings[p].boundary;
     sum.insertion += timings[p].insertion;
     sum.improvement += timings[p].improvement;
