@@ -327,10 +327,21 @@ export function wrapCore(core) {
       if (options.maxElements !== undefined && !(Number.isInteger(options.maxElements) && options.maxElements > 0)) {
         throw argError('options.maxElements: expected a positive integer');
       }
-      if (options.onProgress !== undefined && typeof options.onProgress !== 'function') throw argError('options.onProgress: expected a function');
+      for (const key of ['onProgress', 'onStage']) {
+        if (options[key] !== undefined && typeof options[key] !== 'function') throw argError(`options.${key}: expected a function`);
+      }
+      if (options.stats !== undefined && typeof options.stats !== 'boolean') throw argError('options.stats: expected a boolean');
       const svg = checkSvgOption(options.svg);
       const r = unwrap(core.remesh(mesh, metrics, { ...options, svg }));
-      return { mesh: r.mesh, stats: JSON.parse(r.stats), ...(svg !== undefined ? { svg: r.svg } : {}), ...(options.vtu ? { vtu: r.vtu } : {}) };
+      const result = {
+        mesh: r.mesh,
+        stats: r.stats === null ? null : JSON.parse(r.stats),
+        ...(svg !== undefined ? { svg: r.svg } : {}),
+        ...(options.vtu ? { vtu: r.vtu } : {}),
+      };
+      // stats: false: the quality report on demand (report()), as meshCase.
+      if (r.report) Object.assign(result, deferredReport(r.report, result));
+      return result;
     },
     /**
      * The metric of one or several fields (Float64Array of one value per vertex each) on a

@@ -174,6 +174,17 @@ std::string textOf(const val& text) {
   return s;
 }
 
+// A text out of the heap as a JS string: large ones decoded by TextDecoder in one pass (embind's
+// std::string conversion scans the bytes twice in JS loops, for NULs and for the end: 13 ms of a
+// 4 MB .mesh text); small ones, or where there is no TextDecoder, by embind.
+val textToJs(const std::string& text) {
+  static const val decoder =
+      val::global("TextDecoder").isUndefined() ? val::undefined() : val::global("TextDecoder").new_();
+  if (text.size() < (1u << 12) || decoder.isUndefined()) return val(text);
+  return decoder.call<val>(
+      "decode", emscripten::typed_memory_view(text.size(), reinterpret_cast<const unsigned char*>(text.data())));
+}
+
 // The mesh as typed arrays: vertices (dimension values each), params (uv), positions
 // (Float32 xyz for WebGL), connectivity (Uint32, 0-based) and references (Int32).
 val meshToJs(const Mesh& mesh) {
@@ -422,9 +433,9 @@ val meshCaseJson(std::string jsonText, val options) {
     const double t1 = emscripten_get_now();
     val out = val::object();
     out.set("mesh", meshToJs(run.mesh));
-    if (wantsSvg(options)) out.set("svg", caseRunSvg(run, svgOptions(options)));
-    if (options["vtu"].isTrue()) out.set("vtu", caseRunVtu(run));
-    out.set("stats", run.stats.is_null() ? val::null() : val(run.stats.dump()));
+    if (wantsSvg(options)) out.set("svg", textToJs(caseRunSvg(run, svgOptions(options))));
+    if (options["vtu"].isTrue()) out.set("vtu", textToJs(caseRunVtu(run)));
+    out.set("stats", run.stats.is_null() ? val::null() : textToJs(run.stats.dump()));
     out.set("controlSpace",
             o.inspectControlSpace && !run.controlSpace.is_null() ? val(run.controlSpace.dump()) : val::null());
     out.set("vertexMetrics",
@@ -466,14 +477,14 @@ val writeMeshText(val mesh, std::string format) {
   return guarded([&] {
     val out = val::object();
     if (format == "svg") {
-      out.set("text", writeSvg(meshFromJs(mesh)));
+      out.set("text", textToJs(writeSvg(meshFromJs(mesh))));
     } else if (formatFromName(format) == MeshFormat::MeditBinary) {  // bytes: a Uint8Array copy
       const std::string bytes = writeMeshString(meshFromJs(mesh), MeshFormat::MeditBinary);
       out.set("bytes", val::global("Uint8Array")
                            .new_(emscripten::typed_memory_view(bytes.size(),
                                                                reinterpret_cast<const unsigned char*>(bytes.data()))));
     } else {
-      out.set("text", writeMeshString(meshFromJs(mesh), formatFromName(format)));
+      out.set("text", textToJs(writeMeshString(meshFromJs(mesh), formatFromName(format))));
     }
     return out;
   });
@@ -520,7 +531,9 @@ std::vector<Metric> metricsFromFlat(const std::vector<double>& m) {
 val writeSolText(val metrics) {
   return guarded([&] {
     val out = val::object();
-    out.set("text", writeSol(metricsToSol(metricsFromFlat(emscripten::convertJSArrayToNumberVector<double>(metrics)))));
+    out.set(
+        "text",
+        textToJs(writeSol(metricsToSol(metricsFromFlat(emscripten::convertJSArrayToNumberVector<double>(metrics))))));
     return out;
   });
 }
@@ -548,20 +561,31 @@ val remeshJs(val mesh, val metrics, val options) {
     const val onProgress = options["onProgress"];
     if (onProgress.typeOf().as<std::string>() == "function")
       o.mesher.progress = [onProgress](double fraction) { return !onProgress(fraction).isFalse(); };
-    PipelineReport report;
+    // onStage(name) as each stage starts ("boundary", "control space", "discretization",
+    // "meshing", as the CLI's -v 1 lines, then "output": the results copied out to JS): lets a
+    // caller time the stages.
+    const val onStage = options["onStage"];
+    if (onStage.typeOf().as<std::string>() == "function")
+      o.onStage = [onStage](const char* stage) { onStage(std::string(stage)); };
     std::unique_ptr<AdaptiveControlSpace> cs;
     CaseRun run;
     // Moved in, as the CLI does: the input and its metrics are freed once the control space
     // is built (the wasm heap's peak on large carriers).
-    run.mesh = remesh(std::move(input), std::move(m), o, &report, &cs);
+    run.mesh = remesh(std::move(input), std::move(m), o, &run.report, &cs);
     run.finalSpace = std::move(cs);
+    if (o.onStage) o.onStage("output");  // the mesh out to JS (and the report, unless stats: false)
     val r = val::object();
     r.set("mesh", meshToJs(run.mesh));
-    if (wantsSvg(options)) r.set("svg", caseRunSvg(run, svgOptions(options)));
-    if (options["vtu"].isTrue()) r.set("vtu", caseRunVtu(run));
+    if (wantsSvg(options)) r.set("svg", textToJs(caseRunSvg(run, svgOptions(options))));
+    if (options["vtu"].isTrue()) r.set("vtu", textToJs(caseRunVtu(run)));
+    if (options["stats"].isFalse()) {
+      // No report now (the CLI makes none without --stats): the run is kept for report().
+      r.set("stats", val::null());
+      r.set("report", val(std::make_shared<CaseReportHandle>(std::move(run))));
+      return r;
+    }
     // The same report as the native CLI's remesh --stats.
-    const nlohmann::json stats = pipelineStatsJson(run.mesh, *run.finalSpace, report);
-    r.set("stats", stats.dump());
+    r.set("stats", textToJs(pipelineStatsJson(run.mesh, *run.finalSpace, run.report).dump()));
     return r;
   });
 }
@@ -756,9 +780,9 @@ class ControlSpaceHandle {
       require(cs_ != nullptr, ErrorCode::InvalidArgument, "control space is not built");
       val out = val::object();
       if (const auto* a = dynamic_cast<const AdaptiveControlSpace*>(cs_.get()))
-        out.set("json", controlSpaceToJson(*a).dump());
+        out.set("json", textToJs(controlSpaceToJson(*a).dump()));
       else
-        out.set("json", sampledControlSpaceToJson(*cs_, sampleGrid, sampleGrid).dump());
+        out.set("json", textToJs(sampledControlSpaceToJson(*cs_, sampleGrid, sampleGrid).dump()));
       return out;
     });
   }
@@ -768,7 +792,7 @@ class ControlSpaceHandle {
       require(a != nullptr, ErrorCode::InvalidArgument,
               "only an adaptive control space (quadtree or background mesh) exports to VTK, not a minimum");
       val out = val::object();
-      out.set("text", controlSpaceToVtk(*a));
+      out.set("text", textToJs(controlSpaceToVtk(*a)));
       return out;
     });
   }

@@ -447,6 +447,16 @@ export interface RemeshOptions {
   hsiz?: number;
   maxElements?: number;
   onProgress?: (fraction: number) => boolean | void;
+  /**
+   * Called as each stage starts: 'boundary', 'control space', 'discretization', 'meshing' (the
+   * CLI's -v 1 stages), then 'output' (the results copied out of the core).
+   */
+  onStage?: (stage: string) => void;
+  /**
+   * false skips the quality report (stats is null; the CLI makes none without --stats): the
+   * result's report() makes it later, dispose() frees the kept run without it.
+   */
+  stats?: boolean;
   svg?: boolean;
   vtu?: boolean;
 }
@@ -485,6 +495,12 @@ export interface Anisomesh {
   meshCase(c: SurfaceCase, options?: MeshCaseOptions): CaseResult<SurfaceMeshStats>;
   meshCase(c: Case | string, options?: MeshCaseOptions): CaseResult;
   /** Remeshes the domain bounded by mesh's boundary edges under per-vertex tensors (m11, m12, m22 each). */
+  remesh(
+    mesh: MeshArrays,
+    /** m11, m12, m22 per vertex; null: isotropic sizes (options.hsiz, else the input's edge lengths). */
+    metrics: Float64Array | null,
+    options: RemeshOptions & { stats: false },
+  ): { mesh: MeshArrays; stats: null; report(): PlanarMeshStats; dispose(): void; svg?: string; vtu?: string };
   remesh(
     mesh: MeshArrays,
     /** m11, m12, m22 per vertex; null: isotropic sizes (options.hsiz, else the input's edge lengths). */

@@ -141,6 +141,43 @@ test('.sol tensors round trip and drive remesh', () => {
   assert.throws(() => am.remesh(mesh, back, { hgrad: 0.5 }), { code: 'INVALID_ARGUMENT' });
 });
 
+test('remesh with stats: false: the same mesh, no report until report(); onStage marks the stages', () => {
+  const { mesh } = am.meshCase(example('point_source'));
+  const n = mesh.vertices.length / 2;
+  const metrics = new Float64Array(3 * n);
+  for (let i = 0; i < n; i++) metrics.set([400 + i % 7, 3, 300], 3 * i);
+  const full = am.remesh(mesh, metrics);
+  const stages = [];
+  const quick = am.remesh(mesh, metrics, { stats: false, onStage: (name) => stages.push(name) });
+  assert.equal(quick.stats, null);
+  assert.deepEqual(stages, ['boundary', 'control space', 'discretization', 'meshing', 'output']);
+  assert.deepEqual(quick.mesh.triangles, full.mesh.triangles);
+  assert.deepEqual(quick.mesh.vertices, full.mesh.vertices);
+  const strip = ({ pipelineSeconds, timings, ...rest }) => rest;  // times differ between runs
+  assert.deepEqual(strip(quick.report()), strip(full.stats));
+  assert.throws(() => quick.report(), { code: 'INVALID_ARGUMENT', message: /already made/ });
+  assert.equal(full.report, undefined, 'a run with its stats keeps nothing');
+  const d = am.remesh(mesh, metrics, { stats: false });
+  d.dispose();
+  assert.throws(() => d.report(), { code: 'INVALID_ARGUMENT', message: /disposed/ });
+  assert.throws(() => am.remesh(mesh, metrics, { stats: 0 }), { code: 'INVALID_ARGUMENT', message: /options\.stats/ });
+  assert.throws(() => am.remesh(mesh, metrics, { onStage: 'x' }), { code: 'INVALID_ARGUMENT', message: /options\.onStage/ });
+});
+
+test('large texts out of the core (decoded in one pass) are the texts written', () => {
+  const { mesh } = am.meshCase(example('fig7_rect_holes_dr2'));
+  const text = am.writeMesh(mesh, 'mesh');
+  assert.ok(text.length > 1 << 12, `${text.length} characters: past the one-pass decoding threshold`);
+  // Read back and written again: the same text (and the same mesh), for every text format.
+  assert.equal(am.writeMesh(am.readMesh(text), 'mesh'), text);
+  assert.equal(am.writeMesh(am.readMesh(new TextEncoder().encode(text)), 'mesh'), text);
+  assert.ok(text.startsWith('MeshVersionFormatted') && text.trimEnd().endsWith('End'));
+  for (const format of ['vtk', 'obj', 'msh', 'msh2']) {
+    const t = am.writeMesh(mesh, format);
+    assert.equal(am.writeMesh(am.readMesh(t, format), format), t, format);
+  }
+});
+
 test('control space: queries, inspection, dispose', () => {
   const cs = am.createControlSpace(example('point_source'));
   const m = cs.metricAt([0.5, 0.5]);

@@ -103,6 +103,13 @@ const remeshed = am.remesh(planar.mesh, null, { hmax: 0.1, svg: true });
 compare('remesh', remeshed.stats, planarKeys);
 const svg: string | undefined = remeshed.svg;
 if (!svg?.startsWith('<svg') && !svg?.startsWith('<?xml')) problems.push('remesh svg missing');
+// stats: false: no report at once, the same fields from report().
+const stages: string[] = [];
+const deferred = am.remesh(planar.mesh, null, { hmax: 0.1, stats: false, onStage: (name: string) => { stages.push(name); } });
+const none: null = deferred.stats;
+if (none !== null) problems.push('remesh stats: false: stats not null');
+compare('remesh report()', deferred.report(), planarKeys);
+if (stages.join() !== 'boundary,control space,discretization,meshing,output') problems.push(`remesh onStage: ${stages.join()}`);
 
 // Binary Medit: bytes out, bytes in, the same mesh; text formats stay strings.
 const meshb: Uint8Array = am.writeMesh(planar.mesh, 'meshb');
