@@ -60,11 +60,12 @@ struct Piece {
   int segments = 1;
 };
 
-// |c'(t)| in the metric at c(t): the integrand of the metric length.
-double metricSpeed(const Curve& c, const ControlSpace& cs, double t) {
+// |c'(t)| in the metric at c(t): the integrand of the metric length. hint: the caller's
+// query hint (the quadrature's points follow each other along the curve).
+double metricSpeed(const Curve& c, const ControlSpace& cs, double t, int& hint) {
   Vec2 p, d;
   c.pointAndDerivative(t, p, d);
-  return cs.metricAt(p).length(d);
+  return cs.metricAtNear(p, hint).length(d);
 }
 
 // Parameter bounds of the smooth pieces of c: 0, its increasing breakpoints inside (0, 1), 1.
@@ -79,12 +80,14 @@ std::vector<double> pieceBounds(const Curve& c) {
 }  // namespace
 
 double metricLength(const Curve& c, const ControlSpace& cs, double a, double b, double tolerance) {
-  return integrateAdaptive([&](double t) { return metricSpeed(c, cs, t); }, a, b, tolerance);
+  int hint = -1;
+  return integrateAdaptive([&](double t) { return metricSpeed(c, cs, t, hint); }, a, b, tolerance);
 }
 
 std::vector<double> discretizeCurve(const Curve& c, const ControlSpace& cs, int minSegments,
                                     const DiscretizeOptions& options) {
-  const Integrand f = [&](double t) { return metricSpeed(c, cs, t); };
+  int hint = -1;
+  const Integrand f = [&](double t) { return metricSpeed(c, cs, t, hint); };
   const std::vector<double> bounds = pieceBounds(c);
 
   std::vector<Piece> pieces;
