@@ -2,6 +2,10 @@
 // under mesh/planar/, are described in mesh/planar/mesher_impl.h).
 #include "anisomesh/mesh/planar_mesher.h"
 
+#include <exception>
+
+#include "anisomesh/controlspace/concurrency.h"
+#include "anisomesh/core/parallel.h"
 #include "anisomesh/mesh/all_quad_split.h"
 #include "anisomesh/mesh/domain_decomposition.h"
 
@@ -88,13 +92,37 @@ Mesh Mesher::finish() {
 Mesh meshPlanarBoundary(const std::vector<BoundaryLoop>& loops, const ControlSpace& controlSpace,
                         const PlanarMesherOptions& options) {
   planar::Mesher mesher(loops, controlSpace, options);
-  const double estimate = mesher.start();
+  const bool mayDecompose = options.partElements > 0 && !options.boundaryOnly && !options.allQuads;
+  DomainDecompositionOptions d;
+  d.partElements = options.partElements;
+  // With threads to spare, the decomposition is planned while the whole domain's boundary
+  // triangulation is built (its first level has one part: a thread would idle), and
+  // dropped, with any error it raised, when the estimate keeps the domain whole. Only for
+  // boundaries long enough to enclose 2 partElements at their own spacing (a square of n
+  // points holds about n^2 / 8 triangles): small domains would wait for its samples.
+  double boundaryPoints = 0.0;
+  for (const BoundaryLoop& l : loops) boundaryPoints += static_cast<double>(l.points.size());
+  const bool ahead = mayDecompose && threadCount() > 1 && queriesAreConcurrent(controlSpace) &&
+                     boundaryPoints * boundaryPoints >= 16.0 * static_cast<double>(options.partElements);
+  DomainParts parts;
+  std::exception_ptr decompositionFailure;
+  double estimate = 0.0;
+  if (ahead) {
+    parallelInvoke([&] { estimate = mesher.start(); },
+                   [&] {
+                     try {
+                       parts = decomposeDomain(loops, controlSpace, d);
+                     } catch (...) {
+                       decompositionFailure = std::current_exception();
+                     }
+                   });
+  } else {
+    estimate = mesher.start();
+  }
   // Only large domains pay for the decomposition's samples (small ones keep their queries).
-  if (options.partElements > 0 && !options.boundaryOnly && !options.allQuads &&
-      estimate >= 2.0 * static_cast<double>(options.partElements)) {
-    DomainDecompositionOptions d;
-    d.partElements = options.partElements;
-    const DomainParts parts = decomposeDomain(loops, controlSpace, d);
+  if (mayDecompose && estimate >= 2.0 * static_cast<double>(options.partElements)) {
+    if (decompositionFailure) std::rethrow_exception(decompositionFailure);
+    if (!ahead) parts = decomposeDomain(loops, controlSpace, d);
     if (parts.parts.size() > 1) {
       try {
         return meshDomainParts(loops, parts, controlSpace, options);
