@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "../../native/src/io/tokens.h"  // the private tokenizer's newline count
 #include "anisomesh/core/error.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/medit.h"
@@ -321,5 +322,29 @@ TEST(IoMedit, NumbersRoundTripBitExactly) {
   ASSERT_EQ(back.points.size(), m.points.size());
   for (size_t i = 0; i < m.points.size(); ++i) {
     EXPECT_EQ(std::memcmp(&back.points[i], &m.points[i], sizeof(Vec3)), 0) << i;
+  }
+}
+
+// The newline count that places the lines of a large section in its blocks (a word at a time):
+// exact for every length, start and byte, the bytes one bit away from '\n' (and 0x00, 0x80,
+// 0xff) included, over more than one flush of the per-byte counts.
+TEST(IoMedit, NewlineCountIsExactForEveryByte) {
+  std::uint64_t seed = 12345;
+  auto next = [&seed] {
+    seed = seed * 6364136223846793005u + 1442695040888963407u;
+    return unsigned(seed >> 33);
+  };
+  const unsigned char near[] = {'\n',      '\n' ^ 1,  '\n' ^ 2,   '\n' ^ 4, '\n' ^ 8, '\n' ^ 16,
+                                '\n' ^ 32, '\n' ^ 64, '\n' ^ 128, 0,        0x80,     0xff};
+  for (int round = 0; round < 400; ++round) {
+    const size_t n = round < 100 ? size_t(round) : next() % 6000;
+    std::string text(n + 8, 'x');
+    const unsigned mode = next() % 3;  // random bytes, bytes near '\n', all newlines
+    for (char& ch : text) ch = char(mode == 0 ? next() % 256 : mode == 1 ? near[next() % sizeof near] : '\n');
+    const size_t start = next() % 8;
+    size_t expected = 0;
+    for (size_t i = start; i < start + n; ++i) expected += text[i] == '\n';
+    EXPECT_EQ(io_detail::TokenStream::countNewlines(text.data() + start, n), expected)
+        << "round " << round << ", " << n << " bytes";
   }
 }
