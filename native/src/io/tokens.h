@@ -22,6 +22,7 @@
 #include "anisomesh/core/number_text.h"
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/core/types.h"
+#include "number_scan.h"
 
 namespace anisomesh {
 namespace io_detail {
@@ -156,7 +157,17 @@ class TokenStream {
     }
     bool integer(long long* v) {
       if (!startToken()) return false;
-      // Plain digits (at most 17, so no overflow) ending the token: their value, as from_chars.
+      // Plain digits ending the token: their value, as from_chars (1 to 7 digits, a
+      // vertex number, read at once; or up to 17 one by one, so no overflow).
+      if (kSwarDigits && end_ - p_ >= 8) {
+        const uint64_t word = load8(p_);
+        const int n = leadingDigits(word);
+        if (n > 0 && n < 8 && isSpace(p_[n])) {
+          *v = (long long)digitsValue(word, n);
+          p_ += n;
+          return true;
+        }
+      }
       unsigned long long x = 0;
       const char* q = p_;
       while (q < end_ && q - p_ < 18 && static_cast<unsigned char>(*q - '0') < 10) x = x * 10 + unsigned(*q++ - '0');
@@ -312,6 +323,9 @@ class TokenStream {
   // (strtod tells an overflow from a written "inf"): the same value either way. Returns the
   // end of the number (b if none).
   static const char* parseDouble(const char* b, const char* e, double* v, bool* overflow) {
+    // The plain forms first (number_scan.h: the same value).
+    const char* q = scanDecimal(b, e, v);
+    if (q && (q >= e || !isNumberChar(*q))) return q;
     const fast_float::from_chars_result r = fast_float::from_chars(b, e, *v);
     if (r.ec == std::errc() && r.ptr > b && (r.ptr >= e || !isNumberChar(*r.ptr)) && !std::isinf(*v)) return r.ptr;
     // The text is NUL-terminated (a std::string) and b starts a token: strtod stops in it.
