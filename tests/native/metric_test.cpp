@@ -6,6 +6,7 @@
 
 #include "anisomesh/anisomesh.h"
 #include "anisomesh/metric/metric_ellipse.h"
+#include "anisomesh/metric/sym_eigen.h"
 
 using namespace anisomesh;
 
@@ -199,4 +200,32 @@ TEST(MetricEllipse, PointsLieOnTheScaledUnitBall) {
   EXPECT_GT(a.x() * b.y() - a.y() * b.x(), 0.0);  // counter-clockwise in metric space
   EXPECT_THROW(metricEllipse(m, c, 2), Error);
   EXPECT_THROW(metricEllipse(m, c, 100001), Error);
+}
+
+TEST(Metric, TensorsNearSingularAreCheckedByTheirEigenvalues) {
+  // fromTensor accepts exactly the finite tensors whose smaller eigenvalue (as
+  // symEigenValues computes it) is positive, also when a cheaper test decides.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int accepted = 0, refused = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const double scale = std::pow(10.0, -120.0 + 240.0 * u(rng));
+    const double a = scale * (0.01 + u(rng)), c = scale * (0.01 + u(rng)) * (i % 3 == 0 ? 1e-8 : 1.0);
+    // |b| = sqrt(ac) (1 - d) for d from 1e-18 to 1: det from about 0 to ac, either side.
+    const double d = std::pow(10.0, -18.0 * u(rng)) * (i % 4 == 0 ? -1.0 : 1.0);
+    const double b = std::sqrt(a * c) * (1.0 - d) * (i % 2 ? 1.0 : -1.0);
+    Mat2 m;
+    m << a, b, b, c;
+    const bool want = symEigenValues(m).l2 > 0.0;
+    bool got = true;
+    try {
+      Metric::fromTensor(a, b, c);
+    } catch (const Error&) {
+      got = false;
+    }
+    ASSERT_EQ(got, want) << "a " << a << " b " << b << " c " << c;
+    (got ? accepted : refused)++;
+  }
+  EXPECT_GT(accepted, 1000);
+  EXPECT_GT(refused, 1000);
 }

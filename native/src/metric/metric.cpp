@@ -17,9 +17,22 @@ std::string describe(const Mat2& m) {
   return os.str();
 }
 
+// A sufficient condition for the checks of checkSpd, cheaper than its eigenvalues (a
+// metric read from a file per vertex): symmetric, diagonal in [1e-100, 1e100], |m12| <=
+// 1e100 (no overflow or underflow below) and det > 1e-10 tr^2 (computed). Then the
+// smallest eigenvalue is l2 >= det / tr > 0.99e-10 tr, far above the rounding error of
+// symEigenValues' mean - hypot (a few ulps of tr), so its l2 is positive as well.
+bool clearlySpd(const Mat2& m) {
+  const double a = m(0, 0), b = m(0, 1), c = m(1, 1);
+  if (!(b == m(1, 0) && a >= 1e-100 && a <= 1e100 && c >= 1e-100 && c <= 1e100 && std::abs(b) <= 1e100)) return false;
+  const double t = a + c;
+  return a * c - b * b > 1e-10 * (t * t);
+}
+
 // Checks build their messages only on failure: they sit on the hot path of every
 // validated metric construction.
 void checkSpd(const Mat2& m, const char* what) {
+  if (clearlySpd(m)) return;
   if (!m.allFinite())
     throw Error(ErrorCode::InvalidMetric, std::string(what) + " has a NaN or infinite entry: " + describe(m));
   const double scale = m.cwiseAbs().maxCoeff();
