@@ -3,7 +3,8 @@
 // is held) on a surface case whose first patch gets a radial source moved by 0.1 in u per
 // run, as a drag moves it. One process, so the curvature-stage cache works as in the
 // worker. Prints CPU and wall ms per run and the median of the runs after the first; a
-// profiler (perf record -g) run on it shows where a drag's time goes.
+// profiler (perf record -g) run on it shows where a drag's time goes. Each run's line ends
+// with a hash of its mesh (two builds' meshes compared run for run).
 //
 // Usage: surface_drag_native CASE.json [RUNS] [--hmax H --chord T] [--report]
 #include <algorithm>
@@ -25,6 +26,22 @@ double cpuMs() {
 }
 double wallMs() {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+// FNV-1a over the mesh's points, parameters, triangles, quads and refs (bits exact): tells
+// whether two builds give the same meshes run for run.
+unsigned long long meshHash(const anisomesh::Mesh& m) {
+  unsigned long long h = 1469598103934665603ull;
+  auto add = [&](const void* p, size_t n) {
+    const unsigned char* b = static_cast<const unsigned char*>(p);
+    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  };
+  for (const auto& p : m.points) add(p.data(), 3 * sizeof(double));
+  for (const auto& p : m.params) add(p.data(), 2 * sizeof(double));
+  add(m.triangles.data(), m.triangles.size() * sizeof(m.triangles[0]));
+  add(m.quads.data(), m.quads.size() * sizeof(m.quads[0]));
+  add(m.pointRefs.data(), m.pointRefs.size() * sizeof(int));
+  add(m.triangleRefs.data(), m.triangleRefs.size() * sizeof(int));
+  return h;
 }
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -77,7 +94,8 @@ int main(int argc, char** argv) {
       (void)anisomesh::caseRunStats(run);
       rep.push_back(cpuMs() - r0);
     }
-    std::printf("run %d: %zu triangles, CPU %.1f ms (wall %.1f)\n", k, tris, cpu.back(), wall.back());
+    std::printf("run %d: %zu triangles, CPU %.1f ms (wall %.1f), mesh %016llx\n", k, tris, cpu.back(), wall.back(),
+                meshHash(run.mesh));
   }
   std::printf("%s: %zu triangles: first CPU %.1f ms, later median CPU %.1f ms (wall %.1f)", argv[1], tris, cpu[0],
               median({cpu.begin() + 1, cpu.end()}), median({wall.begin() + 1, wall.end()}));
