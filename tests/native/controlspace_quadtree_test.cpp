@@ -246,3 +246,65 @@ TEST(ControlSpaceQuadtree, RefineNearSplitsAsRefine) {
     }
   }
 }
+
+TEST(ControlSpaceQuadtree, ApplyConstraintsTouchedMatchesThePassInOrder) {
+  // applyConstraintsTouched() visits only the constraints reading a flagged node: the same
+  // rewrites, in the same order, as a pass over every constraint that rewrites those whose
+  // node or a master is flagged (flagging what it rewrites), and the same bits as
+  // applyConstraints() after the changes.
+  for (auto interp : {QuadtreeInterpolation::Bilinear, QuadtreeInterpolation::Serendipity}) {
+    for (int trial = 0; trial < 6; ++trial) {
+      QuadtreeControlSpace qt = irregularTree(interp);
+      std::mt19937 rng(40 + trial);
+      std::uniform_real_distribution<double> a(-1.5, 1.5), h(0.01, 0.2), u(0.0, 1.0);
+      for (int i = 0; i < qt.nodeCount(); ++i)
+        if (qt.nodeIsFree(i)) qt.setNodeMetric(i, Metric::fromSizes(a(rng), h(rng), h(rng)));
+      qt.applyConstraints();
+      // Change a few nodes (free and hanging), few enough that most constraints are untouched.
+      std::vector<char> touched(qt.nodeCount(), 0);
+      std::vector<int> touchedList;
+      const double share = trial < 3 ? 0.03 : 0.15;
+      for (int i = 0; i < qt.nodeCount(); ++i)
+        if (u(rng) < share || (touchedList.empty() && i + 1 == qt.nodeCount())) {
+          qt.setNodeMetric(i, Metric::fromSizes(a(rng), h(rng), h(rng)));
+          touched[i] = 1;
+          touchedList.push_back(i);
+        }
+      ASSERT_FALSE(touchedList.empty());
+      // The reference pass, on a copy.
+      std::unique_ptr<AdaptiveControlSpace> ref = qt.clone();
+      std::vector<char> refTouched = touched;
+      std::vector<int> expected;
+      for (const auto& hn : ref->hangingNodes()) {
+        if (!refTouched[hn.node] && !refTouched[hn.masters[0]] && !refTouched[hn.masters[1]] &&
+            !refTouched[hn.masters[2]])
+          continue;
+        SymMt r{0.0, 0.0, 0.0};
+        for (int j = 0; j < 3; ++j) {
+          const SymMt& m = ref->nodeMt(hn.masters[j]);
+          r.a += hn.weights[j] * m.a;
+          r.b += hn.weights[j] * m.b;
+          r.c += hn.weights[j] * m.c;
+        }
+        ref->setNodeMetric(hn.node, toMetric(r));
+        refTouched[hn.node] = 1;
+        expected.push_back(hn.node);
+      }
+      std::unique_ptr<AdaptiveControlSpace> all = qt.clone();
+      all->applyConstraints();
+      std::vector<AdaptiveControlSpace::RewrittenNode> rewritten;
+      qt.applyConstraintsTouched(touched, touchedList, rewritten);
+      std::vector<int> got;
+      for (const auto& w : rewritten) got.push_back(w.node);
+      EXPECT_EQ(got, expected);
+      EXPECT_LT(expected.size(), ref->hangingNodes().size());
+      int differing = 0;
+      for (int i = 0; i < qt.nodeCount(); ++i) {
+        const SymMt &x = qt.nodeMt(i), &y = all->nodeMt(i);
+        differing += !(x.a == y.a && x.b == y.b && x.c == y.c);
+      }
+      EXPECT_EQ(differing, 0);
+      EXPECT_EQ(touched, refTouched);
+    }
+  }
+}

@@ -371,7 +371,7 @@ int smoothFrom(AdaptiveControlSpace& cs, const std::vector<int>* only, const Gra
       for (const auto& h : hanging) rewritten.push_back({h.node, cs.nodeMt(h.node)});
       cs.applyConstraints();
     } else {
-      cs.applyConstraintsTouched(touched, rewritten);
+      cs.applyConstraintsTouched(touched, touchedList, rewritten);
     }
     for (int i : touchedList) touched[i] = 0;
     for (const auto& w : rewritten) touched[w.node] = 0;

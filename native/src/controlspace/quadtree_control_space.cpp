@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -326,6 +327,7 @@ void QuadtreeControlSpace::splitLeaf(int cell) {
 void QuadtreeControlSpace::rebuildConstraints() const {
   if (!constraintsDirty_) return;
   constraints_.clear();
+  readerStart_.clear();
   auto& flags = const_cast<std::vector<std::uint8_t>&>(flags_);
   for (auto& f : flags) f &= static_cast<std::uint8_t>(~kDependent);
   for (int c = 0; c < cellCount(); ++c) {
@@ -385,16 +387,62 @@ void QuadtreeControlSpace::applyConstraints() {
   for (const auto& k : constraints_) applyConstraint(k);
 }
 
-void QuadtreeControlSpace::applyConstraintsTouched(std::vector<char>& touched, std::vector<RewrittenNode>& rewritten) {
+void QuadtreeControlSpace::applyConstraintsTouched(std::vector<char>& touched, const std::vector<int>& touchedList,
+                                                   std::vector<RewrittenNode>& rewritten) {
   rebuildConstraints();
-  for (const auto& k : constraints_) {
+  if (!constraintsOrdered_) {
     // Out of order, a constraint may read a master rewritten after it: evaluate them all.
-    if (constraintsOrdered_ && !touched[k.node] && !touched[k.master[0]] && !touched[k.master[1]] &&
-        !touched[k.master[2]])
-      continue;
+    for (const auto& k : constraints_) {
+      rewritten.push_back({k.node, mt_[k.node]});
+      applyConstraint(k);
+      touched[k.node] = 1;
+    }
+    return;
+  }
+  // The pass over constraints_ in order that rewrites those whose node or a master is
+  // flagged (a rewritten node is flagged at once), visiting only those: the constraints
+  // that read a flagged node, smallest index first, each one's node's readers joining
+  // when it is rewritten (only those after it: the pass has gone by the others).
+  const int nc = static_cast<int>(constraints_.size());
+  if (readerStart_.size() != static_cast<size_t>(nodeCount()) + 1) {
+    readerStart_.assign(nodeCount() + 1, 0);
+    for (const auto& k : constraints_) {
+      ++readerStart_[k.node + 1];
+      for (int j = 0; j < 3; ++j) ++readerStart_[k.master[j] + 1];
+    }
+    for (int i = 0; i < nodeCount(); ++i) readerStart_[i + 1] += readerStart_[i];
+    readers_.assign(readerStart_.back(), 0);
+    std::vector<std::int32_t> at(readerStart_.begin(), readerStart_.end() - 1);
+    for (int r = 0; r < nc; ++r) {
+      const auto& k = constraints_[r];
+      readers_[at[k.node]++] = r;
+      for (int j = 0; j < 3; ++j) readers_[at[k.master[j]]++] = r;
+    }
+  }
+  constraintQueued_.resize(nc, 0);
+  std::vector<int> queue;  // min-heap of constraint indices
+  auto enqueueReaders = [&](int node, int after) {
+    for (int e = readerStart_[node]; e < readerStart_[node + 1]; ++e) {
+      const int r = readers_[e];
+      if (r <= after || constraintQueued_[r]) continue;
+      constraintQueued_[r] = 1;
+      queue.push_back(r);
+      std::push_heap(queue.begin(), queue.end(), std::greater<int>());
+    }
+  };
+  for (int i : touchedList) enqueueReaders(i, -1);
+  while (!queue.empty()) {
+    std::pop_heap(queue.begin(), queue.end(), std::greater<int>());
+    const int r = queue.back();
+    queue.pop_back();
+    constraintQueued_[r] = 0;
+    const auto& k = constraints_[r];
     rewritten.push_back({k.node, mt_[k.node]});
     applyConstraint(k);
-    touched[k.node] = 1;
+    if (!touched[k.node]) {
+      touched[k.node] = 1;
+      enqueueReaders(k.node, r);
+    }
   }
 }
 

@@ -96,9 +96,12 @@ class AdaptiveControlSpace : public ControlSpace {
   };
   // applyConstraints() for the hanging nodes whose node or a master is flagged in `touched`
   // (flags grow by the nodes rewritten, so dependents follow); the same values when only
-  // the flagged nodes changed since the last application. Appends the rewritten nodes.
-  virtual void applyConstraintsTouched(std::vector<char>& touched, std::vector<RewrittenNode>& rewritten) {
+  // the flagged nodes changed since the last application. `touchedList` holds every node
+  // flagged on entry (once each). Appends the rewritten nodes, in constraint order.
+  virtual void applyConstraintsTouched(std::vector<char>& touched, const std::vector<int>& touchedList,
+                                       std::vector<RewrittenNode>& rewritten) {
     (void)touched;
+    (void)touchedList;
     (void)rewritten;
   }
   // Pairs (i < j) of free nodes adjacent along the structure's edges, sorted: the graph

@@ -50,7 +50,8 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   InterpolationStencil stencilAt(const Vec2& p) const override;
 
   void applyConstraints() override;
-  void applyConstraintsTouched(std::vector<char>& touched, std::vector<RewrittenNode>& rewritten) override;
+  void applyConstraintsTouched(std::vector<char>& touched, const std::vector<int>& touchedList,
+                               std::vector<RewrittenNode>& rewritten) override;
   std::vector<std::array<int, 2>> rawEdges(bool structure) const override;
   std::vector<HangingNode> hangingNodes() const override;
   int elementCount() const override { return leafCount_; }
@@ -147,6 +148,10 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   mutable bool constraintsDirty_ = true;
   // Every hanging master precedes its dependents in constraints_ (one pass settles all).
   mutable bool constraintsOrdered_ = true;
+  // Node -> indices of the constraints that read it (as node or master), CSR, built on
+  // demand for constraints_ (cleared when they are rebuilt); scratch flags per constraint.
+  mutable std::vector<std::int32_t> readerStart_, readers_;
+  std::vector<char> constraintQueued_;
 };
 
 }  // namespace anisomesh
