@@ -378,7 +378,7 @@ class CaseReportHandle {
       const double t0 = emscripten_get_now();
       nlohmann::json stats = caseRunStats(run_);
       val out = val::object();
-      out.set("stats", stats.dump());
+      out.set("stats", textToJs(stats.dump()));
       out.set("statsMs", emscripten_get_now() - t0);
       run_ = CaseRun();
       return out;
@@ -437,7 +437,7 @@ val meshCaseJson(std::string jsonText, val options) {
     if (options["vtu"].isTrue()) out.set("vtu", textToJs(caseRunVtu(run)));
     out.set("stats", run.stats.is_null() ? val::null() : textToJs(run.stats.dump()));
     out.set("controlSpace",
-            o.inspectControlSpace && !run.controlSpace.is_null() ? val(run.controlSpace.dump()) : val::null());
+            o.inspectControlSpace && !run.controlSpace.is_null() ? textToJs(run.controlSpace.dump()) : val::null());
     out.set("vertexMetrics",
             run.vertexMetrics.empty() ? val::null() : typedCopy(run.vertexMetrics.data(), run.vertexMetrics.size()));
     const double t2 = emscripten_get_now();
