@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <vector>
 
 #include "anisomesh/io/report_json.h"
+#include "anisomesh/mesh/element_edges.h"
+#include "anisomesh/pipeline/mesh_statistics.h"
 #include "mesh_test_util.h"
 
 using namespace anisomesh;
@@ -93,4 +96,32 @@ TEST(MeshQuality, TriangleMetricAreas) {
   ASSERT_EQ(areas.size(), m.triangles.size());
   EXPECT_NEAR(std::accumulate(areas.begin(), areas.end(), 0.0), 1.0 / (0.1 * 0.2), 1e-9);
   for (const double a : areas) EXPECT_GT(a, 0.0);
+}
+
+// One bucketing of the element edges serves the report's edges and its neighbour size
+// ratio: each edge's owners in element order (quads numbered after the triangles), and the
+// report's ratio is largestNeighbourSizeRatio's.
+TEST(MeshQuality, ElementEdgesListEachEdgesOwnersInElementOrder) {
+  Mesh m;
+  m.params = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {2, 0}, {2, 1}};
+  for (const auto& p : m.params) m.points.emplace_back(p.x(), p.y(), 0.0);
+  // Triangles 0 (0 1 3), 1 (0 3 2) and the quad 2 (1 4 5 3), whose area is 1 (ratio sqrt2 to 0.5).
+  m.triangles = {{0, 1, 3}, {0, 3, 2}};
+  m.quads = {{1, 4, 5, 3}};
+  const ElementEdges ee = elementEdges(m);
+  ASSERT_EQ(ee.edges, distinctElementEdges(m));
+  ASSERT_EQ(ee.ownerStart.size(), ee.edges.size() + 1);
+  auto ownersOf = [&](int a, int b) {
+    const auto it = std::find(ee.edges.begin(), ee.edges.end(), std::array<int, 2>{a, b});
+    EXPECT_NE(it, ee.edges.end());
+    const size_t k = size_t(it - ee.edges.begin());
+    return std::vector<int>(ee.owners.begin() + ee.ownerStart[k], ee.owners.begin() + ee.ownerStart[k + 1]);
+  };
+  EXPECT_EQ(ownersOf(0, 3), (std::vector<int>{0, 1}));
+  EXPECT_EQ(ownersOf(1, 3), (std::vector<int>{0, 2}));
+  EXPECT_EQ(ownersOf(0, 2), (std::vector<int>{1}));
+  EXPECT_EQ(ownersOf(4, 5), (std::vector<int>{2}));
+  UniformControlSpace cs({{-1, -1}, {3, 2}}, Metric());
+  EXPECT_DOUBLE_EQ(measureQuality(m, cs).largestNeighbourSizeRatio, std::sqrt(2.0));
+  EXPECT_DOUBLE_EQ(largestNeighbourSizeRatio(m), std::sqrt(2.0));
 }

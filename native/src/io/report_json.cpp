@@ -36,7 +36,7 @@ nlohmann::json pipelineStatsJson(const Mesh& mesh, const ControlSpace& cs, const
   QualityReport q = measureQuality(mesh, cs);
   q.timings = r.mesherTimings;
   nlohmann::json j = qualityReportToJson(q);
-  j["largestNeighbourSizeRatio"] = largestNeighbourSizeRatio(mesh);
+  j["largestNeighbourSizeRatio"] = q.largestNeighbourSizeRatio;
   j["boundaryLoops"] = r.boundaryLoops;
   j["boundaryPoints"] = r.boundaryPoints;
   j["controlElements"] = r.controlElements;

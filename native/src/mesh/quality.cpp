@@ -8,6 +8,7 @@
 
 #include "anisomesh/controlspace/concurrency.h"
 #include "anisomesh/core/parallel.h"
+#include "anisomesh/mesh/element_edges.h"
 #include "anisomesh/mesh/predicates.h"
 #include "mesh_internal.h"
 
@@ -21,76 +22,7 @@ void addToHistogram(QualityReport& r, double q) {
 
 }  // namespace
 
-std::vector<std::array<int, 2>> distinctElementEdges(const Mesh& mesh) {
-  auto forEachEdge = [&](auto&& f) {
-    for (const auto& t : mesh.triangles)
-      for (int i = 0; i < 3; ++i) f(t[i], t[(i + 1) % 3]);
-    for (const auto& q : mesh.quads)
-      for (int i = 0; i < 4; ++i) f(q[i], q[(i + 1) % 4]);
-  };
-  int lo = 0, hi = -1;
-  forEachEdge([&](int a, int b) {
-    lo = std::min({lo, a, b});
-    hi = std::max({hi, a, b});
-  });
-  std::vector<std::array<int, 2>> edges;
-  if (lo < 0) {  // not a valid mesh: packed (a, b) keys, which sort as the pairs do
-    std::vector<std::uint64_t> keys;
-    keys.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
-    forEachEdge([&](int a, int b) {
-      if (a > b) std::swap(a, b);
-      keys.push_back((static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b));
-    });
-    std::sort(keys.begin(), keys.end());
-    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-    edges.resize(keys.size());
-    for (size_t i = 0; i < keys.size(); ++i)
-      edges[i] = {static_cast<int>(keys[i] >> 32), static_cast<int>(keys[i] & 0xffffffffu)};
-    return edges;
-  }
-  // Bucketed by the smaller end (a counting sort), each bucket's few larger ends sorted and
-  // deduplicated: the same (a, b)-sorted list as a full sort, in linear time.
-  const size_t n = size_t(hi) + 1;
-  std::vector<int> start(n + 1, 0);
-  forEachEdge([&](int a, int b) { ++start[size_t(std::min(a, b)) + 1]; });
-  for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<int> other(static_cast<size_t>(start[n]));
-  {
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    forEachEdge([&](int a, int b) { other[size_t(fill[size_t(std::min(a, b))]++)] = std::max(a, b); });
-  }
-  // Buckets sorted and their distinct ends counted per chunk of vertices, then written at
-  // each chunk's offset: the same list for any thread count.
-  constexpr size_t kChunk = 65536;
-  std::vector<size_t> offset(chunkCount(n, kChunk) + 1, 0);
-  parallelChunks(n, kChunk, [&](size_t chunk, size_t vb, size_t ve) {
-    size_t distinct = 0;
-    for (size_t v = vb; v < ve; ++v) {
-      int* const b = other.data() + start[v];
-      int* const e = other.data() + start[v + 1];
-      for (int* k = b + 1; k < e; ++k) {  // insertion sort (about six ends per vertex)
-        const int x = *k;
-        int* m = k;
-        for (; m > b && m[-1] > x; --m) *m = m[-1];
-        *m = x;
-      }
-      for (int* k = b; k < e; ++k) distinct += (k == b || *k != k[-1]) ? 1 : 0;
-    }
-    offset[chunk + 1] = distinct;
-  });
-  for (size_t c = 1; c < offset.size(); ++c) offset[c] += offset[c - 1];
-  edges.resize(offset.back());
-  parallelChunks(n, kChunk, [&](size_t chunk, size_t vb, size_t ve) {
-    size_t out = offset[chunk];
-    for (size_t v = vb; v < ve; ++v) {
-      const int* const b = other.data() + start[v];
-      const int* const e = other.data() + start[v + 1];
-      for (const int* k = b; k < e; ++k)
-        if (k == b || *k != k[-1]) edges[out++] = {int(v), *k};
-    }
-  });
-  return edges;
-}
+std::vector<std::array<int, 2>> distinctElementEdges(const Mesh& mesh) { return elementEdges(mesh).edges; }
 
 QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace, ElementMeasures* perItem) {
   QualityReport r;
@@ -115,8 +47,10 @@ QualityReport measureQuality(const Mesh& mesh, const ControlSpace& controlSpace,
     for (int v = 0; v < nv; ++v) mt[v] = SymMt::from(controlSpace.metricAtNear(uv[v], hint).transform());
   }
 
-  const std::vector<std::array<int, 2>> edges = distinctElementEdges(mesh);
+  const ElementEdges elementEdgeList = elementEdges(mesh);
+  const std::vector<std::array<int, 2>>& edges = elementEdgeList.edges;
   r.edges = static_cast<int>(edges.size());
+  r.largestNeighbourSizeRatio = largestNeighbourSizeRatio(mesh, elementEdgeList);
   if (perItem) {
     perItem->edges = edges;
     perItem->edgeLength.resize(edges.size());

@@ -34,6 +34,7 @@ struct QualityReport {
   std::array<int, 10> qualityHistogram{};  // element counts per quality bin [k/10, (k+1)/10); <= 0 in bin 0
   int inverted = 0;                        // clockwise (or, for quads, with a reflex corner) in the parameter plane
   int degenerate = 0;                      // not inverted but flat: zero area or metric quality below 1e-3
+  double largestNeighbourSizeRatio = 1.0;  // of sqrt(area) across shared edges (element_edges.h)
   MesherTimings timings;                   // filled by the caller from PlanarMesherOptions::timings
 };
 
