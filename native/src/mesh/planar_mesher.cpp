@@ -20,7 +20,11 @@ double Mesher::start() {
   elementRatio_ = opt_.allQuads ? 2.0 : (opt_.quads ? 0.6 : 1.0);
   checkProgress(0.0);
   boundaryTriangulation();
-  for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v) vx_[v].m = queryMetric(vx_[v].p);
+  vhint_.assign(vx_.size(), -1);
+  for (int v = kSuper; v < static_cast<int>(vx_.size()); ++v) {
+    vx_[v].m = queryMetric(vx_[v].p);
+    vhint_[v] = queryHint_;
+  }
 
   if (opt_.boundaryOnly) {
     timings_.boundary = secondsSince(t0);
@@ -56,6 +60,7 @@ Mesh Mesher::finish() {
     queued_.reserve(expect);
     cache_.reserve(expect);
     vx_.reserve(expect / 2 + nBoundary_);
+    vhint_.reserve(expect / 2 + nBoundary_);
     vbnd_.reserve(expect / 2 + nBoundary_);
     vtri_.reserve(expect / 2 + nBoundary_);
     insertInnerNodes();

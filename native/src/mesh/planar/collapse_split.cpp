@@ -45,9 +45,10 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
   // counter-clockwise, fair, with no long edge.
   Vec2 pb = vx_[b].p;
   SymMt mb = vx_[b].m;
+  int hint = hintOf(b);  // the queries below are next to b
   if (toMidpoint) {
     pb = 0.5 * (vx_[a].p + vx_[b].p);
-    mb = queryMetric(pb);
+    mb = queryMetric(pb, hint);
   }
   auto quality = [&](int r, int c) {
     return metricTriangleQuality(SymMt::average3(mb, vx_[r].m, vx_[c].m), pb, vx_[r].p, vx_[c].p);
@@ -90,7 +91,7 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
         add(tv[next3(tv[0] == b ? 0 : (tv[1] == b ? 1 : 2))]);
       }
       pb = target / static_cast<double>(count);
-      mb = queryMetric(pb);
+      mb = queryMetric(pb, hint);
     }
     if (colSearch_) placeMergedVertex(ring, k1, k2, ballB, b, pb, mb);
   }
@@ -114,6 +115,7 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
   // Apply.
   vx_[b].p = pb;
   vx_[b].m = mb;
+  if (b < static_cast<int>(vhint_.size())) vhint_[b] = hint;
   const int T1 = ball[k1], T2 = ball[k2];
   auto relink = [&](int dead, int keep, int other, bool constrained) {
     // In keep, the entry pointing at dead now points at other (with dead's constraint bit).
@@ -186,13 +188,15 @@ bool Mesher::trySplit(int t, int i, std::vector<int>& touched) {
       orient(vx_[q].p, vx_[w].p, x) <= 0.0 || orient(vx_[q].p, x, vx_[u].p) <= 0.0)
     return false;
   const int v = static_cast<int>(vx_.size());
-  vx_.push_back({x, queryMetric(x)});
+  int hint = hintOf(u);
+  vx_.push_back({x, queryMetric(x, hint)});
   const double floor = std::min(kSplitMinQuality, std::min(tq_[t], tq_[nb]));
   const double q1 = triQuality(p, u, v), q2 = triQuality(p, v, w), q3 = triQuality(q, w, v), q4 = triQuality(q, v, u);
   if (!(std::min({q1, q2, q3, q4}) >= floor)) {
     vx_.pop_back();
     return false;
   }
+  if (vhint_.size() + 1 == vx_.size()) vhint_.push_back(hint);
   vbnd_.push_back(0);
   vtri_.push_back(t);
   vdirty_.push_back(1);

@@ -150,7 +150,9 @@ void Mesher::insertInnerNodes() {
       continue;
     }
     const int v = static_cast<int>(vx_.size());
-    vx_.push_back({x, queryMetric(x)});
+    int hint = hintOf(tri_[t].v[next3(edge)]);  // x is about a unit length from the front edge
+    vx_.push_back({x, queryMetric(x, hint)});
+    vhint_.push_back(hint);
     vbnd_.push_back(0);
     vtri_.push_back(-1);
     commitCavity(v);

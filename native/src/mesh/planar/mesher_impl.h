@@ -171,7 +171,13 @@ class Mesher {
   std::uint64_t progressTicks_ = 0;
   double lastFraction_ = 0.0;
   // The control space's walk starts where the last query ended (queries come in spatial order).
-  SymMt queryMetric(const Vec2& p) const { return SymMt::from(cs_.metricAtNear(p, queryHint_).transform()); }
+  SymMt queryMetric(const Vec2& p) const { return queryMetric(p, queryHint_); }
+  // ... or at `hint` (updated to where the walk ended): vertex hints (vhint_) for a point
+  // next to a vertex, which the last query, made elsewhere, is often not (metricAtNear
+  // gives the same value from any start).
+  SymMt queryMetric(const Vec2& p, int& hint) const { return SymMt::from(cs_.metricAtNear(p, hint).transform()); }
+  // A copy of vertex v's hint (the control-space element its metric was located in).
+  int hintOf(int v) const { return v >= 0 && v < static_cast<int>(vhint_.size()) ? vhint_[v] : queryHint_; }
   mutable int queryHint_ = -1;
   Mesh output() const;
 
@@ -208,7 +214,7 @@ class Mesher {
   double estimateMetricArea();
   double metricAreaEstimate(std::int64_t subdivisions, int maxRows) const;
   double metricAreaRec(const Vec2& a, const Vec2& b, const Vec2& c, double da, double db, double dc, int depth,
-                       std::int64_t& budget) const;
+                       std::int64_t& budget, int& hint) const;
   void insertInnerNodes();
   void renumberSpatially();
   void improve();
@@ -248,6 +254,7 @@ class Mesher {
     SymMt m;
   };
   std::vector<Vtx> vx_;
+  std::vector<int> vhint_;  // per vertex: the control space's location hint (queryMetric)
   std::vector<std::uint8_t> vbnd_;  // 1: boundary or super vertex (never moved), 2: removed
   std::vector<int> vtri_;
   // Triangle: vertices (counter-clockwise), neighbours (n[i] across the edge opposite

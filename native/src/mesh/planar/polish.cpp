@@ -72,7 +72,8 @@ int Mesher::polishPass(std::vector<int>& touched) {
     if (!(bestQ > before + kSmoothMinGain)) continue;
     // Judged again under the metric at the new place, as the next passes and the quality
     // report see it: the worst triangle better, no ring edge newly outside [1/sqrt2, sqrt2].
-    const SymMt mNew = queryMetric(best);
+    int hint = hintOf(v);
+    const SymMt mNew = queryMetric(best, hint);
     double after = std::numeric_limits<double>::infinity(), sumBefore = 0.0, sumAfter = 0.0;
     bool lengthsKept = true;
     for (size_t k = 0; k < deg && lengthsKept; ++k) {
@@ -89,6 +90,7 @@ int Mesher::polishPass(std::vector<int>& touched) {
       continue;
     vx_[v].p = best;
     vx_[v].m = mNew;
+    if (v < static_cast<int>(vhint_.size())) vhint_[v] = hint;
     for (const int r : ring) vdirty_[r] = 1;
     vdirty_[v] = 1;
     for (const int bt : ballTri) {

@@ -95,6 +95,12 @@ void Mesher::renumberSpatially() {
     }
     vx_.swap(x);
     vbnd_.swap(b);
+    if (static_cast<int>(vhint_.size()) == nv) {
+      std::vector<int> h(nv);
+      h.reserve(vx_.capacity());
+      for (int v = 0; v < nv; ++v) h[vmap[v]] = vhint_[v];
+      vhint_.swap(h);
+    }
   }
   // Triangles: counting sort by their smallest new vertex index (stable, linear).
   const int nt = static_cast<int>(tri_.size());

@@ -84,7 +84,9 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     for (const int r : ring) vdirty_[r] = 1;
     vdirty_[v] = 1;
     vx_[v].p = cands[best];
-    vx_[v].m = queryMetric(cands[best]);
+    int hint = hintOf(v);
+    vx_[v].m = queryMetric(cands[best], hint);
+    if (v < static_cast<int>(vhint_.size())) vhint_[v] = hint;
     for (size_t k = 0; k < ballTri.size(); ++k) touched.push_back(ballTri[k]);
     ++moved;
   }
