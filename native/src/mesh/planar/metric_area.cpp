@@ -49,14 +49,40 @@ double Mesher::metricAreaEstimate(std::int64_t subdivisions, int maxRows) const 
   const int rows = std::min(maxRows, std::max(64, nBoundary_));
   const double dy = (hi.y() - lo.y()) / rows, dx = (hi.x() - lo.x()) / rows;
   if (!(dx > 0.0) || !(dy > 0.0)) return adaptive;
+  auto rowY = [&](int r) { return lo.y() + (r + 0.5) * dy; };
+  // The rows each boundary edge crosses, listed per row in edge order (what a scan of
+  // every edge for each row finds, without that scan's rows x edges tests): a contiguous
+  // range, as rowY increases with r, entered from a row or two below its first.
+  auto forCrossedRows = [&](const std::array<int, 2>& e, auto&& f) {
+    const double py = vx_[e[0]].p.y(), qy = vx_[e[1]].p.y();
+    const double r0 = std::floor((std::min(py, qy) - lo.y()) / dy - 0.5) - 1.0;
+    for (int r = r0 > 0.0 ? static_cast<int>(std::min(r0, static_cast<double>(rows))) : 0; r < rows; ++r) {
+      const double y = rowY(r);
+      if ((py > y) != (qy > y)) {
+        f(r);
+      } else if (!(py > y)) {
+        break;  // both ends at or below the row: so for every later row
+      }
+    }
+  };
+  std::vector<int> rowStart(static_cast<size_t>(rows) + 1, 0), crossing;
+  for (const auto& e : bedges_) forCrossedRows(e, [&](int r) { ++rowStart[r + 1]; });
+  for (int r = 0; r < rows; ++r) rowStart[r + 1] += rowStart[r];
+  crossing.resize(static_cast<size_t>(rowStart[rows]));
+  {
+    std::vector<int> fill(rowStart.begin(), rowStart.end() - 1);
+    for (int k = 0; k < static_cast<int>(bedges_.size()); ++k)
+      forCrossedRows(bedges_[k], [&](int r) { crossing[fill[r]++] = k; });
+  }
   double grid = 0.0;
   std::vector<double> xs;
   for (int r = 0; r < rows; ++r) {
-    const double y = lo.y() + (r + 0.5) * dy;
+    const double y = rowY(r);
     xs.clear();
-    for (const auto& e : bedges_) {
+    for (int c = rowStart[r]; c < rowStart[r + 1]; ++c) {
+      const auto& e = bedges_[crossing[c]];
       const Vec2 &p = vx_[e[0]].p, &q = vx_[e[1]].p;
-      if ((p.y() > y) != (q.y() > y)) xs.push_back(p.x() + (y - p.y()) / (q.y() - p.y()) * (q.x() - p.x()));
+      xs.push_back(p.x() + (y - p.y()) / (q.y() - p.y()) * (q.x() - p.x()));
     }
     std::sort(xs.begin(), xs.end());
     for (size_t k = 0; k + 1 < xs.size(); k += 2) {
