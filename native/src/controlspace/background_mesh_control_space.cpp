@@ -234,8 +234,10 @@ int BackgroundMeshControlSpace::locateTriangleFrom(const Vec2& q, int from, doub
   if (locatorStale_ || from < 0 || from >= elementCount()) return -1;
   // A query next to the previous one: 60 % of the mesher's fall in the same background
   // triangle or a neighbour; farther ones are left to the grid (a longer walk costs more).
+  // Up to five moves: with the mesher's per-vertex hints, 1e5 remesh (boundary case), 6 %
+  // of the queries need 3 to 5 moves and 14 % more (those take the grid).
   int t = from;
-  for (int step = 0; step < 3; ++step) {
+  for (int step = 0; step < 6; ++step) {
     const auto& v = tri_[t];
     o[0] = orient(v[1], v[2], q);
     o[1] = orient(v[2], v[0], q);
