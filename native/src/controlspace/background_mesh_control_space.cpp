@@ -210,13 +210,15 @@ int BackgroundMeshControlSpace::locateTriangle(const Vec2& p) const {
   const int gj = std::clamp(static_cast<int>((q.y() - box_.lo.y()) * gridInv_.y()), 0, gridSide_ - 1);
   int t = grid_[static_cast<size_t>(gj) * gridSide_ + gi];
   const int cap = 64 + 4 * gridSide_;
-  for (int step = 0; step < cap; ++step) {
+  // (k + 1) % 3 and (k + 2) % 3 without the divisions: this walk is the hot part of a query.
+  constexpr int kNext[3] = {1, 2, 0}, kPrev[3] = {2, 0, 1};
+  int first = 0;  // step % 3
+  for (int step = 0; step < cap; ++step, first = kNext[first]) {
     const auto& v = tri_[t];
     int next = -1;
     // Rotating the first edge tested avoids the (rare) cycles of visibility walks.
-    for (int r = 0; r < 3; ++r) {
-      const int k = (step + r) % 3;
-      if (orient(v[(k + 1) % 3], v[(k + 2) % 3], q) < 0.0) {
+    for (int r = 0, k = first; r < 3; ++r, k = kNext[k]) {
+      if (orient(v[kNext[k]], v[kPrev[k]], q) < 0.0) {
         next = nbr_[t][k];
         if (next >= 0) break;
       }
@@ -239,9 +241,23 @@ int BackgroundMeshControlSpace::locateTriangleFrom(const Vec2& q, int from, doub
   int t = from;
   for (int step = 0; step < 6; ++step) {
     const auto& v = tri_[t];
+    // The first edge (in order) that q is beyond and that has a neighbour is crossed: the
+    // edges after it need no test.
     o[0] = orient(v[1], v[2], q);
+    if (o[0] < 0.0 && nbr_[t][0] >= 0) {
+      t = nbr_[t][0];
+      continue;
+    }
     o[1] = orient(v[2], v[0], q);
+    if (o[1] < 0.0 && nbr_[t][1] >= 0) {
+      t = nbr_[t][1];
+      continue;
+    }
     o[2] = orient(v[0], v[1], q);
+    if (o[2] < 0.0 && nbr_[t][2] >= 0) {
+      t = nbr_[t][2];
+      continue;
+    }
     if (o[0] > 0.0 && o[1] > 0.0 && o[2] > 0.0) {
       // Clearly inside (each edge's line at least 1e-9 of the triangle's size away): the
       // only triangle any walk can stop in, so locateTriangle's answer too.
@@ -250,11 +266,7 @@ int BackgroundMeshControlSpace::locateTriangleFrom(const Vec2& q, int from, doub
       const double m = margin2_ * (l0 + l1 + l2);
       return o[0] * o[0] > m * l0 && o[1] * o[1] > m * l1 && o[2] * o[2] > m * l2 ? t : -1;
     }
-    int next = -1;
-    for (int k = 0; k < 3 && next < 0; ++k)
-      if (o[k] < 0.0) next = nbr_[t][k];
-    if (next < 0) return -1;
-    t = next;
+    return -1;  // on an edge's line, or beyond the box's edges only
   }
   return -1;
 }
