@@ -254,7 +254,7 @@ class Mesher {
     SymMt m;
   };
   std::vector<Vtx> vx_;
-  std::vector<int> vhint_;  // per vertex: the control space's location hint (queryMetric)
+  std::vector<int> vhint_;          // per vertex: the control space's location hint (queryMetric)
   std::vector<std::uint8_t> vbnd_;  // 1: boundary or super vertex (never moved), 2: removed
   std::vector<int> vtri_;
   // Triangle: vertices (counter-clockwise), neighbours (n[i] across the edge opposite
