@@ -49,8 +49,10 @@ fi
 stage "wasm: build"
 bash wasm/build.sh
 
+# The node test files one per core: node --test runs one file at a time on the 2-core machine
+# (its default is one less than the cores) and each file is a single-threaded node process.
 stage "node: node --test tests/node"
-run_layer node node --test tests/node/
+run_layer node node --test --test-concurrency="$jobs" tests/node/
 
 stage "browser: node --test tests/browser (headless Chromium)"
 run_layer browser node --test --test-concurrency=1 tests/browser/
