@@ -23,6 +23,13 @@ namespace {
 // Entries of the tensor M = Mt Mt of Mt entries m.
 inline SymMt tensorOf(const SymMt& m) { return {m.a * m.a + m.b * m.b, m.b * (m.a + m.c), m.b * m.b + m.c * m.c}; }
 
+// The entries of P M P for symmetric P and M (limitShrink's P: adj(Mt_a), scaled or not).
+inline SymMt congruence(const SymMt& p, const SymMt& m) {
+  const double x00 = p.a * m.a + p.b * m.b, x01 = p.a * m.b + p.b * m.c;
+  const double x10 = p.b * m.a + p.c * m.b, x11 = p.b * m.b + p.c * m.c;
+  return {x00 * p.a + x01 * p.b, x00 * p.b + x01 * p.c, x10 * p.b + x11 * p.c};
+}
+
 // The shrink limitGradation() asks of a (sqrt(l1) - 1 for the largest eigenvalue l1 of
 // Mt_a^-1 (M_i / s^2) Mt_a^-1, s = 1 + a_max |Mt_i u| = 1 + a_max d / h_i), on Mt entries
 // (mi2 = tensorOf(mi)), or -1 for a zero-length edge: the cheap test in front of it.
@@ -31,12 +38,9 @@ inline double limitShrink(const SymMt& mi, const SymMt& mi2, const Vec2& u, cons
   const double len = std::sqrt(wx * wx + wy * wy);
   if (!(len > 0.0)) return -1.0;
   const double inv = 1.0 / ((a.a * a.c - a.b * a.b) * (1.0 + slope * len));
-  const double ia = a.c * inv, ib = -a.b * inv, ic = a.a * inv;
-  const double x00 = ia * mi2.a + ib * mi2.b, x01 = ia * mi2.b + ib * mi2.c;
-  const double x10 = ib * mi2.a + ic * mi2.b, x11 = ib * mi2.b + ic * mi2.c;
-  const double n00 = x00 * ia + x01 * ib, n01 = x00 * ib + x01 * ic, n11 = x10 * ib + x11 * ic;
-  const double mean = 0.5 * (n00 + n11), half = 0.5 * (n00 - n11);
-  return std::sqrt(std::max(mean + std::sqrt(half * half + n01 * n01), 0.0)) - 1.0;
+  const SymMt n = congruence({a.c * inv, -a.b * inv, a.a * inv}, mi2);
+  const double mean = 0.5 * (n.a + n.c), half = 0.5 * (n.a - n.c);
+  return std::sqrt(std::max(mean + std::sqrt(half * half + n.b * n.b), 0.0)) - 1.0;
 }
 
 // Whether limitShrink(mi, mi2, u, a, slope) < limit (limit > -1), decided without its
@@ -57,13 +61,10 @@ inline bool shrinkBelow(const SymMt& mi, const SymMt& mi2, const Vec2& u, const 
   const double bound = (1.0 + limit) * det * (1.0 + slope * len);
   const double t = bound * bound;
   if (!(det > 0.0 && t >= 1e-150 && t <= 1e150)) return limitShrink(mi, mi2, u, a, slope) < limit;
-  const double ia = a.c, ib = -a.b, ic = a.a;
-  const double x00 = ia * mi2.a + ib * mi2.b, x01 = ia * mi2.b + ib * mi2.c;
-  const double x10 = ib * mi2.a + ic * mi2.b, x11 = ib * mi2.b + ic * mi2.c;
-  const double n00 = x00 * ia + x01 * ib, n01 = x00 * ib + x01 * ic, n11 = x10 * ib + x11 * ic;
-  const double mean = 0.5 * (n00 + n11), half = 0.5 * (n00 - n11);
+  const SymMt n = congruence({a.c, -a.b, a.a}, mi2);
+  const double mean = 0.5 * (n.a + n.c), half = 0.5 * (n.a - n.c);
   const double room = t - mean;
-  return room > 0.0 && half * half + n01 * n01 < room * room;
+  return room > 0.0 && half * half + n.b * n.b < room * room;
 }
 
 }  // namespace

@@ -115,7 +115,7 @@ bool Mesher::tryCollapse(int a, int b, bool toMidpoint, std::vector<int>& touche
   // Apply.
   vx_[b].p = pb;
   vx_[b].m = mb;
-  if (b < static_cast<int>(vhint_.size())) vhint_[b] = hint;
+  vhint_[b] = hint;
   const int T1 = ball[k1], T2 = ball[k2];
   auto relink = [&](int dead, int keep, int other, bool constrained) {
     // In keep, the entry pointing at dead now points at other (with dead's constraint bit).
@@ -196,7 +196,7 @@ bool Mesher::trySplit(int t, int i, std::vector<int>& touched) {
     vx_.pop_back();
     return false;
   }
-  if (vhint_.size() + 1 == vx_.size()) vhint_.push_back(hint);
+  vhint_.push_back(hint);
   vbnd_.push_back(0);
   vtri_.push_back(t);
   vdirty_.push_back(1);

@@ -177,7 +177,7 @@ class Mesher {
   // gives the same value from any start).
   SymMt queryMetric(const Vec2& p, int& hint) const { return SymMt::from(cs_.metricAtNear(p, hint).transform()); }
   // A copy of vertex v's hint (the control-space element its metric was located in).
-  int hintOf(int v) const { return v >= 0 && v < static_cast<int>(vhint_.size()) ? vhint_[v] : queryHint_; }
+  int hintOf(int v) const { return vhint_[static_cast<size_t>(v)]; }
   mutable int queryHint_ = -1;
   Mesh output() const;
 
@@ -254,7 +254,7 @@ class Mesher {
     SymMt m;
   };
   std::vector<Vtx> vx_;
-  std::vector<int> vhint_;          // per vertex: the control space's location hint (queryMetric)
+  std::vector<int> vhint_;          // per vertex (beside vx_): the control space's location hint
   std::vector<std::uint8_t> vbnd_;  // 1: boundary or super vertex (never moved), 2: removed
   std::vector<int> vtri_;
   // Triangle: vertices (counter-clockwise), neighbours (n[i] across the edge opposite

@@ -90,7 +90,7 @@ int Mesher::polishPass(std::vector<int>& touched) {
       continue;
     vx_[v].p = best;
     vx_[v].m = mNew;
-    if (v < static_cast<int>(vhint_.size())) vhint_[v] = hint;
+    vhint_[v] = hint;
     for (const int r : ring) vdirty_[r] = 1;
     vdirty_[v] = 1;
     for (const int bt : ballTri) {

@@ -89,18 +89,17 @@ void Mesher::renumberSpatially() {
     x.resize(nv);
     b.reserve(x.capacity());
     b.resize(nv);
+    std::vector<int> h;
+    h.reserve(x.capacity());
+    h.resize(nv);
     for (int v = 0; v < nv; ++v) {
       x[vmap[v]] = vx_[v];
       b[vmap[v]] = vbnd_[v];
+      h[vmap[v]] = vhint_[v];
     }
     vx_.swap(x);
     vbnd_.swap(b);
-    if (static_cast<int>(vhint_.size()) == nv) {
-      std::vector<int> h(nv);
-      h.reserve(vx_.capacity());
-      for (int v = 0; v < nv; ++v) h[vmap[v]] = vhint_[v];
-      vhint_.swap(h);
-    }
+    vhint_.swap(h);
   }
   // Triangles: counting sort by their smallest new vertex index (stable, linear).
   const int nt = static_cast<int>(tri_.size());

@@ -28,9 +28,11 @@ void Mesher::polishSeam(Mesh& merged, int seamBegin, int seamEnd) {
   vx_.resize(size_t(nv));
   vbnd_.assign(size_t(nv), 0);
   vtri_.assign(size_t(nv), -1);
+  vhint_.assign(size_t(nv), -1);
   for (int v = 0; v < nv; ++v) {
     const Vec2 p = merged.params[size_t(global[size_t(v)])];
     vx_[size_t(v)] = {p, queryMetric(p)};
+    vhint_[size_t(v)] = queryHint_;
     vbnd_[size_t(v)] = global[size_t(v)] < seamBegin ? 1 : 0;  // the domain's boundary stays
   }
   // Triangles and their neighbours inside the strip (edges to the rest of the mesh, and the

@@ -86,7 +86,7 @@ int Mesher::smoothPass(std::vector<int>& touched) {
     vx_[v].p = cands[best];
     int hint = hintOf(v);
     vx_[v].m = queryMetric(cands[best], hint);
-    if (v < static_cast<int>(vhint_.size())) vhint_[v] = hint;
+    vhint_[v] = hint;
     for (size_t k = 0; k < ballTri.size(); ++k) touched.push_back(ballTri[k]);
     ++moved;
   }
