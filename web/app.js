@@ -57,28 +57,56 @@ const state = {
 const status = $('status'), statusText = $('status-text'), spinner = status.querySelector('.spinner');
 const progressBar = $('progress'), progressFill = progressBar.querySelector('.fill');
 let progress = { stage: 'meshing', fraction: null, started: 0 };
-let busyTimer = null;
+let busy = false, busyTimer = null, spinStep = 0;
+// While a handle is dragged the toolbar stands still (no busy state, stage or elapsed time):
+// the mesh following the pointer shows the work, and on a software rasterizer every frame
+// of the page costs the GPU process CPU on the cores the mesh workers use.
+let toolbarQuiet = false, quietTimer = null;
+const RELEASE_QUIET_MS = 300;  // after the release, a job still running by then shows again
 // The toolbar while a job runs: the stage, its progress (a bar and a percentage when the
 // core reports a fraction) and the elapsed time.
 function showProgress() {
+  if (toolbarQuiet) return;
   const pct = progress.fraction > 0 ? ` ${Math.round(100 * progress.fraction)} %` : '';
   statusText.textContent = `${progress.stage}${pct} · ${((performance.now() - progress.started) / 1000).toFixed(1)} s`;
   progressBar.hidden = progress.fraction == null;
   progressFill.style.width = `${(100 * (progress.fraction ?? 0)).toFixed(1)}%`;
   progressBar.setAttribute('aria-valuenow', String(Math.round(100 * (progress.fraction ?? 0))));
+  // The spinner turns an eighth per update (100 ms) with the text, not as a CSS animation:
+  // that one makes a frame per display refresh (60 a second) for as long as a job runs.
+  spinner.style.transform = `rotate(${(spinStep = (spinStep + 1) % 8) * 45}deg)`;
 }
-function setBusy(busy) {
-  spinner.hidden = !busy;
-  status.classList.toggle('busy', busy);
+// Shows the busy state (spinner, progress, a 100 ms update of the elapsed time) or hides it;
+// the DOM is written only when that changes.
+let busyShown = false;
+function paintBusy() {
+  const shown = busy && !toolbarQuiet;
   clearInterval(busyTimer);
-  if (busy) {
-    progress = { stage: 'starting', fraction: null, started: performance.now() };
+  busyTimer = null;
+  if (shown !== busyShown) {
+    busyShown = shown;
+    spinner.hidden = !shown;
+    status.classList.toggle('busy', shown);
+    if (!shown) progressBar.hidden = true;
+  }
+  if (shown) {
     showProgress();
     busyTimer = setInterval(showProgress, 100);
-  } else {
-    progressBar.hidden = true;
-    state.progress = null;
   }
+}
+function setBusy(b) {
+  busy = b;
+  if (b) progress = { stage: 'starting', fraction: null, started: performance.now() };
+  else state.progress = null;
+  paintBusy();
+}
+// Quiets the toolbar (a handle is dragged) or lets it show the running job again.
+function quietToolbar(on) {
+  clearTimeout(quietTimer);
+  quietTimer = null;
+  if (toolbarQuiet === on) return;
+  toolbarQuiet = on;
+  paintBusy();
 }
 const meshRunner = new JobRunner({
   supersede: true,
@@ -127,6 +155,7 @@ const views = new Views($('view'), {
     if (phase === 'start') {
       dragFrom = { p, p1: s.p1 && [...s.p1], p2: s.p2 && [...s.p2] };
       views.dragging = true;  // the other view waits for the release (see draw())
+      quietToolbar(true);
       return;
     }
     const before = JSON.stringify(s);
@@ -148,12 +177,16 @@ const views = new Views($('view'), {
     dragWaiting = false;
     clearTimeout(restTimer);
     views.dragging = false;
+    // The toolbar stays quiet until the release's mesh is drawn, or shows a job still running after RELEASE_QUIET_MS.
+    quietTimer = setTimeout(() => quietToolbar(false), RELEASE_QUIET_MS);
     if (state.meshedVersion === state.caseVersion) {
       // The mesh of the last input was drawn before the release.
+      quietToolbar(false);
       state.dragToMeshMs = 0;
       const b = state.breakdowns.findLast((x) => x.version === state.caseVersion);
       state.dragInputToMeshMs = b ? Math.round(b.inputToDrawnMs) : 0;
       if (b) b.drag = true;
+      if (b && !state.lastError) statusText.textContent = `meshed in ${(b.inputToDrawnMs / 1000).toFixed(2)} s`;
       state.dragEndAt = null;
       views.requestRender('all');
     } else if (!cancelStaleLanes()) {
@@ -569,8 +602,10 @@ async function remesh(runner = runnerForLatest()) {
   // A surface mesh while a handle is held, and the one its release asks for, comes without
   // its colours (the per-element 3D measures: they follow with the report, a third of a
   // 50k-triangle run), so the mesh is drawn sooner.
-  const dragging = Boolean(state.surface && (views.dragging || state.dragEndAt));
-  const job = runner.run('mesh', { case: state.case, surface: state.surface, overlay, dragging });
+  const held = Boolean(views.dragging || state.dragEndAt);
+  const dragging = state.surface && held;
+  // A drag's jobs post no progress messages (the toolbar is quiet; see quietToolbar).
+  const job = runner.run('mesh', { case: state.case, surface: state.surface, overlay, dragging, progress: !held });
   runner.jobVersion = version;
   state.cancelled += runner.cancellations - cancelsBefore;
   if (runner.restarts > before) {
@@ -595,7 +630,7 @@ async function remesh(runner = runnerForLatest()) {
     state.lastJob = { meshMs: Math.round(b.coreMs), workerMs: Math.round(workerMs), totalMs: Math.round(totalMs), drawMs: Math.round(b.geometryMs + b.renderMs) };
     state.lastError = null;
     clearErrors();
-    status.classList.remove('err');
+    if (status.classList.contains('err')) status.classList.remove('err');
     if (state.runningVersion === version) state.runningVersion = null;
     // While dragging, the next input goes first: the report of a mesh already left
     // behind is never computed. Otherwise the quality report follows.
@@ -626,7 +661,7 @@ async function remesh(runner = runnerForLatest()) {
     if (ps) Object.assign(b, { coreControlSpaceMs: 1000 * ps.controlSpace, coreUpdatesMs: 1000 * ps.boundaryUpdates, coreMeshingMs: 1000 * ps.meshing });
     for (const k of Object.keys(b)) if (typeof b[k] === 'number') b[k] = Math.round(b[k] * 10) / 10;
     state.jobsDone++;
-    statusText.textContent = `meshed in ${(b.inputToDrawnMs / 1000).toFixed(2)} s`;
+    if (!toolbarQuiet) statusText.textContent = `meshed in ${(b.inputToDrawnMs / 1000).toFixed(2)} s`;
     settle();
   } catch (e) {
     if (runner.jobVersion === version) runner.jobVersion = null;
@@ -645,7 +680,9 @@ async function remesh(runner = runnerForLatest()) {
  *   coreMs          the core in the worker: case run + copying out + measures
  *     coreRunMs, coreOutputMs, coreMeasuresMs (and, once the report is in, coreControlSpaceMs,
  *     coreUpdatesMs, coreMeshingMs from its pipelineSeconds)
- *   toPageMs        the core done -> the result in the page (overlay, transfer)
+ *   toPageMs        the core done -> the result in the page (overlay, transfer):
+ *     resultOutMs (the worker: the result object, the last run freed, the post) and
+ *     messageMs (posted -> the page's handler runs: the page's main thread was busy)
  *   geometryMs      page: the geometry (and overlay) rebuilt
  *   renderMs        page: drawing the 2D view (GPU uploads included; with state.syncDraw
  *                   until the GPU has finished it). The 3D view follows on the next frame.
@@ -680,6 +717,8 @@ function draw(result, version, editAt, marks, receivedAt, overlay) {
     coreOutputMs: core.outputMs,
     coreMeasuresMs: core.measuresMs,
     toPageMs: receivedAt - marks.coreEnd,
+    resultOutMs: marks.resultPosted - marks.coreEnd,
+    messageMs: receivedAt - marks.resultPosted,
     geometryMs: t1 - t0,
     renderMs: t2 - t1,
     inputToDrawnMs: t2 - editAt,
@@ -693,6 +732,7 @@ function draw(result, version, editAt, marks, receivedAt, overlay) {
     state.dragInputToMeshMs = Math.round(t2 - (state.dragLastEditAt ?? state.dragEndAt));
     b.drag = true;
     state.dragEndAt = null;
+    quietToolbar(false);
   }
   return b;
 }

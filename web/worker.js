@@ -112,7 +112,9 @@ const ops = {
   // overlay: also inspect the final control space for the overlay (planar only).
   // dragging (surfaces): leave the per-element 3D quality and edge lengths (the colours) to
   // the report too; the mesh comes sooner and is drawn plain until the report is in.
-  mesh({ case: c, surface = false, overlay = false, dragging = false }, { progress, marks, id }) {
+  // progress: false posts no progress messages (a drag's jobs; the core still polls for cancellation).
+  mesh({ case: c, surface = false, overlay = false, dragging = false, progress: withProgress = true }, { progress: post, marks, id }) {
+    const progress = withProgress ? post : () => {};
     progress('control space', 0);
     let lastFraction = -1, lastAt = 0;
     const onProgress = (fraction) => {

@@ -479,3 +479,29 @@ test('a handle dragged in (u, v) is drawn by the page, not by WebGL, until the n
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('a drag leaves the toolbar still (no spinner animation, no job progress) until its release', async () => {
+  const { page, errors } = await openSurfaceDragPage(env.browser, env.url);
+  const h = await page.evaluate(() => window.anisomeshApp.handleClientPosition(0, 'center'));
+  await page.mouse.move(h.x, h.y);
+  await page.mouse.down();
+  await page.evaluate(() => {
+    window.toolbarChanges = [];
+    window.toolbarObserver = new MutationObserver((list) => window.toolbarChanges.push(...list.map((m) => m.type)));
+    window.toolbarObserver.observe(document.getElementById('status'), { subtree: true, childList: true, characterData: true, attributes: true });
+  });
+  const drawn0 = await page.evaluate(() => window.anisomeshApp.state.meshesDrawn);
+  for (let k = 1; k <= 6; k++) await page.mouse.move(h.x + 6 * k, h.y + 2 * k);
+  // The moves' jobs run (at least one mesh drawn) while the handle is held.
+  await page.waitForFunction((n) => window.anisomeshApp.state.meshesDrawn > n, drawn0, { timeout: 60000 });
+  const held = await page.evaluate(() => {
+    window.toolbarObserver.disconnect();
+    return { changes: window.toolbarChanges, animation: getComputedStyle(document.querySelector('#status .spinner')).animationName };
+  });
+  assert.deepEqual(held, { changes: [], animation: 'none' });
+  await page.mouse.up();
+  await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
+  assert.match(await page.locator('#status-text').textContent(), /^meshed in/);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
