@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <numeric>
+#include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -18,6 +20,7 @@
 #include "anisomesh/mesh/quality.h"
 #include "anisomesh/pipeline/mesh_statistics.h"
 #include "anisomesh/pipeline/pipeline.h"
+#include "anisomesh/pipeline/remesh_geometry.h"
 
 using namespace anisomesh;
 
@@ -231,5 +234,47 @@ TEST(Parallel, DistinctElementEdgesOverChunksMatchAnOrderedSet) {
   for (int threads : {1, 2, 4}) {
     setThreadCount(threads);
     EXPECT_EQ(distinctElementEdges(m), expected) << threads << " threads";
+  }
+}
+
+// boundaryLoopsFromMesh counts and places the element edges in their buckets per range of
+// elements, one per thread: on a frame one cell wide (a 64 x 64 grid's border cells: every
+// vertex is on the outer loop or the hole's) whose vertices are numbered at random, so
+// that every range's edges fall in buckets all over, the loops are those of one thread
+// for 2, 3 and 4 threads.
+TEST(Parallel, BoundaryLoopsFromMeshTheSameForAnyThreadCount) {
+  ThreadCountGuard guard;
+  const int n = 64;
+  auto onFrame = [&](int i, int j) { return i <= 1 || j <= 1 || i >= n - 1 || j >= n - 1; };
+  std::vector<int> id(size_t((n + 1) * (n + 1)), -1);
+  Mesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      if (onFrame(i, j)) id[size_t(j * (n + 1) + i)] = int(m.points.size()), m.points.push_back(Vec3(i, j, 0));
+  std::vector<int> shuffled(m.points.size());
+  std::iota(shuffled.begin(), shuffled.end(), 0);
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(14));
+  const std::vector<Vec3> points = m.points;
+  for (size_t k = 0; k < points.size(); ++k) m.points[size_t(shuffled[k])] = points[k];
+  auto v = [&](int i, int j) { return shuffled[size_t(id[size_t(j * (n + 1) + i)])]; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (i > 0 && j > 0 && i < n - 1 && j < n - 1) continue;  // the hole
+      m.triangles.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
+      m.triangles.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
+    }
+  for (int i = 0; i < n; ++i) m.edges.push_back({v(i, 0), v(i + 1, 0)}), m.edgeRefs.push_back(3);
+  setThreadCount(1);
+  const std::vector<BoundaryLoop> expected = boundaryLoopsFromMesh(m);
+  ASSERT_EQ(expected.size(), 2u);
+  EXPECT_EQ(expected[0].points.size() + expected[1].points.size(), m.points.size());
+  for (int threads : {2, 3, 4}) {
+    setThreadCount(threads);
+    const std::vector<BoundaryLoop> loops = boundaryLoopsFromMesh(m);
+    ASSERT_EQ(loops.size(), expected.size()) << threads << " threads";
+    for (size_t l = 0; l < loops.size(); ++l) {
+      EXPECT_EQ(loops[l].points, expected[l].points) << threads << " threads, loop " << l;
+      EXPECT_EQ(loops[l].edgeRefs, expected[l].edgeRefs) << threads << " threads, loop " << l;
+    }
   }
 }
