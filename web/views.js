@@ -8,6 +8,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { qualityColor, lengthColor, sizeColor, fieldColor } from './colors.js';
 import { sourceOverlay } from './overlays.js';
+import { drawEdgesInFaces, edgeColorTable, fillEdgeCodes } from './wireframe.js';
 
 const BG = 0xf7f7f5;
 const SVG_NS = 'http://www.w3.org/2000/svg';
@@ -50,7 +51,7 @@ export class Views {
     this.cam2.position.set(0, 0, 10);
     this.view2 = { cx: 0, cy: 0, halfH: 1 };  // centre and half height in world units
     this.layers2 = {
-      faces: new THREE.Group(), edges: new THREE.Group(), boundary: new THREE.Group(),
+      faces: new THREE.Group(), boundary: new THREE.Group(),
       control: new THREE.Group(), sources: new THREE.Group(),
     };
     Object.values(this.layers2).forEach((g, i) => { g.renderOrder = i; this.scene2.add(g); });
@@ -96,10 +97,6 @@ export class Views {
       face3: new THREE.MeshLambertMaterial({
         vertexColors: true, side: THREE.DoubleSide, flatShading: true, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
       }),
-      edgeLength2: line({ opacity: 0.95 }),
-      edgePlain2: line({ opacity: 0.55 }),
-      edgeLength3: new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: 0.9 }),
-      edgePlain3: new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity: 0.45 }),
       boundary2: line({}),
       boundary3: new THREE.LineBasicMaterial({ vertexColors: true }),
       csLines: new THREE.LineBasicMaterial({ color: 0x6a5acd, transparent: true, opacity: 0.35, depthTest: false }),
@@ -112,14 +109,18 @@ export class Views {
       srcGuideSel: new THREE.LineDashedMaterial({ color: 0xd35400, depthTest: false, transparent: true, opacity: 0.8 }),
       handles: new THREE.PointsMaterial({ size: 11, sizeAttenuation: false, vertexColors: true, depthTest: false }),
     };
+    // The element edges are drawn by the face materials (web/wireframe.js): one pass, no lines.
+    const table = edgeColorTable(edgeTable);
+    this.edgeUniforms = { 2: drawEdgesInFaces(this.mats.face2, table, 0), 3: drawEdgesInFaces(this.mats.face3, table, 0) };
+    this.edgeLook = { by: 'off', dim: false, moving: false };
 
     this.#installPointer();
     // OrbitControls after our own listeners: ours run first and enable it only over the 3D viewport.
     this.controls = new OrbitControls(this.cam3, this.canvas);
     this.controls.enableDamping = false;
     this.controls.addEventListener('change', () => this.requestRender('3d'));
-    // Large meshes: the edge lines cost more than the faces on software WebGL, so they
-    // are hidden while the camera moves and come back when it stops.
+    // Large meshes: the edges are hidden while the camera moves and come back when it
+    // stops (since they are drawn in the faces' pass this saves little: see web/README.md).
     this.hideEdgesAbove = 60000;  // edge count
     this.controls.addEventListener('start', () => this.#interacting(true));
     this.controls.addEventListener('end', () => this.#interacting(false));
@@ -309,7 +310,7 @@ export class Views {
       this.cache2Draws = (this.cache2Draws ?? 0) + 1;
     }
     r.render(this.blitScene, this.blitCam);  // clears the viewport (autoClear) and copies the image
-    const others = [layers.faces, layers.edges, layers.boundary, layers.control];
+    const others = [layers.faces, layers.boundary, layers.control];
     const shown = others.map((g) => g.visible);
     others.forEach((g) => { g.visible = false; });
     const autoClear = r.autoClear;
@@ -325,9 +326,18 @@ export class Views {
   }
 
   #interacting(on) {
-    const hide = on && (this.edgeCount ?? 0) > this.hideEdgesAbove;
-    for (const o of this.group3.children) if (o.isLineSegments && o.userData.edges) o.visible = !hide;
+    this.edgeLook.moving = on && (this.edgeCount ?? 0) > this.hideEdgesAbove;
+    this.#edgeOpacity();
     if (!on) this.requestRender('3d');
+  }
+
+  // The edges' opacity in each view: by colouring ('length', 'plain', 'off'), faded under
+  // the control-space overlay (2D), hidden while the camera moves (3D, large meshes).
+  #edgeOpacity() {
+    const { by, dim, moving } = this.edgeLook;
+    const length = by === 'length';
+    this.edgeUniforms[2].edgeOpacity.value = by === 'off' ? 0 : dim ? (length ? 0.3 : 0.2) : (length ? 0.95 : 0.55);
+    this.edgeUniforms[3].edgeOpacity.value = by === 'off' || moving ? 0 : length ? 0.9 : 0.45;
   }
 
   // --- mesh -----------------------------------------------------------------------------
@@ -380,31 +390,22 @@ export class Views {
     fillFaceColors(faceCol.array, mesh, quality, field);
     if (layout) fillFacesLaidOut(this.#attribute(g.faces2, 'position', faceVerts).array, mesh, layout);
     else fillFaces(this.#attribute(g.faces2, 'position', faceVerts).array, mesh, uvPos);
-    this.#share(g.faces3, g.faces2, flat, faceVerts);
-    if (!flat) fillFaces(this.#attribute(g.faces3, 'position', faceVerts).array, mesh, pos3);
-
+    // The element edges, drawn by the faces (web/wireframe.js): each triangle's sides, in
+    // each patch's own (u, v) in 2D (a shared curve once per patch). Lengths per edge are
+    // not measured for laid-out surfaces: plain colours there.
     const edges = style.edges !== 'off' ? measures.edges : null;
     this.edgeCount = edges ? edges.length / 2 : 0;
-    const edgeVerts = edges ? edges.length : 0;
     const lengths = style.edges === 'length' ? measures.edgeLength : null;
-    if (layout) {
-      // The 2D view draws each patch's own edges (a shared curve once per patch); the 3D
-      // view the merged mesh's. Lengths per edge are not measured for surfaces: plain colours.
-      const e2 = edges ? layout.edges : null, n2 = e2 ? e2.length / 2 : 0;
-      const nColor = Math.max(n2, edges ? edges.length / 2 : 0);
-      fillEdgeColors(this.#attribute(g.edges2, 'color', 2 * nColor).array, { length: 2 * nColor }, null);
-      fillSegments(this.#attribute(g.edges2, 'position', 2 * n2).array, e2, layout.uv);
-      this.#share(g.edges3, g.edges2, false, edgeVerts);
-      fillSegments(this.#attribute(g.edges3, 'position', edgeVerts).array, edges, pos3);
-    } else {
-      fillEdgeColors(this.#attribute(g.edges2, 'color', edgeVerts).array, edges, lengths);
-      fillSegments(this.#attribute(g.edges2, 'position', edgeVerts).array, edges, uvPos);
-      this.#share(g.edges3, g.edges2, flat, edgeVerts);
-      if (!flat) fillSegments(this.#attribute(g.edges3, 'position', edgeVerts).array, edges, pos3);
+    const edgeCodes = this.#attribute(g.faces2, 'edgeCode', faceVerts).array;
+    if (edges) {
+      const codes = lengths && !layout ? this.#scratch('edgeRow', lengths.length) : null;
+      if (codes) for (let e = 0; e < lengths.length; e++) codes[e] = lutIndex(0.5 + 0.5 * Math.log2(Math.max(lengths[e], 1e-6))) / 3;
+      fillEdgeCodes(edgeCodes, mesh, edges, codes, PLAIN_EDGE_ROW);
     }
-    g.lines2.material = lengths ? this.mats.edgeLength2 : this.mats.edgePlain2;
-    g.lines3.material = lengths ? this.mats.edgeLength3 : this.mats.edgePlain3;
-    g.lines2.visible = g.lines3.visible = Boolean(edges);
+    this.edgeLook.by = !edges ? 'off' : lengths ? 'length' : 'plain';
+    this.#edgeOpacity();
+    this.#share(g.faces3, g.faces2, flat, faceVerts);
+    if (!flat) fillFaces(this.#attribute(g.faces3, 'position', faceVerts).array, mesh, pos3);
 
     const bVerts = mesh.edges?.length ?? 0;
     const b2Verts = layout ? layout.boundary.length : bVerts;
@@ -417,8 +418,8 @@ export class Views {
     this.cache2Valid = false;
     // Bounds of the used range (the arrays' slack holds stale values): fit3D reads them.
     const box = boundsOf(flat ? uvPos : pos3, nv);
-    for (const geom of [g.faces2, g.faces3, g.edges2, g.edges3, g.boundary2, g.boundary3]) {
-      if (layout && (geom === g.edges2 || geom === g.boundary2)) geom.setDrawRange(0, geom === g.edges2 ? layout.edges.length : layout.boundary.length);
+    for (const geom of [g.faces2, g.faces3, g.boundary2, g.boundary3]) {
+      if (layout && geom === g.boundary2) geom.setDrawRange(0, layout.boundary.length);
       geom.boundingBox = box.clone();
       geom.boundingSphere = box.getBoundingSphere(new THREE.Sphere());
     }
@@ -429,13 +430,10 @@ export class Views {
   #meshObjects() {
     if (this.meshObjects) return this.meshObjects;
     const g = {};
-    for (const k of ['faces2', 'faces3', 'edges2', 'edges3', 'boundary2', 'boundary3']) g[k] = new THREE.BufferGeometry();
+    for (const k of ['faces2', 'faces3', 'boundary2', 'boundary3']) g[k] = new THREE.BufferGeometry();
     const add = (group, obj) => { obj.frustumCulled = false; group.add(obj); return obj; };
     add(this.layers2.faces, new THREE.Mesh(g.faces2, this.mats.face2));
     g.mesh3 = add(this.group3, new THREE.Mesh(g.faces3, this.mats.face3));
-    g.lines2 = add(this.layers2.edges, new THREE.LineSegments(g.edges2, this.mats.edgeLength2));
-    g.lines3 = add(this.group3, new THREE.LineSegments(g.edges3, this.mats.edgeLength3));
-    g.lines3.userData.edges = true;
     add(this.layers2.boundary, new THREE.LineSegments(g.boundary2, this.mats.boundary2));
     add(this.group3, new THREE.LineSegments(g.boundary3, this.mats.boundary3));
     this.meshObjects = g;
@@ -464,9 +462,10 @@ export class Views {
   }
 
   // The 3D geometry draws the 2D one's arrays (flat planar mesh: no upload of its own),
-  // or its own positions; the colours are always the 2D geometry's.
+  // or its own positions; the colours (and the faces' edge codes) are always the 2D geometry's.
   #share(geom3, geom2, shared, count) {
-    const pos2 = geom2.getAttribute('position'), col2 = geom2.getAttribute('color');
+    const pos2 = geom2.getAttribute('position'), col2 = geom2.getAttribute('color'), codes2 = geom2.getAttribute('edgeCode');
+    if (codes2) geom3.setAttribute('edgeCode', codes2);
     if (shared) {
       if (geom3.getAttribute('position') && geom3.getAttribute('position') !== pos2) geom3.dispose();
       geom3.setAttribute('position', pos2);
@@ -520,8 +519,8 @@ export class Views {
       m.face2.transparent = dim;
       m.face2.needsUpdate = true;
     }
-    m.edgeLength2.opacity = dim ? 0.3 : 0.95;
-    m.edgePlain2.opacity = dim ? 0.2 : 0.55;
+    this.edgeLook.dim = dim;
+    this.#edgeOpacity();
     if (!dim) { this.requestRender(); return; }
     if (overlay.glyphs) { this.#glyphOverlay(overlay.glyphs); return; }
     if (overlay.lines.length) {
@@ -1038,6 +1037,11 @@ function table(fn) {
 const qualityLut = table(qualityColor);
 const lengthLut = table((x) => lengthColor(2 ** (2 * x - 1)));  // x = 0.5 + 0.5 log2(length)
 const lutIndex = (x) => 3 * Math.round(LUT * (x < 0 ? 0 : x > 1 ? 1 : x));
+// The edges' colours by row (web/wireframe.js): the length colours, then the plain one.
+const PLAIN_EDGE_ROW = LUT + 1;
+const edgeTable = new Float32Array(3 * (LUT + 2));
+edgeTable.set(lengthLut);
+edgeTable.set([0.25, 0.3, 0.38], 3 * PLAIN_EDGE_ROW);
 
 // Colour of each face vertex (triangles, then quads as two triangles): quality colours or plain.
 function fillFaceColors(out, mesh, quality, field = null) {
@@ -1078,24 +1082,10 @@ function fillFaces(pos, mesh, xyz) {
   }
 }
 
-// Colour per edge end: metric length colours, or a plain dark grey.
-function fillEdgeColors(out, edges, lengths) {
-  const ne = edges ? edges.length / 2 : 0;
-  for (let e = 0; e < ne; e++) {
-    let r = 0.25, g = 0.3, b = 0.38;
-    if (lengths) {
-      const i = lutIndex(0.5 + 0.5 * Math.log2(Math.max(lengths[e], 1e-6)));
-      r = lengthLut[i]; g = lengthLut[i + 1]; b = lengthLut[i + 2];
-    }
-    const o = 6 * e;
-    out[o] = out[o + 3] = r; out[o + 1] = out[o + 4] = g; out[o + 2] = out[o + 5] = b;
-  }
-}
-
 // The 2D layout of a mesh of several surface patches: every element corner at its (u, v)
 // in its own patch (the core's cornerParams), patch p shifted along u by shift[p] so the
-// patches sit side by side, never overlapping. edges / boundary: corner indices in pairs
-// (each patch's distinct edges, and those used by one element of the patch: its contour).
+// patches sit side by side, never overlapping. boundary: corner indices in pairs (the
+// patch's edges used by one element of the patch: its contour).
 // Null for planar meshes and single patches (drawn from the vertex parameters).
 function patchLayout(mesh, patches) {
   if (!patches?.element || !patches.corners) return null;
@@ -1157,7 +1147,7 @@ function patchLayout(mesh, patches) {
   }
   for (const i of seen.values()) if (i >= 0) boundary.push(edges[i], edges[i + 1]);
   return {
-    uv, shift, ranges, edges: Uint32Array.from(edges), boundary: Uint32Array.from(boundary),
+    uv, shift, ranges, boundary: Uint32Array.from(boundary),
     bounds: [0, vlo, Math.max(x - gap, 1e-9), vhi],
   };
 }

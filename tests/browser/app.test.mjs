@@ -446,3 +446,46 @@ test('a sources-only change redraws the sources over the cached 2D mesh image', 
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('the element edges are drawn over the faces in both views, by length or plain, and not when off', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('holes-dr2'));
+  const r = await page.evaluate(() => {
+    const a = window.anisomeshApp, v = a.views;
+    // The canvas's RGBA pixels with the given edge colouring (sources hidden).
+    const pixels = (edges) => {
+      a.setView({ edges, sources: false, view: 'split' });
+      v.requestRender();
+      v.render();
+      const c = document.createElement('canvas');
+      c.width = v.canvas.width; c.height = v.canvas.height;
+      const ctx = c.getContext('2d');
+      ctx.drawImage(v.canvas, 0, 0);
+      return ctx.getImageData(0, 0, c.width, c.height).data;
+    };
+    const off = pixels('off'), plain = pixels('plain'), length = pixels('length');
+    // Fraction of the pixels of a view ('2d' | '3d') that differ between two pictures.
+    const ratio = v.canvas.width / v.container.clientWidth;
+    const differ = (p, q, which) => {
+      const vp = v.viewports()[which], w = v.canvas.width;
+      let n = 0, all = 0;
+      for (let y = Math.round(vp.y * ratio); y < Math.round((vp.y + vp.h) * ratio); y++) {
+        for (let x = Math.round(vp.x * ratio); x < Math.round((vp.x + vp.w) * ratio); x++, all++) {
+          const i = 4 * (y * w + x);
+          if (Math.abs(p[i] - q[i]) + Math.abs(p[i + 1] - q[i + 1]) + Math.abs(p[i + 2] - q[i + 2]) > 24) n++;
+        }
+      }
+      return n / all;
+    };
+    return {
+      plain2: differ(off, plain, '2d'), plain3: differ(off, plain, '3d'),
+      length2: differ(plain, length, '2d'), length3: differ(plain, length, '3d'),
+      again: differ(off, pixels('off'), '2d'),
+    };
+  });
+  assert.ok(r.plain2 > 0.02 && r.plain3 > 0.005, `edges drawn: ${JSON.stringify(r)}`);
+  assert.ok(r.length2 > 0.01 && r.length3 > 0.01, `length colours differ from plain: ${JSON.stringify(r)}`);
+  assert.equal(r.again, 0, 'edges off twice: the same picture');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
