@@ -74,14 +74,27 @@ bool sameBits(const SymMt& x, const SymMt& y) {
   return bitsOf(x.a) == bitsOf(y.a) && bitsOf(x.b) == bitsOf(y.b) && bitsOf(x.c) == bitsOf(y.c);
 }
 
+// Nodes (increasing) of now (mt, flags) whose values differ from those of before, and every
+// node past before's.
+std::vector<int> changedNodes(const std::vector<SymMt>& mt, const std::vector<std::uint8_t>& flags,
+                              const std::vector<SymMt>& beforeMt, const std::vector<std::uint8_t>& beforeFlags) {
+  std::vector<int> out;
+  const int n = static_cast<int>(mt.size());
+  const int kept = static_cast<int>(std::min({beforeMt.size(), beforeFlags.size(), mt.size()}));
+  for (int i = 0; i < kept; ++i)
+    if (flags[i] != beforeFlags[i] || !sameBits(mt[i], beforeMt[i])) out.push_back(i);
+  for (int i = kept; i < n; ++i) out.push_back(i);
+  return out;
+}
+
 }  // namespace
 
 std::vector<int> AdaptiveControlSpace::nodesChangedSince(const NodeState& before) const {
-  std::vector<int> out;
-  const int kept = static_cast<int>(std::min(before.mt.size(), before.flags.size()));
-  for (int i = 0; i < nodeCount(); ++i)
-    if (i >= kept || flags_[i] != before.flags[i] || !sameBits(mt_[i], before.mt[i])) out.push_back(i);
-  return out;
+  return changedNodes(mt_, flags_, before.mt, before.flags);
+}
+
+std::vector<int> AdaptiveControlSpace::nodesChangedSince(const AdaptiveControlSpace& before) const {
+  return changedNodes(mt_, flags_, before.mt_, before.flags_);
 }
 
 std::vector<ControlNode> AdaptiveControlSpace::controlNodes() const {

@@ -18,7 +18,8 @@ namespace {
 
 struct Entry {
   std::string key;
-  std::unique_ptr<AdaptiveControlSpace> space;
+  std::shared_ptr<const AdaptiveControlSpace> space;
+  std::unique_ptr<AdaptiveControlSpace> spare;  // storage a finished run gave back
   long long evaluations = 0;
   std::uint64_t used = 0;
 };
@@ -70,24 +71,34 @@ void appendSourceBits(std::string& key, const std::vector<MetricSource>& sources
 CurvatureStage findCurvatureStage(const std::string& key) {
   CurvatureStage out;
   if (key.empty()) return out;
-  Cache& c = cache();
-  const std::lock_guard<std::mutex> lock(c.mutex);
-  for (Entry& e : c.entries)
-    if (e.key == key) {
-      e.used = ++c.clock;
-      out.space = e.space->clone();
-      out.evaluations = e.evaluations;
-      break;
-    }
+  std::unique_ptr<AdaptiveControlSpace> spare;
+  {
+    Cache& c = cache();
+    const std::lock_guard<std::mutex> lock(c.mutex);
+    for (Entry& e : c.entries)
+      if (e.key == key) {
+        e.used = ++c.clock;
+        out.stage = e.space;
+        spare = std::move(e.spare);
+        out.evaluations = e.evaluations;
+        break;
+      }
+  }
+  // The copy outside the lock (the stored stage is only read): patches on other threads
+  // copy theirs meanwhile.
+  if (out.stage) out.space = spare && spare->assignFrom(*out.stage) ? std::move(spare) : out.stage->clone();
   return out;
 }
 
-void storeCurvatureStage(const std::string& key, const AdaptiveControlSpace& cs, long long evaluations) {
-  if (key.empty()) return;
+std::shared_ptr<const AdaptiveControlSpace> storeCurvatureStage(const std::string& key, const AdaptiveControlSpace& cs,
+                                                                long long evaluations) {
+  if (key.empty()) return nullptr;
   std::unique_ptr<AdaptiveControlSpace> copy = cs.clone();
   ControlSpaceLimits limits;
   limits.maxNodes = cs.limits().maxNodes;
   copy->setLimits(limits);  // the run's progress callback must not outlive it
+  std::shared_ptr<const AdaptiveControlSpace> stored = std::move(copy);
+  std::unique_ptr<AdaptiveControlSpace> dropped;  // (freed outside the lock)
   Cache& c = cache();
   const std::lock_guard<std::mutex> lock(c.mutex);
   Entry* slot = nullptr;
@@ -99,10 +110,23 @@ void storeCurvatureStage(const std::string& key, const AdaptiveControlSpace& cs,
     for (Entry& e : c.entries)
       if (e.used < slot->used) slot = &e;
   }
+  if (slot->key != key) dropped = std::move(slot->spare);
   slot->key = key;
-  slot->space = std::move(copy);
+  slot->space = stored;
   slot->evaluations = evaluations;
   slot->used = ++c.clock;
+  return stored;
+}
+
+void recycleCurvatureStage(const std::string& key, std::unique_ptr<AdaptiveControlSpace> space) {
+  if (key.empty() || !space) return;
+  Cache& c = cache();
+  const std::lock_guard<std::mutex> lock(c.mutex);
+  for (Entry& e : c.entries)
+    if (e.key == key && !e.spare) {
+      e.spare = std::move(space);
+      return;
+    }
 }
 
 }  // namespace surface_mesher

@@ -21,8 +21,9 @@ namespace anisomesh {
 namespace surface_mesher {
 
 struct CurvatureStage {
-  std::unique_ptr<AdaptiveControlSpace> space;  // null: not stored
-  long long evaluations = 0;                    // curvature evaluations the stage made (for the report)
+  std::unique_ptr<AdaptiveControlSpace> space;        // a working copy of the stage; null: not stored
+  std::shared_ptr<const AdaptiveControlSpace> stage;  // the stage as stored (read only)
+  long long evaluations = 0;                          // curvature evaluations the stage made (for the report)
 };
 
 // The key of the stage, or "" when the surface has no identity (then nothing is kept).
@@ -31,10 +32,17 @@ std::string curvatureStageKey(const Surface& surface, const SurfaceMetricOptions
                               double refineThreshold, std::int64_t maxNodes, double gradation);
 // Appends the exact bits of segment sources (the contour curvature sources) to a key.
 void appendSourceBits(std::string& key, const std::vector<MetricSource>& sources);
-// A copy of the stage stored under key (limits cleared: the caller sets its own), if any.
+// A copy of the stage stored under key (limits cleared: the caller sets its own), if any:
+// made in the storage a finished run gave back (recycleCurvatureStage()) when there is one.
 CurvatureStage findCurvatureStage(const std::string& key);
-// Keeps a copy of cs (without its limits' progress callback) under key; the last few keys only.
-void storeCurvatureStage(const std::string& key, const AdaptiveControlSpace& cs, long long evaluations);
+// Keeps a copy of cs (without its limits' progress callback) under key; the last few keys
+// only. Returns the stored copy.
+std::shared_ptr<const AdaptiveControlSpace> storeCurvatureStage(const std::string& key, const AdaptiveControlSpace& cs,
+                                                                long long evaluations);
+// Gives back a working copy of the stage under key that a run is done with: the next
+// findCurvatureStage(key) copies the stage into its storage instead of fresh memory (a
+// drag's copies then stay in memory already in use). Dropped when key is no longer kept.
+void recycleCurvatureStage(const std::string& key, std::unique_ptr<AdaptiveControlSpace> space);
 
 }  // namespace surface_mesher
 }  // namespace anisomesh

@@ -16,6 +16,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string>
 
 #include <Eigen/Eigenvalues>
 
@@ -115,6 +116,13 @@ struct PatchState {
   std::vector<std::vector<int>> slots;  // per contour, per curve: slot index
   bool invalid = true;
   bool modified = false;
+  std::string stageKey;  // the key of the curvature stage cs was copied from ("" when none)
+
+  PatchState() = default;
+  PatchState(PatchState&&) = default;
+  PatchState& operator=(PatchState&&) = default;
+  // Gives cs's storage back to the curvature-stage cache (the next drag copies into it).
+  ~PatchState();
 };
 
 // A surface model as Algorithm 1 sees it (pipeline/algorithm1.h): the steps on every patch.
@@ -202,9 +210,12 @@ struct DeferredMeasures {
   void fill(SurfaceMeshReport& report) const;
 };
 
+// The patch's control space; *stageKey (when given) takes the key of its kept curvature
+// stage ("" when none is kept).
 std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& patch,
                                                             const std::vector<Source3D>& sources3d,
-                                                            const SurfaceMeshOptions& o, Counters& counters);
+                                                            const SurfaceMeshOptions& o, Counters& counters,
+                                                            std::string* stageKey = nullptr);
 
 double modelSize(const SurfaceModel& m);
 

@@ -135,7 +135,8 @@ std::unique_ptr<AdaptiveControlSpace> buildCurvatureStage(const SurfacePatch& pa
 
 std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& patch,
                                                             const std::vector<Source3D>& sources3d,
-                                                            const SurfaceMeshOptions& o, Counters& counters) {
+                                                            const SurfaceMeshOptions& o, Counters& counters,
+                                                            std::string* stageKeyOut) {
   const Surface& surf = *patch.surface;
   SurfaceMetricOptions sizing = o.metric;
   require(std::isfinite(o.chordSafety) && o.chordSafety > 0.0, ErrorCode::InvalidArgument, "chordSafety must be > 0");
@@ -171,20 +172,28 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
     cs = buildCurvatureStage(patch, sources3d, o, sizing, qo, limits, fallback, counters);
     if (!contour.empty()) insertSources(*cs, contour, io);
     if (o.gradation > 0.0) smoothGradation(*cs, g);
-    storeCurvatureStage(stageKey, *cs, counters.curvature - before);
+    stage.stage = storeCurvatureStage(stageKey, *cs, counters.curvature - before);
   }
+  if (stageKeyOut && stage.stage) *stageKeyOut = stageKey;
   if (!patch.sources.empty()) {
-    AdaptiveControlSpace::NodeState smooth;  // the stage, when it is smoothed again below
-    if (o.gradation > 0.0) smooth = cs->nodeState();
+    AdaptiveControlSpace::NodeState smooth;  // the stage, when it is smoothed again below and not kept
+    if (o.gradation > 0.0 && !stage.stage) smooth = cs->nodeState();
     insertSources(*cs, patch.sources, io);
     // The stage held the bound: the 2D sources' region is smoothed again, not the whole
     // structure (the stage's sizes limit the sources' ones as the sources' limit the stage's).
-    if (o.gradation > 0.0) resmoothGradation(*cs, cs->nodesChangedSince(smooth), g);
+    if (o.gradation > 0.0)
+      resmoothGradation(*cs, stage.stage ? cs->nodesChangedSince(*stage.stage) : cs->nodesChangedSince(smooth), g);
   }
   // Before any contour is discretized: the metric area of the patch (pulled back, so 3D
   // area over h^2) against the element budget.
   checkElementEstimate(patch.domain, *cs, o.mesher.maxElements, "element estimate before contour discretization");
   return cs;
+}
+
+PatchState::~PatchState() {
+  counted.reset();  // (the views read cs: gone before it is given back)
+  parameterized.reset();
+  recycleCurvatureStage(stageKey, std::move(cs));
 }
 
 void ModelMesher::flushSources() {

@@ -91,7 +91,7 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
 void ModelMesher::buildControlSpaces() {
   for (size_t p = 0; p < m_.patches.size(); ++p) {
     try {
-      ps_[p].cs = buildControlSpaceImpl(m_.patches[p], m_.sources3d, o_, *counters_);
+      ps_[p].cs = buildControlSpaceImpl(m_.patches[p], m_.sources3d, o_, *counters_, &ps_[p].stageKey);
     } catch (const Error& e) {
       throw Error(e.code(), patchLabel(m_.patches[p], int(p)) + ": " + e.what());
     }

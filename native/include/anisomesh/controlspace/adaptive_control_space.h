@@ -168,6 +168,13 @@ class AdaptiveControlSpace : public ControlSpace {
   virtual const char* kindName() const = 0;
   // A deep copy (the minimum keeps the original field while it refines).
   virtual std::unique_ptr<AdaptiveControlSpace> clone() const = 0;
+  // Makes this structure a copy of `other` in the storage it holds (vectors keep their
+  // capacity: no fresh memory for a structure of about the same size), when both are of
+  // the same kind; false (nothing changed) otherwise.
+  virtual bool assignFrom(const AdaptiveControlSpace& other) {
+    (void)other;
+    return false;
+  }
 
   // The node values and flags at one moment (nodesChangedSince() compares against it).
   struct NodeState {
@@ -179,6 +186,9 @@ class AdaptiveControlSpace : public ControlSpace {
   // Nodes (increasing) whose Mt bits or flags differ from `before`, and every node added
   // since (structures only append nodes): what a later resmoothGradation() starts from.
   std::vector<int> nodesChangedSince(const NodeState& before) const;
+  // The same against the nodes of `before` (a structure this one was copied from), without
+  // a copy of its values.
+  std::vector<int> nodesChangedSince(const AdaptiveControlSpace& before) const;
 
   // All nodes with their metrics and local element sizes (free nodes only: hanging ones
   // carry no information of their own). Used as discrete sources by the minimum.

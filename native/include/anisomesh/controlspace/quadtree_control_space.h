@@ -63,6 +63,11 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   double minElementSize() const override;
   const char* kindName() const override { return "quadtree"; }
   std::unique_ptr<AdaptiveControlSpace> clone() const override { return std::make_unique<QuadtreeControlSpace>(*this); }
+  bool assignFrom(const AdaptiveControlSpace& other) override {
+    const auto* q = dynamic_cast<const QuadtreeControlSpace*>(&other);
+    if (q && q != this) *this = *q;
+    return q != nullptr;
+  }
 
   // Splits the leaf cell (first splitting coarser neighbours so balance holds).
   void splitLeaf(int cell);
