@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <string>
 
 #include "anisomesh/core/error.h"
@@ -16,6 +15,57 @@ namespace anisomesh {
 using controlspace_internal::BucketGrid;
 using controlspace_internal::pieceBox;
 using controlspace_internal::pointBox;
+
+namespace {
+
+// Step (b) of insertSources() for a few pieces (a dragged source): every free node in turn
+// takes the pieces that reach it, in their order, summed as the binned pass sums them (the
+// same weights, the same order: the same bits), without per-node arrays (a drag's
+// structure has tens of thousands of nodes, and the source reaches a few of them).
+void insertFewPieces(AdaptiveControlSpace& cs, const std::vector<SourcePiece>& pieces, double minSize) {
+  struct Reach {
+    double soft, limit;
+    SymMt m;
+  };
+  std::vector<Reach> reach;
+  reach.reserve(pieces.size());
+  for (const SourcePiece& p : pieces) {
+    const double r = std::max(p.targetSize, minSize);
+    reach.push_back({0.25 * r, p.radius + r, toSymMt(p.metric)});
+  }
+  const int n = cs.nodeCount();
+  for (int i = 0; i < n; ++i) {
+    cs.refinementTick();
+    if (!cs.nodeIsFree(i)) continue;
+    const Vec2& q = cs.nodePosition(i);
+    SymMt sum{0.0, 0.0, 0.0};
+    double wsum = 0.0;
+    for (size_t k = 0; k < pieces.size(); ++k) {
+      const SourcePiece& p = pieces[k];
+      double d;
+      if (p.a == p.b) {  // a point: the distance as distanceToPiece() computes it
+        const double dx = p.a.x() - q.x(), dy = p.a.y() - q.y();
+        d = std::sqrt(dx * dx + dy * dy);
+      } else {
+        d = distanceToPiece(p, q);
+      }
+      const Reach& r = reach[k];
+      if (d > r.limit) continue;
+      const double t = std::max(d - p.radius, 0.0) + r.soft;
+      const double w = 1.0 / (t * t);
+      sum.a += w * r.m.a;
+      sum.b += w * r.m.b;
+      sum.c += w * r.m.c;
+      wsum += w;
+    }
+    if (wsum <= 0.0) continue;
+    const SymMt avg{sum.a / wsum, sum.b / wsum, sum.c / wsum};
+    const Metric m = toMetric(avg);
+    cs.setNodeMetric(i, cs.nodeIsInitialized(i) ? intersect(cs.nodeMetric(i), m) : m);
+  }
+}
+
+}  // namespace
 
 void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& sources,
                    const DiscreteInsertionOptions& options) {
@@ -61,32 +111,32 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
   // (b) Weighted average of the sources reaching each free node. Free nodes are binned,
   // and their positions and sums kept in bin order (contiguous scans); every node still
   // accumulates its sources in their order. A few pieces (a dragged source) scan every
-  // free node instead: binning them would cost more than the scan, and each node gets the
-  // same sources (a point lies in one bin, and the distance test decides) in the same order.
+  // free node instead (insertFewPieces): binning them would cost more than the scan, and
+  // each node gets the same sources (a point lies in one bin, and the distance test
+  // decides) in the same order.
   const int n = cs.nodeCount();
   const double minSize = cs.minElementSize();
+  const Metric fallback =
+      options.fallbackMetric ? *options.fallbackMetric : Metric::isotropic(0.25 * box.size().norm());
+  if (pieces.size() <= kScanPieces) {
+    insertFewPieces(cs, pieces, minSize);
+    extrapolateMetric(cs, fallback);  // (c) below
+    return;
+  }
   std::vector<int> freeNodes;
   freeNodes.reserve(n);
   for (int i = 0; i < n; ++i)
     if (cs.nodeIsFree(i)) freeNodes.push_back(i);
-  const bool scan = pieces.size() <= kScanPieces;
-  std::optional<BucketGrid> nodeGrid;
-  std::vector<int> binned;  // the free nodes in bin order (with the grid)
-  if (!scan) {
-    std::vector<Box2> nodeBoxes;
-    nodeBoxes.reserve(freeNodes.size());
-    for (int i : freeNodes) nodeBoxes.push_back(pointBox(cs.nodePosition(i), 0.0));
-    nodeGrid.emplace(box, nodeBoxes);
-    binned.reserve(nodeGrid->items().size());
-    for (int k : nodeGrid->items()) binned.push_back(freeNodes[k]);
-  }
-  const std::vector<int>& slotNode = scan ? freeNodes : binned;  // the free node of each slot
+  std::vector<Box2> nodeBoxes;
+  nodeBoxes.reserve(freeNodes.size());
+  for (int i : freeNodes) nodeBoxes.push_back(pointBox(cs.nodePosition(i), 0.0));
+  const BucketGrid nodeGrid(box, nodeBoxes);
+  std::vector<int> slotNode;  // the free node of each slot (bin order)
+  slotNode.reserve(nodeGrid.items().size());
+  for (int k : nodeGrid.items()) slotNode.push_back(freeNodes[k]);
   const size_t slots = slotNode.size();
   // Calls fn(slot) for the slots that may lie in b.
-  auto forSlots = [&](const Box2& b, auto&& fn) {
-    if (!scan) return nodeGrid->forSlots(b, fn);
-    for (size_t k = 0; k < slots; ++k) fn(static_cast<int>(k));
-  };
+  auto forSlots = [&](const Box2& b, auto&& fn) { return nodeGrid.forSlots(b, fn); };
   std::vector<Vec2> slotPos(slots);
   for (size_t k = 0; k < slots; ++k) slotPos[k] = cs.nodePosition(slotNode[k]);
   std::vector<SymMt> sum(slots, SymMt{0.0, 0.0, 0.0});
@@ -128,8 +178,6 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
   }
 
   // (c) Extrapolation into the nodes no source reached.
-  const Metric fallback =
-      options.fallbackMetric ? *options.fallbackMetric : Metric::isotropic(0.25 * box.size().norm());
   extrapolateMetric(cs, fallback);
 }
 
