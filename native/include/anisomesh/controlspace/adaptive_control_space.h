@@ -234,7 +234,7 @@ class AdaptiveControlSpace : public ControlSpace {
   std::vector<std::uint8_t> flags_;
   ControlSpaceLimits limits_;
   // edgeGraph(false), edgeGraph(true) while the topology stays (immutable: clones share them).
-  mutable std::shared_ptr<const EdgeGraph> graphs_[2];
+  mutable std::array<std::shared_ptr<const EdgeGraph>, 2> graphs_;
   mutable std::uint32_t ticks_ = 0;
   mutable std::int64_t lastTickNs_ = 0;
 };
