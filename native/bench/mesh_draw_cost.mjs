@@ -9,10 +9,10 @@
 //
 // Usage: node native/bench/mesh_draw_cost.mjs [--root DIR] [--draws N] [--rounds N] [--only small|refined]
 //   --root: the checkout whose page is served (default: this one), e.g. a base build to compare.
-import { readFileSync, readdirSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { chromium } from 'playwright-core';
+import { chromiumCpuMs } from './chromium_cpu.mjs';
 import { chromiumArgs, openSurfaceDragPage } from '../../tests/browser/launch.mjs';
 import { refinedP2Metric } from '../../tests/browser/fixtures.mjs';
 
@@ -23,18 +23,8 @@ const draws = Number(opt('--draws', 8)), rounds = Number(opt('--rounds', 3));
 const only = opt('--only', 'refined');
 const median = (a) => [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)];
 
-// CPU ms (utime + stime) of the GPU process, all threads.
-function gpuCpuMs() {
-  let ms = 0;
-  for (const pid of readdirSync('/proc').filter((d) => /^\d+$/.test(d))) {
-    try {
-      if (!readFileSync(`/proc/${pid}/cmdline`, 'utf8').includes('--type=gpu-process')) continue;
-      const f = readFileSync(`/proc/${pid}/stat`, 'utf8').split(') ')[1].split(' ');
-      ms += (Number(f[11]) + Number(f[12])) * 10;  // USER_HZ = 100
-    } catch { /* gone */ }
-  }
-  return ms;
-}
+// CPU ms of the GPU process, all threads.
+const gpuCpuMs = () => chromiumCpuMs('gpu-process');
 
 const { startServer } = await import(pathToFileURL(`${root}/web/serve.mjs`).href);
 const { server, url } = await startServer({ port: 0 });

@@ -18,8 +18,8 @@
 //   --lanes 1: one mesh worker for drags (the latest input waits for a stale job or the release).
 //   --no-isolation: the page without COOP / COEP (?isolation=off): stale jobs are cancelled by
 //   terminating the worker (the spare takes over) instead of inside the worker.
-import { readFileSync, readdirSync } from 'node:fs';
 import { chromium } from 'playwright-core';
+import { chromiumCpuMs } from './chromium_cpu.mjs';
 import { chromiumArgs, dragSourceOnce, openSurfaceDragPage, settle } from '../../tests/browser/launch.mjs';
 import { refinedP2Metric } from '../../tests/browser/fixtures.mjs';
 import { startServer } from '../../web/serve.mjs';
@@ -32,20 +32,8 @@ const pageQuery = query.length ? `?${query.join('&')}` : '';
 const only = opt('--only', null);
 const median = (a) => (a.length ? [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)] : NaN);
 
-// CPU ns of Chromium's renderer processes (utime + stime of /proc/PID/stat, which keep the
-// time of exited threads: a terminated worker's CPU stays counted), all threads.
-const tick = 1e9 / 100;  // USER_HZ
-function workerCpuNs(type = 'renderer') {
-  let ns = 0;
-  for (const pid of readdirSync('/proc').filter((d) => /^\d+$/.test(d))) {
-    try {
-      if (!readFileSync(`/proc/${pid}/cmdline`, 'utf8').includes(`--type=${type}`)) continue;
-      const f = readFileSync(`/proc/${pid}/stat`, 'utf8').split(') ')[1].split(' ');
-      ns += (Number(f[11]) + Number(f[12])) * tick;
-    } catch { /* gone */ }
-  }
-  return ns;
-}
+// CPU ns of Chromium's processes of a type (all threads; a terminated worker's CPU stays counted).
+const workerCpuNs = (type = 'renderer') => chromiumCpuMs(type) * 1e6;
 
 const cases = [
   ['small', 'p2 with holes + radial source', null],

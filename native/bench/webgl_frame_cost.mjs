@@ -7,26 +7,16 @@
 //
 // Usage: node native/bench/webgl_frame_cost.mjs [--frames N]
 //   CHROMIUM_EXTRA_ARGS="--disable-gpu-compositing" adds Chromium flags.
-import { readFileSync, readdirSync } from 'node:fs';
 import { chromium } from 'playwright-core';
+import { chromiumCpuMs } from './chromium_cpu.mjs';
 import { chromiumArgs } from '../../tests/browser/launch.mjs';
 import { startServer } from '../../web/serve.mjs';
 
 const args = process.argv.slice(2);
 const frames = Number(args.includes('--frames') ? args[args.indexOf('--frames') + 1] : 30);
 
-// CPU ms (utime + stime) of the GPU process, all threads.
-function gpuCpuMs() {
-  let ms = 0;
-  for (const pid of readdirSync('/proc').filter((d) => /^\d+$/.test(d))) {
-    try {
-      if (!readFileSync(`/proc/${pid}/cmdline`, 'utf8').includes('--type=gpu-process')) continue;
-      const f = readFileSync(`/proc/${pid}/stat`, 'utf8').split(') ')[1].split(' ');
-      ms += (Number(f[11]) + Number(f[12])) * 10;  // USER_HZ = 100
-    } catch { /* gone */ }
-  }
-  return ms;
-}
+// CPU ms of the GPU process, all threads.
+const gpuCpuMs = () => chromiumCpuMs('gpu-process');
 
 const extra = process.env.CHROMIUM_EXTRA_ARGS?.split(' ').filter(Boolean) ?? [];
 const { server, url } = await startServer({ port: 0 });
