@@ -18,21 +18,52 @@ using controlspace_internal::pointBox;
 
 namespace {
 
+// Step (b)'s rule for one piece: a node at distance d <= limit takes the piece's metric with
+// the weight 1 / t^2, t = max(d - radius, 0) + soft (soft: a quarter of the piece's reach).
+struct PieceWeight {
+  double radius, soft, limit;
+  SymMt m;
+  PieceWeight(const SourcePiece& p, double minSize) {
+    const double reach = std::max(p.targetSize, minSize);
+    radius = p.radius;
+    soft = 0.25 * reach;
+    limit = p.radius + reach;
+    m = toSymMt(p.metric);
+  }
+  // Adds the piece, at distance d from the node, to the node's sums.
+  void add(double d, SymMt& sum, double& wsum) const {
+    const double t = std::max(d - radius, 0.0) + soft;
+    const double w = 1.0 / (t * t);
+    sum.a += w * m.a;
+    sum.b += w * m.b;
+    sum.c += w * m.c;
+    wsum += w;
+  }
+};
+
+// The distance from a point piece (a == b) to q, as distanceToPiece() computes it.
+inline double pointDistance(const SourcePiece& p, const Vec2& q) {
+  const double dx = p.a.x() - q.x(), dy = p.a.y() - q.y();
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+// Node i takes the weighted average of the pieces reaching it (intersected with its value
+// when it has one); nothing when none reached it.
+void setWeightedAverage(AdaptiveControlSpace& cs, int i, const SymMt& sum, double wsum) {
+  if (wsum <= 0.0) return;
+  const SymMt avg{sum.a / wsum, sum.b / wsum, sum.c / wsum};
+  const Metric m = toMetric(avg);
+  cs.setNodeMetric(i, cs.nodeIsInitialized(i) ? intersect(cs.nodeMetric(i), m) : m);
+}
+
 // Step (b) of insertSources() for a few pieces (a dragged source): every free node in turn
 // takes the pieces that reach it, in their order, summed as the binned pass sums them (the
 // same weights, the same order: the same bits), without per-node arrays (a drag's
 // structure has tens of thousands of nodes, and the source reaches a few of them).
 void insertFewPieces(AdaptiveControlSpace& cs, const std::vector<SourcePiece>& pieces, double minSize) {
-  struct Reach {
-    double soft, limit;
-    SymMt m;
-  };
-  std::vector<Reach> reach;
-  reach.reserve(pieces.size());
-  for (const SourcePiece& p : pieces) {
-    const double r = std::max(p.targetSize, minSize);
-    reach.push_back({0.25 * r, p.radius + r, toSymMt(p.metric)});
-  }
+  std::vector<PieceWeight> weights;
+  weights.reserve(pieces.size());
+  for (const SourcePiece& p : pieces) weights.emplace_back(p, minSize);
   const int n = cs.nodeCount();
   for (int i = 0; i < n; ++i) {
     cs.refinementTick();
@@ -42,26 +73,10 @@ void insertFewPieces(AdaptiveControlSpace& cs, const std::vector<SourcePiece>& p
     double wsum = 0.0;
     for (size_t k = 0; k < pieces.size(); ++k) {
       const SourcePiece& p = pieces[k];
-      double d;
-      if (p.a == p.b) {  // a point: the distance as distanceToPiece() computes it
-        const double dx = p.a.x() - q.x(), dy = p.a.y() - q.y();
-        d = std::sqrt(dx * dx + dy * dy);
-      } else {
-        d = distanceToPiece(p, q);
-      }
-      const Reach& r = reach[k];
-      if (d > r.limit) continue;
-      const double t = std::max(d - p.radius, 0.0) + r.soft;
-      const double w = 1.0 / (t * t);
-      sum.a += w * r.m.a;
-      sum.b += w * r.m.b;
-      sum.c += w * r.m.c;
-      wsum += w;
+      const double d = p.a == p.b ? pointDistance(p, q) : distanceToPiece(p, q);
+      if (!(d > weights[k].limit)) weights[k].add(d, sum, wsum);
     }
-    if (wsum <= 0.0) continue;
-    const SymMt avg{sum.a / wsum, sum.b / wsum, sum.c / wsum};
-    const Metric m = toMetric(avg);
-    cs.setNodeMetric(i, cs.nodeIsInitialized(i) ? intersect(cs.nodeMetric(i), m) : m);
+    setWeightedAverage(cs, i, sum, wsum);
   }
 }
 
@@ -135,46 +150,28 @@ void insertSources(AdaptiveControlSpace& cs, const std::vector<MetricSource>& so
   slotNode.reserve(nodeGrid.items().size());
   for (int k : nodeGrid.items()) slotNode.push_back(freeNodes[k]);
   const size_t slots = slotNode.size();
-  // Calls fn(slot) for the slots that may lie in b.
-  auto forSlots = [&](const Box2& b, auto&& fn) { return nodeGrid.forSlots(b, fn); };
   std::vector<Vec2> slotPos(slots);
   for (size_t k = 0; k < slots; ++k) slotPos[k] = cs.nodePosition(slotNode[k]);
   std::vector<SymMt> sum(slots, SymMt{0.0, 0.0, 0.0});
   std::vector<double> wsum(slots, 0.0);
   for (const SourcePiece& p : pieces) {
     cs.refinementTick();  // cancellable between pieces
-    const double reach = std::max(p.targetSize, minSize);
-    const double soft = 0.25 * reach;
-    const double limit = p.radius + reach;
-    const SymMt m = toSymMt(p.metric);
-    auto add = [&](size_t k, double d) {
-      const double t = std::max(d - p.radius, 0.0) + soft;
-      const double w = 1.0 / (t * t);
-      sum[k].a += w * m.a;
-      sum[k].b += w * m.b;
-      sum[k].c += w * m.c;
-      wsum[k] += w;
+    const PieceWeight pw(p, minSize);
+    // The slots within reach, by the piece's distance (chosen once per piece).
+    auto addWithin = [&](auto&& distance) {
+      nodeGrid.forSlots(pieceBox(p, pw.limit), [&](int k) {
+        const double d = distance(slotPos[k]);
+        if (!(d > pw.limit)) pw.add(d, sum[k], wsum[k]);
+      });
     };
-    if (p.a == p.b) {  // a point: the distance as distanceToPiece() computes it
-      forSlots(pieceBox(p, limit), [&](int k) {
-        const double dx = p.a.x() - slotPos[k].x(), dy = p.a.y() - slotPos[k].y();
-        const double d = std::sqrt(dx * dx + dy * dy);
-        if (!(d > limit)) add(k, d);
-      });
-    } else {
-      forSlots(pieceBox(p, limit), [&](int k) {
-        const double d = distanceToPiece(p, slotPos[k]);
-        if (!(d > limit)) add(k, d);
-      });
-    }
+    if (p.a == p.b)
+      addWithin([&](const Vec2& q) { return pointDistance(p, q); });
+    else
+      addWithin([&](const Vec2& q) { return distanceToPiece(p, q); });
   }
   for (size_t k = 0; k < slots; ++k) {
     cs.refinementTick();
-    if (wsum[k] <= 0.0) continue;
-    const int i = slotNode[k];
-    const SymMt avg{sum[k].a / wsum[k], sum[k].b / wsum[k], sum[k].c / wsum[k]};
-    const Metric m = toMetric(avg);
-    cs.setNodeMetric(i, cs.nodeIsInitialized(i) ? intersect(cs.nodeMetric(i), m) : m);
+    setWeightedAverage(cs, slotNode[k], sum[k], wsum[k]);
   }
 
   // (c) Extrapolation into the nodes no source reached.
