@@ -6,7 +6,7 @@
 // profiler (perf record -g) run on it shows where a drag's time goes. Each run's line ends
 // with a hash of its mesh (two builds' meshes compared run for run).
 //
-// Usage: surface_drag_native CASE.json [RUNS] [--hmax H --chord T] [--report]
+// Usage: surface_drag_native CASE.json [RUNS] [--hmax H --chord T] [--report] [--threads N]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "anisomesh/core/parallel.h"
 #include "anisomesh/io/run_case.h"
 
 namespace {
@@ -51,7 +52,8 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: surface_drag_native CASE.json [RUNS] [--hmax H] [--chord T] [--report]\n");
+    std::fprintf(stderr,
+                 "usage: surface_drag_native CASE.json [RUNS] [--hmax H] [--chord T] [--report] [--threads N]\n");
     return 2;
   }
   std::ifstream in(argv[1]);
@@ -68,6 +70,8 @@ int main(int argc, char** argv) {
       c["metric"]["chordTolerance"] = std::stod(argv[++i]);
     else if (a == "--report")
       report = true;
+    else if (a == "--threads" && i + 1 < argc)
+      anisomesh::setThreadCount(std::stoi(argv[++i]));
     else
       runs = std::stoi(a);
   }

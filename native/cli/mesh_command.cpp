@@ -1,6 +1,8 @@
 // anisomesh mesh CASE.json -o OUT ...: meshes a JSON case, planar or surface.
+#include <algorithm>
 #include <iostream>
 
+#include "anisomesh/core/parallel.h"
 #include "anisomesh/io/file_io.h"
 #include "anisomesh/io/run_case.h"
 #include "cli.h"
@@ -14,6 +16,7 @@ int runMesh(Args& args) {
   bool stats = false, quads = false, allQuads = false, updates = true, glyphs = false;
   std::int64_t maxElements = -1, maxControlNodes = -1;
   int verbosity = 0;
+  long long threads = 1;
   CaseSvgOptions svg;
   while (!args.done()) {
     const std::string a = args.next();
@@ -37,6 +40,8 @@ int runMesh(Args& args) {
       stats = true;
     else if (a == "--no-updates")
       updates = false;
+    else if (a == "-threads" || a == "--threads")
+      threads = parseCount(a, args.value(a));
     else if (parseBudgetOption(a, args, &maxElements, &maxControlNodes))
       continue;
     else if (!a.empty() && a[0] == '-')
@@ -48,6 +53,7 @@ int runMesh(Args& args) {
   }
   if (input.empty()) throw UsageError{"missing CASE.json"};
   requireOutput(output);
+  setThreadCount(int(std::min<long long>(threads, 256)));
 
   // The same entry point as the wasm package: planar and surface cases, same report.
   RunCaseOptions o;
@@ -70,8 +76,10 @@ Command meshCommand() {
   return {
       "mesh",
       "  mesh CASE.json -o OUT [--quads] [--all-quads] [--stats] [--max-elements N] [--no-updates] [-v N]\n"
+      "       [-threads N]\n"
       "                            mesh a JSON case, planar or surface (OUT: .mesh, .vtk, .obj, .msh, .vtu or .svg;\n"
-      "                            .svg; -in CASE.json / -out OUT as in MMG; -v 1: progress on stderr)\n"
+      "                            -in CASE.json / -out OUT as in MMG; -v 1: progress on stderr;\n"
+      "                            -threads N: worker threads, the same output for any N)\n"
       "      [--svg-uv] [--svg-view AZ,EL] [--svg-control-space]\n"
       "                            .svg of a surface: 3D view from azimuth AZ, elevation EL (degrees;\n"
       "                            default -63,34), or the parameter plane; control-space ellipses over it\n",

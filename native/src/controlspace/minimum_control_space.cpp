@@ -23,6 +23,18 @@ MinimumControlSpace::MinimumControlSpace(std::vector<std::shared_ptr<const Contr
           "minimum control space inputs have no common rectangle");
 }
 
+bool MinimumControlSpace::concurrentQueries() const {
+  for (const auto& in : inputs_)
+    if (!in->concurrentQueries()) return false;
+  return true;
+}
+
+bool MinimumControlSpace::countsQueries() const {
+  for (const auto& in : inputs_)
+    if (in->countsQueries()) return true;
+  return false;
+}
+
 Metric MinimumControlSpace::metricAt(const Vec2& p) const {
   const size_t k = inputs_.size();
   if (k == 1) return inputs_.front()->metricAt(p);

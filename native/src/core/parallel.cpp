@@ -17,7 +17,52 @@ constexpr bool kSingleThreaded = true;  // no -pthread build: one thread, the sa
 constexpr bool kSingleThreaded = false;
 #endif
 
+thread_local bool tInsideChunks = false;
+thread_local int tSlot = 0;
+
+// The slot numbers in use (0 is every thread the layer did not start).
+std::mutex gSlotsLock;
+std::vector<char> gSlotsUsed;
+
+// Holds a free slot for the thread that constructs it, until it is destroyed.
+class SlotHold {
+ public:
+  SlotHold() {
+    std::lock_guard<std::mutex> lock(gSlotsLock);
+    if (gSlotsUsed.empty()) gSlotsUsed.assign(kThreadSlots, 0);
+    int s = 1;
+    while (s < kThreadSlots && gSlotsUsed[size_t(s)]) ++s;
+    // More live threads than slots: the layer never starts that many (at most threadCount()
+    // per region, nested regions run on their caller's thread).
+    if (s == kThreadSlots) std::terminate();
+    gSlotsUsed[size_t(s)] = 1;
+    tSlot = s;
+  }
+  ~SlotHold() {
+    std::lock_guard<std::mutex> lock(gSlotsLock);
+    gSlotsUsed[size_t(tSlot)] = 0;
+  }
+  SlotHold(const SlotHold&) = delete;
+  SlotHold& operator=(const SlotHold&) = delete;
+};
+
+// Marks the calling thread as inside a multi-threaded parallelChunks region while it lives.
+class InsideChunks {
+ public:
+  InsideChunks() : before_(tInsideChunks) { tInsideChunks = true; }
+  ~InsideChunks() { tInsideChunks = before_; }
+  InsideChunks(const InsideChunks&) = delete;
+  InsideChunks& operator=(const InsideChunks&) = delete;
+
+ private:
+  bool before_;
+};
+
 }  // namespace
+
+bool insideParallelChunks() { return tInsideChunks; }
+
+int threadSlot() { return tSlot; }
 
 int threadCount() { return gThreads.load(std::memory_order_relaxed); }
 
@@ -35,7 +80,7 @@ void parallelChunks(size_t n, size_t grain, const std::function<void(size_t, siz
   if (grain == 0) grain = 1;
   const size_t chunks = chunkCount(n, grain);
   const size_t workers = std::min<size_t>(size_t(threadCount()), chunks);
-  if (workers <= 1 || kSingleThreaded) {
+  if (workers <= 1 || kSingleThreaded || tInsideChunks) {
     for (size_t c = 0; c < chunks; ++c) f(c, c * grain, std::min(n, (c + 1) * grain));
     return;
   }
@@ -44,6 +89,7 @@ void parallelChunks(size_t n, size_t grain, const std::function<void(size_t, siz
   size_t failedChunk = chunks;
   std::exception_ptr failure;
   auto work = [&] {
+    const InsideChunks inside;
     for (size_t c; (c = next.fetch_add(1)) < chunks;) {
       try {
         f(c, c * grain, std::min(n, (c + 1) * grain));
@@ -55,20 +101,25 @@ void parallelChunks(size_t n, size_t grain, const std::function<void(size_t, siz
   };
   std::vector<std::thread> pool;
   pool.reserve(workers - 1);
-  for (size_t t = 1; t < workers; ++t) pool.emplace_back(work);
+  for (size_t t = 1; t < workers; ++t)
+    pool.emplace_back([&] {
+      const SlotHold slot;
+      work();
+    });
   work();
   for (auto& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
 }
 
 void parallelInvoke(const std::function<void()>& a, const std::function<void()>& b) {
-  if (threadCount() <= 1 || kSingleThreaded) {
+  if (threadCount() <= 1 || kSingleThreaded || tInsideChunks) {
     a();
     b();
     return;
   }
   std::exception_ptr fb;
   std::thread t([&] {
+    const SlotHold slot;
     try {
       b();
     } catch (...) {

@@ -104,10 +104,13 @@ Mesh meshPlanarBoundary(const std::vector<BoundaryLoop>& loops, const ControlSpa
   // triangulation is built (its first level has one part: a thread would idle), and
   // dropped, with any error it raised, when the estimate keeps the domain whole. Only for
   // boundaries long enough to enclose 2 partElements at their own spacing (a square of n
-  // points holds about n^2 / 8 triangles): small domains would wait for its samples.
+  // points holds about n^2 / 8 triangles): small domains would wait for its samples. Not
+  // on a control space that tallies its queries (a dropped plan's would count only with
+  // threads), nor where the threads are already busy (a patch among patches).
   double boundaryPoints = 0.0;
   for (const BoundaryLoop& l : loops) boundaryPoints += static_cast<double>(l.points.size());
-  const bool ahead = mayDecompose && threadCount() > 1 && queriesAreConcurrent(controlSpace) &&
+  const bool ahead = mayDecompose && threadCount() > 1 && !insideParallelChunks() &&
+                     queriesAreConcurrent(controlSpace) && !controlSpace.countsQueries() &&
                      boundaryPoints * boundaryPoints >= 16.0 * static_cast<double>(options.partElements);
   DomainParts parts;
   std::exception_ptr decompositionFailure;

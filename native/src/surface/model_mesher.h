@@ -25,6 +25,7 @@
 #include "anisomesh/controlspace/quadtree_control_space.h"
 #include "anisomesh/core/clock.h"
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/parallel.h"
 #include "anisomesh/core/portable_math.h"
 #include "anisomesh/pipeline/algorithm1.h"
 #include "anisomesh/surface/surface_mesh.h"
@@ -44,12 +45,32 @@ inline std::string patchLabel(const SurfacePatch& p, int index) {
   return "patch '" + (p.name.empty() ? std::to_string(index) : p.name) + "'";
 }
 
-// Cost counters shared by every patch of one run.
+// One thread's tally of control-space queries (a cache line of its own: threads that
+// count side by side do not share one).
+struct alignas(64) QueryTally {
+  long long queries = 0;
+  double seconds = 0.0;
+};
+
+// Cost counters shared by every patch of one run. The queries are tallied per thread slot
+// (core/parallel.h), so patches and parts meshed concurrently count without atomics; the
+// totals are sums, the same for any thread count.
 struct Counters {
   long long curvature = 0;
   double curvatureSeconds = 0.0;
-  long long queries = 0;
-  double querySeconds = 0.0;
+  std::array<QueryTally, kThreadSlots> tallies{};
+  // The queries of every thread.
+  long long queries() const {
+    long long n = 0;
+    for (const QueryTally& t : tallies) n += t.queries;
+    return n;
+  }
+  // Their sampled time, seconds.
+  double querySeconds() const {
+    double s = 0.0;
+    for (const QueryTally& t : tallies) s += t.seconds;
+    return s;
+  }
 };
 
 // Counts (and times) the queries the discretization and the mesher make; Mp comes from
@@ -61,16 +82,20 @@ class CountingControlSpace : public ControlSpace {
   // The time is sampled: one query in 32 is timed and counted 32 times (reading the clock
   // at every query cost 7% of a surface run, as much as a cheap query itself).
   Metric metricAt(const Vec2& p) const override {
-    if ((c_.queries++ & 31) != 0) return inner_.metricAt(p);
+    QueryTally& t = c_.tallies[size_t(threadSlot())];
+    if ((t.queries++ & 31) != 0) return inner_.metricAt(p);
     const auto t0 = Clock::now();
     Metric m = inner_.metricAt(p);
-    c_.querySeconds += 32.0 * secondsSince(t0);
+    t.seconds += 32.0 * secondsSince(t0);
     return m;
   }
   Mat2 parameterizationAt(const Vec2& p) const override {
     return innerHasMp_ ? inner_.parameterizationAt(p) : parameterizationMatrix(s_, p);
   }
   Box2 bounds() const override { return inner_.bounds(); }
+  // As the inner space's (the tallies are per thread; the surface keeps no state).
+  bool concurrentQueries() const override { return inner_.concurrentQueries(); }
+  bool countsQueries() const override { return true; }
 
  private:
   const ControlSpace& inner_;
@@ -137,6 +162,8 @@ class ModelMesher final : public Algorithm1Steps {
   bool checkBoundaries(int round) override;
   bool hasStaleInvalidContour() const override;
   Mesh meshPatches() override;
+  // The patches' meshes in (u, v), one per patch, on loops (loopsOf of each patch).
+  std::vector<Mesh> meshPatchInteriors(const std::vector<std::vector<BoundaryLoop>>& loops);
 
  private:
   void setupSlots();

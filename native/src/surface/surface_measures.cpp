@@ -152,8 +152,8 @@ void DeferredMeasures::fill(SurfaceMeshReport& report) const {
   report.elementQuality = elementQuality;
   report.edgeLengths = edgeLengths;
   if (chordsDone) report.quality = q;
-  report.controlSpaceQueries = counters->queries;
-  report.controlSpaceSeconds = counters->querySeconds;
+  report.controlSpaceQueries = counters->queries();
+  report.controlSpaceSeconds = counters->querySeconds();
 }
 
 }  // namespace surface_mesher

@@ -4,6 +4,9 @@
 // control spaces across shared contours, inner meshing and merging.
 #include "anisomesh/surface/surface_mesh.h"
 
+#include <mutex>
+
+#include "anisomesh/controlspace/concurrency.h"
 #include "anisomesh/mesh/all_quad_split.h"
 #include "model_mesher.h"
 
@@ -157,6 +160,46 @@ bool ModelMesher::hasStaleInvalidContour() const {
   return false;
 }
 
+// 14-15: the patches' interiors, concurrently when there are several and their control
+// spaces allow it (each patch's mesh is the same either way; an error is the lowest
+// patch's, as when they are meshed in order). One progress for all: the patches' mean.
+std::vector<Mesh> ModelMesher::meshPatchInteriors(const std::vector<std::vector<BoundaryLoop>>& loops) {
+  const size_t n = m_.patches.size();
+  std::vector<Mesh> meshes(n);
+  std::vector<double> fraction(n, 0.0);
+  std::mutex progressLock;
+  bool concurrent = n > 1;
+  for (size_t p = 0; p < n; ++p) concurrent = concurrent && queriesAreConcurrent(space(int(p)));
+  auto meshPatch = [&](size_t p) {
+    PlanarMesherOptions mo = o_.mesher;
+    mo.boundaryOnly = false;
+    // Quads are merged in the patch's (u, v) (never across its contour edges); the all-quad
+    // split is done in meshPatches so that shared contour edges get one midpoint for both.
+    mo.quads = o_.quads || o_.allQuads;
+    mo.allQuads = false;
+    mo.boundaryCache = boundaryCaches_[p];
+    if (o_.mesher.progress && n > 1) {
+      mo.progress = [&, p](double f) {
+        std::lock_guard<std::mutex> lock(progressLock);
+        fraction[p] = f;
+        double sum = 0.0;
+        for (double x : fraction) sum += x;
+        return o_.mesher.progress(sum / static_cast<double>(n));
+      };
+    }
+    try {
+      meshes[p] = meshPlanarBoundary(loops[p], space(int(p)), mo);
+    } catch (const Error& e) {
+      throw Error(e.code(), patchLabel(m_.patches[p], int(p)) + ": " + e.what());
+    }
+  };
+  if (concurrent)
+    parallelChunks(n, 1, [&](size_t p, size_t, size_t) { meshPatch(p); });
+  else
+    for (size_t p = 0; p < n; ++p) meshPatch(p);
+  return meshes;
+}
+
 // 14-16: inner nodes and improvement per patch; merge.
 Mesh ModelMesher::meshPatches() {
   SurfaceMeshReport* report = report_;
@@ -169,26 +212,19 @@ Mesh ModelMesher::meshPatches() {
   std::vector<int> patchTriangles, patchQuads;
   std::vector<MeasuredPatch> measured;            // what the 3D measures read (surface_measures.cpp)
   std::map<std::array<int, 2>, int> boundaryMid;  // all-quad: merged point splitting a contour edge
-  for (size_t p = 0; p < m_.patches.size(); ++p) {
+  const size_t patches = m_.patches.size();
+  std::vector<std::vector<BoundaryLoop>> patchLoops(patches);
+  std::vector<std::vector<int>> patchIds(patches);
+  std::vector<std::vector<char>> patchShared(patches);
+  for (size_t p = 0; p < patches; ++p) patchLoops[p] = loopsOf(int(p), &patchIds[p], &patchShared[p], o_.allQuads);
+  std::vector<Mesh> patchMeshes = meshPatchInteriors(patchLoops);
+  for (size_t p = 0; p < patches; ++p) {
     const SurfacePatch& patch = m_.patches[p];
     const Surface& surf = *patch.surface;
-    const ControlSpace& cs = space(int(p));
-    std::vector<int> ids;
-    std::vector<char> shared;
-    const auto loops = loopsOf(int(p), &ids, &shared, o_.allQuads);
-    PlanarMesherOptions mo = o_.mesher;
-    mo.boundaryOnly = false;
-    // Quads are merged in the patch's (u, v) (never across its contour edges); the all-quad
-    // split is done here so that shared contour edges get one midpoint for both patches.
-    mo.quads = o_.quads || o_.allQuads;
-    mo.allQuads = false;
-    mo.boundaryCache = boundaryCaches_[p];
-    Mesh pm;
-    try {
-      pm = meshPlanarBoundary(loops, cs, mo);
-    } catch (const Error& e) {
-      throw Error(e.code(), patchLabel(patch, int(p)) + ": " + e.what());
-    }
+    const std::vector<int>& ids = patchIds[p];
+    const std::vector<char>& shared = patchShared[p];
+    const std::vector<BoundaryLoop>& loops = patchLoops[p];
+    Mesh pm = std::move(patchMeshes[p]);
     const size_t nb = ids.size();
     if (pm.params.size() != pm.points.size()) {  // (the planar mesher fills params; keep the fallback)
       pm.params.clear();
@@ -302,8 +338,8 @@ Mesh ModelMesher::meshPatches() {
     patchTriangles.push_back(int(pm.triangles.size()));
     patchQuads.push_back(int(pm.quads.size()));
     if (o_.measureQuality)
-      measured.push_back(
-          {patch.surface, &cs, std::move(pm.params), std::move(pm.triangles), std::move(pm.quads), std::move(gid)});
+      measured.push_back({patch.surface, &space(int(p)), std::move(pm.params), std::move(pm.triangles),
+                          std::move(pm.quads), std::move(gid)});
   }
   if (o_.consistentOrientation) orientPatches(out, patchTriangles, patchQuads, sharedEdges);
   // Drop merged ids left over from earlier discretizations (never placed).
@@ -360,8 +396,8 @@ Mesh ModelMesher::meshPatches() {
     report->crossSharedSizeRatioMax = acrossEdgeSizeRatio(out, report->sharedEdgeList);
     report->curvatureEvaluations = counters_->curvature;
     report->curvatureSeconds = counters_->curvatureSeconds;
-    report->controlSpaceQueries = counters_->queries;
-    report->controlSpaceSeconds = counters_->querySeconds;
+    report->controlSpaceQueries = counters_->queries();
+    report->controlSpaceSeconds = counters_->querySeconds();
     report->patchTriangles = patchTriangles;
     if (measures && measures->chordsDone) {
       measures->fill(*report);

@@ -65,6 +65,8 @@ std::int64_t controlSpaceNodeBudget(std::int64_t maxElements);
 class AdaptiveControlSpace : public ControlSpace {
  public:
   Box2 bounds() const override { return box_; }
+  // Queries change no state outside refine() (and edgeGraph(), not a query).
+  bool concurrentQueries() const override { return true; }
 
   // Number of control nodes.
   int nodeCount() const { return static_cast<int>(pos_.size()); }

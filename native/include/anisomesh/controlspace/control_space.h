@@ -23,6 +23,12 @@ class ControlSpace {
   virtual Mat2 parameterizationAt(const Vec2& /*p*/) const { return Mat2::Identity(); }
   // The rectangle the control space is defined on.
   virtual Box2 bounds() const = 0;
+  // Whether several threads may query it at once (the parallel stages ask; see
+  // controlspace/concurrency.h). False unless a structure knows its queries are safe.
+  virtual bool concurrentQueries() const { return false; }
+  // Whether its queries are tallied (a report counts them): queries that may be thrown
+  // away (work done ahead on a spare thread) would make the tally depend on the threads.
+  virtual bool countsQueries() const { return false; }
 };
 
 // The same metric everywhere.

@@ -23,6 +23,9 @@ class MinimumControlSpace : public ControlSpace {
   Mat2 parameterizationAt(const Vec2& p) const override { return inputs_.front()->parameterizationAt(p); }
   // The common rectangle of the inputs (their intersection).
   Box2 bounds() const override { return bounds_; }
+  // When every input's queries are.
+  bool concurrentQueries() const override;
+  bool countsQueries() const override;
   // The inputs, in the order given.
   const std::vector<std::shared_ptr<const ControlSpace>>& inputs() const { return inputs_; }
 

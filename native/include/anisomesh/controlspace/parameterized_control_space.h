@@ -36,6 +36,9 @@ class ParameterizedControlSpace : public ControlSpace {
   // Mp at p: interpolated from the nodes (Stored) or computed (Computed).
   Mat2 parameterizationAt(const Vec2& p) const override;
   Box2 bounds() const override { return space_.bounds(); }
+  // As the structure's: mp must then be safe to call from several threads (a surface's
+  // evaluation is: it keeps no state).
+  bool concurrentQueries() const override { return space_.concurrentQueries(); }
 
   ParameterizationStorage storage() const { return storage_; }
   // Mt of node i (in the tangent plane's frame J Mp^-1).

@@ -29,4 +29,15 @@ inline size_t chunkCount(size_t n, size_t grain) { return grain == 0 ? 0 : (n + 
 // Runs a and b, concurrently when threadCount() > 1; rethrows a's exception first.
 void parallelInvoke(const std::function<void()>& a, const std::function<void()>& b);
 
+// Called inside a parallelChunks region that runs on several threads, parallelChunks and
+// parallelInvoke run on the calling thread (the outer loop already keeps the threads busy;
+// nesting would start threads^2 of them).
+bool insideParallelChunks();
+
+// Slots: every thread the layer starts holds a slot number no other live thread holds
+// (threads it did not start hold 0), so per-thread tallies indexed by it need no atomics.
+constexpr int kThreadSlots = 512;
+// The calling thread's slot, in [0, kThreadSlots).
+int threadSlot();
+
 }  // namespace anisomesh

@@ -1,0 +1,119 @@
+// Surfaces on several threads: patches meshed concurrently, a large patch's parts meshed
+// concurrently, and the report's query tally kept per thread slot (core/parallel.h). The
+// rule: the same mesh and the same report (timings aside) for any thread count.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "anisomesh/core/parallel.h"
+#include "anisomesh/io/run_case.h"
+
+using namespace anisomesh;
+
+namespace {
+
+struct SurfaceThreadsGuard {
+  int saved = threadCount();
+  ~SurfaceThreadsGuard() { setThreadCount(saved); }
+};
+
+nlohmann::json exampleCase(const std::string& name) {
+  std::ifstream in(std::string(ANISOMESH_SOURCE_DIR) + "/examples/surface/" + name);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return nlohmann::json::parse(ss.str());
+}
+
+// A run's mesh (its bits, hashed) and its report without its clock readings.
+struct RunText {
+  size_t meshHash = 0;
+  std::string report;
+};
+
+RunText runText(const nlohmann::json& c) {
+  const CaseRun run = runCase(c.dump(), RunCaseOptions{});
+  nlohmann::json stats = run.stats;
+  for (const char* k : {"secondsTotal", "controlSpaceSeconds", "curvatureSeconds"}) stats.erase(k);
+  std::ostringstream os;
+  os.precision(17);
+  for (const Vec3& p : run.mesh.points) os << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  for (const auto& t : run.mesh.triangles) os << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+  for (const auto& q : run.mesh.quads) os << q[0] << ' ' << q[1] << ' ' << q[2] << ' ' << q[3] << '\n';
+  return {std::hash<std::string>{}(os.str()), stats.dump()};
+}
+
+void expectTheSameForAnyThreadCount(const nlohmann::json& c) {
+  SurfaceThreadsGuard guard;
+  setThreadCount(1);
+  const RunText one = runText(c);
+  EXPECT_NE(one.report.find("\"controlSpaceQueries\""), std::string::npos);
+  for (int threads : {2, 4}) {
+    setThreadCount(threads);
+    const RunText other = runText(c);
+    EXPECT_EQ(other.meshHash, one.meshHash) << threads << " threads";
+    EXPECT_EQ(other.report, one.report) << threads << " threads";
+  }
+}
+
+}  // namespace
+
+// Two patches with a shared curve: meshed side by side from 2 threads on.
+TEST(ParallelSurface, TwoPatchModelTheSameForAnyThreadCount) {
+  expectTheSameForAnyThreadCount(exampleCase("surface_two_patch_c.json"));
+}
+
+// One patch of about 53k triangles: its domain is split into parts meshed concurrently,
+// each querying the counting view of the patch's control space (about 420k queries).
+TEST(ParallelSurface, LargePatchPartsTheSameForAnyThreadCount) {
+  nlohmann::json c = exampleCase("surface_p2_holes.json");
+  c["metric"]["hmax"] = 0.3;
+  c["metric"]["chordTolerance"] = 0.0025;
+  expectTheSameForAnyThreadCount(c);
+}
+
+// Threads alive at once hold distinct slots; a region nested in a multi-threaded one runs
+// on its caller's thread.
+TEST(ParallelSurface, ThreadSlotsDistinctAndNestedRegionsStayOnTheirThread) {
+  SurfaceThreadsGuard guard;
+  setThreadCount(4);
+  std::mutex m;
+  std::set<std::thread::id> threads;
+  std::set<int> slots;
+  bool nestedMoved = false, nestedOutside = false;
+  std::vector<char> arrived(4, 0);
+  // Four chunks that wait for each other: all four threads are alive together.
+  parallelChunks(4, 1, [&](size_t chunk, size_t, size_t) {
+    {
+      std::lock_guard<std::mutex> lock(m);
+      threads.insert(std::this_thread::get_id());
+      slots.insert(threadSlot());
+      arrived[chunk] = 1;
+    }
+    for (bool all = false; !all;) {
+      std::this_thread::yield();
+      std::lock_guard<std::mutex> lock(m);
+      all = arrived == std::vector<char>(4, 1);
+    }
+    const std::thread::id self = std::this_thread::get_id();
+    const int slot = threadSlot();
+    parallelChunks(8, 1, [&](size_t, size_t, size_t) {
+      std::lock_guard<std::mutex> lock(m);
+      if (std::this_thread::get_id() != self || threadSlot() != slot) nestedMoved = true;
+      if (!insideParallelChunks()) nestedOutside = true;
+    });
+  });
+  EXPECT_EQ(threads.size(), 4u);
+  EXPECT_EQ(slots.size(), threads.size());
+  for (int s : slots) EXPECT_TRUE(s >= 0 && s < kThreadSlots) << s;
+  EXPECT_FALSE(nestedMoved);
+  EXPECT_FALSE(nestedOutside);
+  EXPECT_FALSE(insideParallelChunks());
+  EXPECT_EQ(threadSlot(), 0);
+}
