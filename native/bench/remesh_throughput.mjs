@@ -9,17 +9,19 @@
 // then the peak RSS at the end of each stage (CLIs whose -v lines give it).
 //
 // Usage: node native/bench/remesh_throughput.mjs [--size 1e5,1e6,3e6] [--case boundary,rotated,front]
-//          [--threads 1,2] [--no-bamg] [--bamg-max 1e6] [--keep DIR [--generate-only]]
+//          [--threads 1,2] [--no-bamg] [--bamg-max 1e6] [--keep DIR [--generate-only]] [--repeat N]
 //   --size: target output triangles (the scale of each case is calibrated for it);
 //   --bamg-max: largest size ffbamg runs on (it takes ~20x longer).
 //   --carrier-factor F: carrier spacing = requested size / F (default 2; ~6.3 puts a 2,000-
 //   triangle output on an 80k-triangle carrier).
 //   --baseline CLI: also runs another anisomesh build (e.g. the one before a change) on the
 //   same files, one thread; a CLI without -v reports the wall seconds of --stats only.
+//   --repeat N: every anisomesh build runs N times per case, in turn with the others; a row
+//   is the run of median wall time (its CPU and stages), with the range of the N walls.
 //   Every row is also printed as JSON on stderr as soon as it is measured. With several sizes
 //   the table is followed by the time growth exponents per case and tool (CPU and wall).
 import { spawnSync } from 'node:child_process';
-import { closeSync, existsSync, mkdirSync, mkdtempSync, openSync, readFileSync, rmSync, writeSync } from 'node:fs';
+import { closeSync, existsSync, mkdirSync, mkdtempSync, openSync, readFileSync, renameSync, rmSync, writeSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -232,7 +234,7 @@ function timed(cmd, args, dir) {
 
 // ---- main
 const argv = process.argv.slice(2);
-let generateOnly = false, baseline = null;
+let generateOnly = false, baseline = null, repeat = 1;
 let sizes = [1e5, 1e6], cases = ['boundary', 'rotated', 'front'], threads = [1, 2], bamg = true, bamgMax = 1e6, keep = null;
 for (let i = 0; i < argv.length; i++) {
   const a = argv[i];
@@ -245,6 +247,7 @@ for (let i = 0; i < argv.length; i++) {
   else if (a === '--generate-only') generateOnly = true;
   else if (a === '--baseline') baseline = resolve(argv[++i]);
   else if (a === '--carrier-factor') carrierFactor = Number(argv[++i]);
+  else if (a === '--repeat') repeat = Math.max(1, Number(argv[++i]));
   else { console.error(`unknown argument ${a}`); process.exit(2); }
 }
 for (const k of cases) if (!builders[k]) { console.error(`unknown case ${k}`); process.exit(2); }
@@ -280,17 +283,31 @@ for (const kind of cases)
     if (baseline) {
       tools.unshift({ tool: 'baseline 1t', bin: baseline, t: 1, v: knows(baseline, '-v', '1'), threads: knows(baseline, '-threads', '1'), inputLimit: knows(baseline, '--max-input-bytes', '1') });
     }
-    for (const { tool, bin, t, v, threads: hasThreads, inputLimit } of tools) {
-      if (t > 1 && !hasThreads) { pushRow({ label, tool, note: 'no -threads option' }); continue; }
-      const args = ['remesh', 'in.mesh', '-sol', 'in.sol', '-o', 'out.mesh', '--stats'];
-      if (v) args.push('-v', '1');
-      if (hasThreads) args.push('-threads', String(t));
-      if (inputLimit) args.push('--max-input-bytes', '4000000000');
-      rmSync(join(dir, 'out.mesh'), { force: true });
-      const r = timed(bin, args, dir);
-      if (r.failed) { pushRow({ label, tool, note: r.failed }); continue; }
-      pushRow(measured({ label, tool, ...r }, join(dir, 'out.mesh'), c.metric));
-    }
+    // --repeat N: the tools run in turn, N rounds (so a busy spell of the host falls on all
+    // of them); each row is the run of median wall time, with the range of the N walls.
+    const runs = tools.map(() => []);
+    const failed = tools.map(() => null);
+    for (let round = 0; round < repeat; round++)
+      tools.forEach(({ bin, t, v, threads: hasThreads, inputLimit }, k) => {
+        if ((t > 1 && !hasThreads) || failed[k]) return;
+        const args = ['remesh', 'in.mesh', '-sol', 'in.sol', '-o', `out${k}.mesh`, '--stats'];
+        if (v) args.push('-v', '1');
+        if (hasThreads) args.push('-threads', String(t));
+        if (inputLimit) args.push('--max-input-bytes', '4000000000');
+        rmSync(join(dir, `out${k}.mesh`), { force: true });
+        const r = timed(bin, args, dir);
+        if (r.failed) failed[k] = r.failed;
+        else runs[k].push(r);
+      });
+    tools.forEach(({ tool, t, threads: hasThreads }, k) => {
+      if (t > 1 && !hasThreads) { pushRow({ label, tool, note: 'no -threads option' }); return; }
+      if (failed[k]) { pushRow({ label, tool, note: failed[k] }); return; }
+      const byWall = [...runs[k]].sort((a, b) => a.wall - b.wall);
+      const r = byWall[Math.floor((byWall.length - 1) / 2)];
+      const range = byWall.length > 1 ? { wallMin: byWall[0].wall, wallMax: byWall[byWall.length - 1].wall } : {};
+      pushRow(measured({ label, tool, ...r, ...range, runs: byWall.length }, join(dir, `out${k}.mesh`), c.metric));
+      renameSync(join(dir, `out${k}.mesh`), join(dir, 'out.mesh'));
+    });
     if (bamg && haveBamg && size <= bamgMax) {
       // -nbv: the vertex budget BAMG allocates up front (a fixed 5e7 costs 4 GB and a minute).
       const nbv = String(Math.round(2 * size + 100000));
@@ -305,11 +322,12 @@ for (const kind of cases)
 const f = (x, d) => (x === undefined || Number.isNaN(x) ? '' : x.toFixed(d));
 const stageCell = (r, s) => (r.stages && r.stages[s]
   ? (r.stages[s].cpu === undefined ? f(r.stages[s].wall, 2) : `${f(r.stages[s].wall, 2)}/${f(r.stages[s].cpu, 2)}`) : '');
-const header = ['case', 'tool', 'triangles', 'wall s', 'CPU s', 'tri/s wall', 'peak RSS MiB', ...stageNames.map((s) => `${s} w/c`),
+const wallCell = (r) => (r.wallMin === undefined ? f(r.wall, 2) : `${f(r.wall, 2)} (${f(r.wallMin, 2)}-${f(r.wallMax, 2)})`);
+const header = ['case', 'tool', 'triangles', repeat > 1 ? `wall s, median of ${repeat} (range)` : 'wall s', 'CPU s', 'tri/s wall', 'peak RSS MiB', ...stageNames.map((s) => `${s} w/c`),
   'l in [.71,1.41]', 'min Q', 'mean Q', 'inv'];
 const lines = rows.map((r) => r.note || r.triangles === undefined
   ? [r.label, r.tool, ...header.slice(2, -1).map(() => ''), r.note ?? '']
-  : [r.label, r.tool, String(r.triangles), f(r.wall, 2), f(r.cpu, 2), String(Math.round(r.triangles / r.wall)), f(r.rssMiB, 0),
+  : [r.label, r.tool, String(r.triangles), wallCell(r), f(r.cpu, 2), String(Math.round(r.triangles / r.wall)), f(r.rssMiB, 0),
     ...stageNames.map((s) => stageCell(r, s)), f(100 * r.inA, 2) + '%', f(r.qmin, 3), f(r.qmean, 3), String(r.inverted)]);
 const widths = header.map((h, i) => Math.max(h.length, ...lines.map((l) => l[i].length)));
 const fmt = (cells) => '| ' + cells.map((s, i) => s.padEnd(widths[i])).join(' | ') + ' |';
