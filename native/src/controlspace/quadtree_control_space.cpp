@@ -7,6 +7,7 @@
 #include <string>
 
 #include "anisomesh/core/error.h"
+#include "anisomesh/core/parallel.h"
 
 namespace anisomesh {
 namespace {
@@ -556,16 +557,38 @@ void QuadtreeControlSpace::refineNear(const std::vector<Box2>& near, const Eleme
   refineFrom(leavesNear(near), pred, onNewNodes);
 }
 
+void QuadtreeControlSpace::refineConcurrently(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) {
+  refineFrom(leaves(), pred, onNewNodes, true);
+}
+
 void QuadtreeControlSpace::refineFrom(std::vector<int> work, const ElementPredicate& pred,
-                                      const NewNodesCallback& onNewNodes) {
+                                      const NewNodesCallback& onNewNodes, bool readOnly) {
   rebuildConstraints();
   std::vector<int> split;
+  std::vector<char> verdict;
+  auto wanted = [&](int c) { return child_[c] < 0 && level_[c] < options_.maxLevel && pred(elementOf(c)); };
   while (!work.empty()) {
     split.clear();
     // Decide the whole batch on the current field, then split.
-    for (int c : work) {
-      refinementTick();
-      if (child_[c] < 0 && level_[c] < options_.maxLevel && pred(elementOf(c))) split.push_back(c);
+    if (readOnly && threadCount() > 1) {
+      // Slices of the batch in parallel chunks, the progress ticks on this thread between
+      // them; the split list in batch order, as one thread makes it.
+      constexpr size_t kSlice = 8192, kGrain = 256;
+      verdict.assign(work.size(), 0);
+      for (size_t s0 = 0; s0 < work.size(); s0 += kSlice) {
+        const size_t n = std::min(kSlice, work.size() - s0);
+        parallelChunks(n, kGrain, [&](size_t, size_t b, size_t e) {
+          for (size_t k = b; k < e; ++k) verdict[s0 + k] = wanted(work[s0 + k]) ? 1 : 0;
+        });
+        for (size_t k = 0; k < n; ++k) refinementTick();
+      }
+      for (size_t k = 0; k < work.size(); ++k)
+        if (verdict[k]) split.push_back(work[k]);
+    } else {
+      for (int c : work) {
+        refinementTick();
+        if (wanted(c)) split.push_back(c);
+      }
     }
     if (split.empty()) break;
     // A split adds a centre and up to 4 mid-edge lattice nodes, about 3 new ones on

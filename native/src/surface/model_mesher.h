@@ -45,31 +45,37 @@ inline std::string patchLabel(const SurfacePatch& p, int index) {
   return "patch '" + (p.name.empty() ? std::to_string(index) : p.name) + "'";
 }
 
-// One thread's tally of control-space queries (a cache line of its own: threads that
-// count side by side do not share one).
+// One thread's tally of control-space queries and curvature evaluations (a cache line of
+// its own: threads that count side by side do not share one).
 struct alignas(64) QueryTally {
   long long queries = 0;
   double seconds = 0.0;
-};
-
-// Cost counters shared by every patch of one run. The queries are tallied per thread slot
-// (core/parallel.h), so patches and parts meshed concurrently count without atomics; the
-// totals are sums, the same for any thread count.
-struct Counters {
   long long curvature = 0;
   double curvatureSeconds = 0.0;
+};
+
+// Cost counters shared by every patch of one run. They are tallied per thread slot
+// (core/parallel.h), so patches, parts and curvature samples evaluated concurrently count
+// without atomics; the totals are sums, the same for any thread count.
+struct Counters {
   std::array<QueryTally, kThreadSlots> tallies{};
-  // The queries of every thread.
-  long long queries() const {
-    long long n = 0;
-    for (const QueryTally& t : tallies) n += t.queries;
-    return n;
-  }
+  // The calling thread's tally.
+  QueryTally& mine() { return tallies[size_t(threadSlot())]; }
+  // The control-space queries of every thread.
+  long long queries() const { return sum(&QueryTally::queries); }
   // Their sampled time, seconds.
-  double querySeconds() const {
-    double s = 0.0;
-    for (const QueryTally& t : tallies) s += t.seconds;
-    return s;
+  double querySeconds() const { return sum(&QueryTally::seconds); }
+  // The curvature evaluations of every thread.
+  long long curvature() const { return sum(&QueryTally::curvature); }
+  // Their sampled time, seconds.
+  double curvatureSeconds() const { return sum(&QueryTally::curvatureSeconds); }
+
+ private:
+  template <class T>
+  T sum(T QueryTally::*field) const {
+    T total = 0;
+    for (const QueryTally& t : tallies) total += t.*field;
+    return total;
   }
 };
 
@@ -82,7 +88,7 @@ class CountingControlSpace : public ControlSpace {
   // The time is sampled: one query in 32 is timed and counted 32 times (reading the clock
   // at every query cost 7% of a surface run, as much as a cheap query itself).
   Metric metricAt(const Vec2& p) const override {
-    QueryTally& t = c_.tallies[size_t(threadSlot())];
+    QueryTally& t = c_.mine();
     if ((t.queries++ & 31) != 0) return inner_.metricAt(p);
     const auto t0 = Clock::now();
     Metric m = inner_.metricAt(p);

@@ -63,7 +63,7 @@ std::vector<MetricSource> contourCurvatureSources(const SurfacePatch& patch, con
 
 // Section 3.1, curvature stage: the main-level grid from the surface's curvature (and the
 // 3D sources), extrapolated where the surface is degenerate, then leaves split while the
-// metric varies. counters.curvature grows by the evaluations made.
+// metric varies. counters.curvature() grows by the evaluations made.
 std::unique_ptr<AdaptiveControlSpace> buildCurvatureStage(const SurfacePatch& patch,
                                                           const std::vector<Source3D>& sources3d,
                                                           const SurfaceMeshOptions& o,
@@ -81,32 +81,47 @@ std::unique_ptr<AdaptiveControlSpace> buildCurvatureStage(const SurfacePatch& pa
       return Mat3(Mat3::Identity() / (h * h));
     });
   }
-  auto eval = [&](const Vec2& p) {  // timed one call in 32, as CountingControlSpace
-    if ((counters.curvature++ & 31) != 0) return curv.tryMetricAt(p);
+  // Timed one call in 32, as CountingControlSpace; from any thread (the surface keeps no
+  // state, the tallies are per thread).
+  auto eval = [&](const Vec2& p) {
+    QueryTally& t = counters.mine();
+    if ((t.curvature++ & 31) != 0) return curv.tryMetricAt(p);
     const auto t0 = Clock::now();
     std::optional<Metric> m = curv.tryMetricAt(p);
-    counters.curvatureSeconds += 32.0 * secondsSince(t0);
+    t.curvatureSeconds += 32.0 * secondsSince(t0);
     return m;
   };
-
   auto cs = std::make_unique<QuadtreeControlSpace>(surf.domain(), qo);
+  // The free nodes in [first, last) evaluated in parallel chunks, then set in node order
+  // (the same field for any thread count); set(i, m) takes each.
+  std::vector<std::optional<Metric>> sampled;
+  auto sampleNodes = [&](int first, int last, const std::function<void(int, const std::optional<Metric>&)>& set) {
+    sampled.assign(size_t(last - first), std::nullopt);
+    parallelChunks(size_t(last - first), 256, [&](size_t, size_t b, size_t e) {
+      for (size_t k = b; k < e; ++k)
+        if (cs->nodeIsFree(first + int(k))) sampled[k] = eval(cs->nodePosition(first + int(k)));
+    });
+    for (int i = first; i < last; ++i)
+      if (cs->nodeIsFree(i)) set(i, sampled[size_t(i - first)]);
+  };
+
   cs->setLimits(limits);
   // Main-level grid: curvature where available, extrapolation elsewhere (section 3.1).
-  for (int i = 0; i < cs->nodeCount(); ++i) {
-    if (!cs->nodeIsFree(i)) continue;
-    if (auto m = eval(cs->nodePosition(i)))
+  sampleNodes(0, cs->nodeCount(), [&](int i, const std::optional<Metric>& m) {
+    if (m)
       cs->setNodeMetric(i, *m);
     else
       cs->clearNodeInitialized(i);
-  }
+  });
   extrapolateMetric(*cs, fallback);
   cs->applyConstraints();
 
   // Split leaves while corner metrics differ, or the analytic metric at the centre differs
   // from the bilinear value there (the average of the corners' Mt), but not below a
-  // fraction of the requested size: finer leaves cannot change the mesh.
+  // fraction of the requested size: finer leaves cannot change the mesh. The test only
+  // reads (the structure and the surface): a batch's leaves are judged concurrently.
   const double thr = o.refineThreshold;
-  cs->refine(
+  cs->refineConcurrently(
       [&](const ControlElement& e) {
         Metric corners[4];
         double hsmall = std::numeric_limits<double>::infinity();
@@ -123,9 +138,9 @@ std::unique_ptr<AdaptiveControlSpace> buildCurvatureStage(const SurfacePatch& pa
         return m && difference(*m, weightedAverage(corners, w, 4)) > thr;
       },
       [&](int first, int last) {
-        for (int i = first; i < last; ++i)
-          if (cs->nodeIsFree(i))
-            if (auto m = eval(cs->nodePosition(i))) cs->setNodeMetric(i, *m);
+        sampleNodes(first, last, [&](int i, const std::optional<Metric>& m) {
+          if (m) cs->setNodeMetric(i, *m);
+        });
       });
   cs->applyConstraints();
   return cs;
@@ -166,13 +181,13 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
   if (stage.space) {
     cs = std::move(stage.space);
     cs->setLimits(limits);
-    counters.curvature += stage.evaluations;
+    counters.mine().curvature += stage.evaluations;
   } else {
-    const long long before = counters.curvature;
+    const long long before = counters.curvature();
     cs = buildCurvatureStage(patch, sources3d, o, sizing, qo, limits, fallback, counters);
     if (!contour.empty()) insertSources(*cs, contour, io);
     if (o.gradation > 0.0) smoothGradation(*cs, g);
-    stage.stage = storeCurvatureStage(stageKey, *cs, counters.curvature - before);
+    stage.stage = storeCurvatureStage(stageKey, *cs, counters.curvature() - before);
   }
   if (stageKeyOut && stage.stage) *stageKeyOut = stageKey;
   if (!patch.sources.empty()) {

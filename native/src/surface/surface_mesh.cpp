@@ -394,8 +394,8 @@ Mesh ModelMesher::meshPatches() {
     report->sharedEdgeList.assign(sharedEdges.begin(), sharedEdges.end());
     report->sharedEdges = int(sharedEdges.size());
     report->crossSharedSizeRatioMax = acrossEdgeSizeRatio(out, report->sharedEdgeList);
-    report->curvatureEvaluations = counters_->curvature;
-    report->curvatureSeconds = counters_->curvatureSeconds;
+    report->curvatureEvaluations = counters_->curvature();
+    report->curvatureSeconds = counters_->curvatureSeconds();
     report->controlSpaceQueries = counters_->queries();
     report->controlSpaceSeconds = counters_->querySeconds();
     report->patchTriangles = patchTriangles;

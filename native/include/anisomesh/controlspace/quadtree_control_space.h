@@ -57,6 +57,8 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   int elementCount() const override { return leafCount_; }
   std::vector<std::vector<int>> elementNodes() const override;
   void refine(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) override;
+  // Each batch's leaves judged in parallel chunks (pred only reads); the same splits.
+  void refineConcurrently(const ElementPredicate& pred, const NewNodesCallback& onNewNodes) override;
   void refineNear(const std::vector<Box2>& near, const ElementPredicate& pred,
                   const NewNodesCallback& onNewNodes) override;
   std::vector<double> nodeElementSizes() const override;
@@ -120,8 +122,10 @@ class QuadtreeControlSpace : public AdaptiveControlSpace {
   SymMt interpolateInCell(int cell, double eta, double xi) const;
   void growMap();
   void splitLeafImpl(int cell);
-  // refine() with its first pass over the leaves `work` (increasing).
-  void refineFrom(std::vector<int> work, const ElementPredicate& pred, const NewNodesCallback& onNewNodes);
+  // refine() with its first pass over the leaves `work` (increasing); readOnly: pred may
+  // judge a batch's leaves concurrently (refineConcurrently).
+  void refineFrom(std::vector<int> work, const ElementPredicate& pred, const NewNodesCallback& onNewNodes,
+                  bool readOnly = false);
   void rebuildConstraints() const;
   // Mt of constraint k's hanging node from its masters (initialized once they all are).
   void applyConstraint(const Constraint& k);
