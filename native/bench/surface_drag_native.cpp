@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
   o.stats = false;
   o.elementMeasures = false;
   o.patchParams = true;
-  std::vector<double> cpu, wall, rep;
+  std::vector<double> cpu, wall, rep, repWall;
   size_t tris = 0;
   for (int k = 0; k < runs; ++k) {
     c["patches"][0]["sources"] = nlohmann::json::array({{{"type", "radial"},
@@ -93,17 +93,18 @@ int main(int argc, char** argv) {
     wall.push_back(wallMs() - w0);
     tris = run.mesh.triangles.size();
     if (report) {
-      const double r0 = cpuMs();
+      const double r0 = cpuMs(), rw = wallMs();
       anisomesh::measureSurfaceElements(*run.surfaceReport);
       (void)anisomesh::caseRunStats(run);
       rep.push_back(cpuMs() - r0);
+      repWall.push_back(wallMs() - rw);
     }
     std::printf("run %d: %zu triangles, CPU %.1f ms (wall %.1f), mesh %016llx\n", k, tris, cpu.back(), wall.back(),
                 meshHash(run.mesh));
   }
   std::printf("%s: %zu triangles: first CPU %.1f ms, later median CPU %.1f ms (wall %.1f)", argv[1], tris, cpu[0],
               median({cpu.begin() + 1, cpu.end()}), median({wall.begin() + 1, wall.end()}));
-  if (report) std::printf(", report after: median CPU %.1f ms", median(rep));
+  if (report) std::printf(", report after: median CPU %.1f ms (wall %.1f)", median(rep), median(repWall));
   std::printf("\n");
   return 0;
 }
