@@ -250,6 +250,11 @@ export function wrapCore(core) {
     memoryStats() {
       return core.memoryStats();
     },
+    /** Threads of the parallel stages (1 in the single-threaded module); returns the count in effect. */
+    setThreads(threads) {
+      if (!Number.isInteger(threads) || threads < 1) throw argError('threads: expected a positive integer');
+      return core.setThreads(threads);
+    },
     /** A metric from {alpha, h1, h2}, {h} or {m11, m12, m22}; returns all three forms. */
     metric(spec) {
       return metricOut(unwrap(core.metricCreate(checkMetricSpec(spec, 'metric'))));

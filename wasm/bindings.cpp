@@ -20,6 +20,7 @@
 
 #include "anisomesh/anisomesh.h"
 #include "anisomesh/controlspace/adaptive_control_space.h"
+#include "anisomesh/core/parallel.h"
 #include "anisomesh/core/version.h"
 #include "anisomesh/geometry/expression.h"
 #include "anisomesh/io/case_json.h"
@@ -815,6 +816,13 @@ val domainFromSvg(std::string svgText, double size, bool flipY) {
 
 std::string coreVersion() { return anisomesh::version(); }
 
+// Sets the threads of the parallel stages (clamped: always 1 in the single-threaded module)
+// and returns the count in effect.
+int setThreads(int threads) {
+  setThreadCount(threads);
+  return threadCount();
+}
+
 // Bytes of the wasm heap in use by malloc and the heap's total size: lets tests and
 // users check that repeated runs leak nothing.
 val memoryStats() {
@@ -836,6 +844,7 @@ EMSCRIPTEN_BINDINGS(anisomesh) {
   emscripten::function("metricDifference", &metricDifference);
   emscripten::function("metricEllipse", &metricEllipseJs);
   emscripten::function("memoryStats", &memoryStats);
+  emscripten::function("setThreads", &setThreads);
   emscripten::function("meshCase", &meshCaseJson);
   emscripten::function("remesh", &remeshJs);
   emscripten::function("metricFromField", &metricFromFieldJs);

@@ -2,6 +2,7 @@
 // new URL('./dist/anisomesh-core.wasm', import.meta.url) pattern (Vite, webpack, Parcel and
 // a plain static folder resolve it); where a bundler leaves that URL dangling (esbuild),
 // the wasm embedded in dist/anisomesh-core.wasm.b64.js is used instead.
+import createAnisomeshCore from './dist/anisomesh-core.js';
 import { fetchWasm, makeLoader } from './load.js';
 
 export { AnisomeshError } from './api.js';
@@ -29,4 +30,4 @@ async function packagedWasm() {
  * served) or options.wasmBinary (its bytes) override the packaged file. Cached per source;
  * a failed load throws AnisomeshError 'WASM_LOAD_FAILED' and the next call tries again.
  */
-export const loadAnisomesh = makeLoader(packagedWasm);
+export const loadAnisomesh = makeLoader(packagedWasm, createAnisomeshCore);

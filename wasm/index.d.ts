@@ -474,6 +474,12 @@ export interface Anisomesh {
   readonly version: string;
   /** Bytes malloc has in use in the wasm heap and the heap's size, for leak checks. */
   memoryStats(): { inUseBytes: number; heapBytes: number };
+  /**
+   * Sets the threads of the core's parallel stages (remesh reading, control space, domain
+   * parts, report) and returns the count in effect: always 1 from 'anisomesh', up to 3 from
+   * 'anisomesh/threads'. The mesh is the same for any count.
+   */
+  setThreads(threads: number): number;
   /** Validates a metric and returns all its forms. Throws INVALID_METRIC for NaN, non-positive sizes or a non-SPD tensor. */
   metric(spec: MetricSpec): Metric;
   /** Metric intersection (the paper's min(M1, M2)): the largest unit ellipse inside both. */

@@ -2,7 +2,6 @@
 // come from options.wasmBinary, options.wasmUrl or the entry point's default source; the
 // module is instantiated here (emscripten's instantiateWasm hook), so every failure becomes
 // an AnisomeshError 'WASM_LOAD_FAILED' and a failed load is forgotten (a later call retries).
-import createAnisomeshCore from './dist/anisomesh-core.js';
 import { AnisomeshError, wrapCore } from './api.js';
 
 function loadError(message, cause) {
@@ -15,18 +14,20 @@ function describe(e) {
   return e?.message ?? String(e);
 }
 
-// Instantiates the core from a function that returns the wasm bytes (or a compiled module).
-function instantiate(getBytes, where) {
+// Instantiates the core (the glue's factory create, with the extra module options glue)
+// from a function that returns the wasm bytes (or a compiled module).
+function instantiate(getBytes, where, create, glue) {
   return new Promise((resolve, reject) => {
     const fail = (e) => reject(e instanceof AnisomeshError ? e : loadError(`cannot load the anisomesh core from ${where}: ${describe(e)}`, e));
     let core;
     try {
-      core = createAnisomeshCore({
+      core = create({
         instantiateWasm(imports, done) {
           Promise.resolve()
             .then(getBytes)
-            .then((bytes) => WebAssembly.instantiate(bytes, imports))
-            .then((r) => done(r.instance ?? r, r.module), fail);
+            .then((bytes) => WebAssembly.instantiate(bytes, imports).then((r) => (r.instance ? r : { instance: r, module: bytes })))
+            // The module too: the threaded module's workers instantiate it again.
+            .then((r) => done(r.instance, r.module), fail);
           return {};
         },
         // The bytes come from getBytes: the glue must not build its own URL (in an IIFE
@@ -35,6 +36,7 @@ function instantiate(getBytes, where) {
         onAbort: (what) => fail(new Error(String(what))),
         print: () => {},
         printErr: () => {},
+        ...glue,
       });
     } catch (e) {
       fail(e);
@@ -67,9 +69,10 @@ export async function fetchWasm(url) {
 
 /**
  * Makes loadAnisomesh({ wasmUrl, wasmBinary }) for an entry point whose defaultBytes() gives
- * the packaged wasm. Successful loads are cached per source; failed ones are not.
+ * the packaged wasm, create is the Emscripten glue's factory and glue extra module options
+ * (the threaded module's worker script). Successful loads are cached per source; failed ones are not.
  */
-export function makeLoader(defaultBytes) {
+export function makeLoader(defaultBytes, create, glue = {}) {
   const byUrl = new Map();
   const byBinary = new WeakMap();
   return function loadAnisomesh(options = {}) {
@@ -99,7 +102,7 @@ export function makeLoader(defaultBytes) {
     }
     let pending = cache.get(key);
     if (!pending) {
-      pending = instantiate(getBytes, where);
+      pending = instantiate(getBytes, where, create, glue);
       cache.set(key, pending);
       pending.catch(() => cache.delete(key));
     }

@@ -12,6 +12,13 @@
 //   swaps the spare in at once, so the new job does not wait for a start-up.
 
 const workerUrl = new URL('./worker.js', import.meta.url);
+// Threads of each worker's core. ?threads=2 on a cross-origin isolated page: the worker loads
+// the pthreads build ('anisomesh/threads'), planar domain parts on 2 threads. Default 1 (the
+// single-threaded build): surfaces mesh one patch serially, and the pthreads build's JS
+// exceptions made their drags no faster (docs/SCALING.md).
+const coreThreads = globalThis.crossOriginIsolated === true && typeof SharedArrayBuffer === 'function'
+  ? Math.max(1, Math.min(2, Number(new URLSearchParams(globalThis.location?.search ?? '').get('threads') ?? 1) || 1))
+  : 1;
 const wasmUrl = new URL('../wasm/dist/anisomesh-core.wasm', import.meta.url);
 
 let compiled = null;
@@ -78,6 +85,7 @@ export class JobRunner {
           slot.isReady = true;
           slot.startMs = performance.now() - t0;
           this.version = data.version;
+          this.threads = data.threads ?? 1;  // the core's threads in this worker
           resolve(data.version);
         } else if (data.type === 'fatal') {
           reject(new Error(data.message));
@@ -88,7 +96,7 @@ export class JobRunner {
       worker.onerror = (e) => reject(new Error(e.message || 'worker failed to start'));
     });
     slot.ready.catch(() => {});  // reported through this.ready when the slot is in use
-    if (!this.precompiled) worker.postMessage({ type: 'init', cancelFlag });
+    if (!this.precompiled || coreThreads > 1) worker.postMessage({ type: 'init', cancelFlag, threads: coreThreads });
     else {
       compileCore().then(
         (module) => worker.postMessage({ type: 'init', module, cancelFlag }),

@@ -1,9 +1,9 @@
 // Web Worker: all anisomesh work runs here so the page never freezes.
 //
 // Protocol (see jobs.js):
-//   in : { type: 'init', module?: WebAssembly.Module, cancelFlag?: Int32Array }  once, right after start
+//   in : { type: 'init', module?: WebAssembly.Module, cancelFlag?: Int32Array, threads?: number }  once, right after start
 //        { type: 'job', id, op, args, postedAt }
-//   out: { type: 'ready', version, initMs }
+//   out: { type: 'ready', version, initMs, threads? }
 //        { type: 'progress', id, stage, fraction }             during a job (fraction in [0, 1] or null)
 //        { type: 'result', id, ok: true, result, workerMs, marks } | { type: 'result', id, ok: false, error }
 // Typed arrays in results are transferred, not copied. marks: wall-clock times
@@ -26,8 +26,17 @@ let readyResolve;
 const ready = new Promise((r) => { readyResolve = r; });
 const queue = [];
 
-async function init(module) {
+async function init(module, threads) {
   const t0 = performance.now();
+  if (threads > 1) {
+    // The pthreads build (the page is cross-origin isolated): fetched and compiled here.
+    const { loadAnisomesh } = await import('../wasm/threads.js');
+    am = await loadAnisomesh();
+    const inEffect = am.setThreads(threads);
+    readyResolve();
+    self.postMessage({ type: 'ready', version: am.version, initMs: performance.now() - t0, threads: inEffect });
+    return;
+  }
   const options = module
     ? {
       // Emscripten hook: instantiate the precompiled module instead of fetching + compiling again.
@@ -252,7 +261,7 @@ async function runJob({ id, op, args, postedAt }) {
 self.onmessage = ({ data }) => {
   if (data.type === 'init') {
     cancelFlag = data.cancelFlag ?? null;
-    init(data.module).catch((e) => self.postMessage({ type: 'fatal', message: e.message }));
+    init(data.module, data.threads ?? 1).catch((e) => self.postMessage({ type: 'fatal', message: e.message }));
   } else if (data.type === 'job') {
     queue.push(data);
     // Jobs run one at a time in arrival order.

@@ -12,7 +12,7 @@
 // the spare's warm-up, the page's drawing). Also a plain edit of the source (no drag: a warm worker, no
 // cancellation). Prints a table of medians (no timed assertions; a measurement).
 //
-// Usage: node native/bench/surface_drag_page.mjs [--drags N] [--only small|refined] [--no-isolation] [--lanes 1|2]
+// Usage: node native/bench/surface_drag_page.mjs [--drags N] [--only small|refined] [--no-isolation] [--lanes 1|2] [--threads 1|2]
 //   CHROMIUM_EXTRA_ARGS="--disable-gpu-compositing" adds Chromium flags (e.g. that one composites
 //   the page in software instead of through SwiftShader, as a machine with a GPU would not pay).
 //   --lanes 1: one mesh worker for drags (the latest input waits for a stale job or the release).
@@ -27,7 +27,8 @@ import { startServer } from '../../web/serve.mjs';
 const args = process.argv.slice(2);
 const opt = (name, fallback) => (args.includes(name) ? args[args.indexOf(name) + 1] : fallback);
 const drags = Number(opt('--drags', 11));
-const query = [process.argv.includes('--no-isolation') ? 'isolation=off' : null, args.includes('--lanes') ? `lanes=${opt('--lanes')}` : null].filter(Boolean);
+const query = [process.argv.includes('--no-isolation') ? 'isolation=off' : null, args.includes('--lanes') ? `lanes=${opt('--lanes')}` : null,
+  args.includes('--threads') ? `threads=${opt('--threads')}` : null].filter(Boolean);
 const pageQuery = query.length ? `?${query.join('&')}` : '';
 const only = opt('--only', null);
 const median = (a) => (a.length ? [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)] : NaN);
@@ -72,7 +73,7 @@ try {
       await dragSourceOnce(page, rep);
       const r = await page.evaluate(() => {
         const a = window.anisomeshApp, s = a.state;
-        return { total: s.dragInputToMeshMs, up: s.dragToMeshMs, b: s.breakdowns.filter((x) => x.drag).at(-1) ?? null, job: s.lastJob, cancellations: a.meshRunner.cancellations, tris: a.views.mesh.triangles.length / 3 };
+        return { total: s.dragInputToMeshMs, up: s.dragToMeshMs, b: s.breakdowns.filter((x) => x.drag).at(-1) ?? null, job: s.lastJob, cancellations: a.meshRunner.cancellations, tris: a.views.mesh.triangles.length / 3, threads: a.meshRunner.threads };
       });
       await page.evaluate(() => new Promise((res) => setTimeout(res, 300)));
       samples.push({ ...r, cancelled: r.cancellations - before, cpu: (workerCpuNs() - n0) / 1e6, gpu: (workerCpuNs('gpu-process') - g0) / 1e6 });
@@ -101,5 +102,6 @@ for (const { label, plain, samples } of rows) {
   const parts = ['inputToPostMs', 'postToStartMs', 'coreRunMs', 'coreOutputMs', 'coreMeasuresMs', 'toPageMs', 'geometryMs', 'renderMs'];
   console.log('  drag breakdown (median ms):', parts.map((k) => `${k.replace(/Ms$/, '')} ${m(samples, (s) => s.b?.[k]).toFixed(1)}`).join(', '));
   console.log('  lanes that drew:', samples.map((s) => s.b?.lane ?? '-').join(' '));
+  console.log('  core threads in the mesh worker:', samples.at(-1).threads ?? '-');
   console.log('  drags, total:', samples.map((s) => s.total).join(' '), ' worker:', samples.map((s) => f(s.b?.coreMs)).join(' '));
 }

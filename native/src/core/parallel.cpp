@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -11,10 +13,26 @@ namespace anisomesh {
 namespace {
 
 std::atomic<int> gThreads{1};
-#if defined(__EMSCRIPTEN__)
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
 constexpr bool kSingleThreaded = true;  // no -pthread build: one thread, the same chunks
+constexpr int kMaxThreads = 1;
+#elif defined(__EMSCRIPTEN_PTHREADS__)
+constexpr bool kSingleThreaded = false;
+// The caller and the workers of the pool started with the module (PTHREAD_POOL_SIZE in
+// wasm/CMakeLists.txt): a thread beyond the pool would wait for the caller's event loop.
+constexpr int kMaxThreads = 3;
 #else
 constexpr bool kSingleThreaded = false;
+constexpr int kMaxThreads = 256;
+#endif
+// True on the threads this layer starts. In the Emscripten pthreads build they run nested
+// calls on themselves: a thread started from a worker is created by the main runtime
+// thread's event loop, which a blocking join never returns to (the result is the same).
+thread_local bool tWorker = false;
+#if defined(__EMSCRIPTEN_PTHREADS__)
+bool nestedRunsSerially() { return tWorker; }
+#else
+bool nestedRunsSerially() { return false; }
 #endif
 
 thread_local bool tInsideChunks = false;
@@ -66,26 +84,26 @@ int threadSlot() { return tSlot; }
 
 int threadCount() { return gThreads.load(std::memory_order_relaxed); }
 
-void setThreadCount(int threads) {
-#if defined(__EMSCRIPTEN__)
-  (void)threads;
-  gThreads = 1;
-#else
-  gThreads = std::max(1, std::min(256, threads));
-#endif
-}
+void setThreadCount(int threads) { gThreads = std::max(1, std::min(kMaxThreads, threads)); }
 
 void parallelChunks(size_t n, size_t grain, const std::function<void(size_t, size_t, size_t)>& f) {
+  parallelChunks(n, grain, f, nullptr);
+}
+
+void parallelChunks(size_t n, size_t grain, const std::function<void(size_t, size_t, size_t)>& f,
+                    const std::function<void()>& poll) {
   if (n == 0) return;
   if (grain == 0) grain = 1;
   const size_t chunks = chunkCount(n, grain);
   const size_t workers = std::min<size_t>(size_t(threadCount()), chunks);
-  if (workers <= 1 || kSingleThreaded || tInsideChunks) {
+  if (workers <= 1 || kSingleThreaded || tInsideChunks || nestedRunsSerially()) {
     for (size_t c = 0; c < chunks; ++c) f(c, c * grain, std::min(n, (c + 1) * grain));
     return;
   }
   std::atomic<size_t> next{0};
   std::mutex m;
+  std::condition_variable finished;
+  size_t running = workers - 1;
   size_t failedChunk = chunks;
   std::exception_ptr failure;
   auto work = [&] {
@@ -101,18 +119,32 @@ void parallelChunks(size_t n, size_t grain, const std::function<void(size_t, siz
   };
   std::vector<std::thread> pool;
   pool.reserve(workers - 1);
-  for (size_t t = 1; t < workers; ++t)
+  for (size_t t = 1; t < workers; ++t) {
     pool.emplace_back([&] {
       const SlotHold slot;
+      tWorker = true;
       work();
+      std::lock_guard<std::mutex> lock(m);
+      if (--running == 0) finished.notify_one();
     });
+  }
   work();
+  if (poll) {
+    // The caller's chunks are done: it polls every 5 ms until the other threads finish.
+    std::unique_lock<std::mutex> lock(m);
+    while (running > 0) {
+      if (finished.wait_for(lock, std::chrono::milliseconds(5), [&] { return running == 0; })) break;
+      lock.unlock();
+      poll();
+      lock.lock();
+    }
+  }
   for (auto& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
 }
 
 void parallelInvoke(const std::function<void()>& a, const std::function<void()>& b) {
-  if (threadCount() <= 1 || kSingleThreaded || tInsideChunks) {
+  if (threadCount() <= 1 || kSingleThreaded || tInsideChunks || nestedRunsSerially()) {
     a();
     b();
     return;
@@ -120,6 +152,7 @@ void parallelInvoke(const std::function<void()>& a, const std::function<void()>&
   std::exception_ptr fb;
   std::thread t([&] {
     const SlotHold slot;
+    tWorker = true;
     try {
       b();
     } catch (...) {

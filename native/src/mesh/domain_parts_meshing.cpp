@@ -1,8 +1,9 @@
 // Planar domain decomposition: the parts meshed (in parallel) and merged into one mesh
 // (see mesh/domain_decomposition.h).
 #include <algorithm>
-#include <mutex>
+#include <atomic>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 #include "anisomesh/controlspace/concurrency.h"
@@ -19,8 +20,21 @@ Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& 
   const size_t n = parts.parts.size();
   std::vector<Mesh> meshes(n);
   std::vector<MesherTimings> timings(n);
-  std::vector<double> fraction(n, 0.0);
-  std::mutex progressLock;
+  // Progress: each part stores its fraction; only the calling thread reports the sum (from
+  // its own part's ticks and, once it waits for the others, from parallelChunks' poll), so a
+  // callback that must stay on its thread (a JS function in the pthreads build) can. A false
+  // answer stops every part at its next tick (ErrorCode::Cancelled).
+  std::vector<std::atomic<double>> fraction(n);
+  for (auto& f : fraction) f.store(0.0);
+  std::atomic<bool> stop{false};
+  const std::thread::id caller = std::this_thread::get_id();
+  auto report = [&] {
+    if (stop.load()) return;
+    double sum = 0.0;
+    for (const auto& x : fraction) sum += x.load();
+    // The whole domain's boundary stage reported 0.1 before the parts started.
+    if (!options.progress(0.1 + 0.9 * sum / static_cast<double>(n))) stop.store(true);
+  };
   // Larger parts first (by boundary size, a stand-in for their work): better balance.
   std::vector<size_t> order(n);
   for (size_t p = 0; p < n; ++p) order[p] = p;
@@ -30,6 +44,11 @@ Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& 
     return s;
   };
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return loopPoints(a) > loopPoints(b); });
+  // The parts' options, copied here without the caller's callback: a part thread copies
+  // them, and copying the callback could copy what only its thread may touch (a JS function).
+  PlanarMesherOptions partOptions = options;
+  partOptions.progress = nullptr;
+  partOptions.partElements = 0;
   auto meshPart = [&](size_t p) {
     const DomainPart& part = parts.parts[p];
     std::vector<BoundaryLoop> partLoops(part.loops.size());
@@ -37,24 +56,22 @@ Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& 
       for (int id : part.loops[l]) partLoops[l].points.push_back(parts.points[id]);
       partLoops[l].edgeRefs = part.edgeRefs[l];
     }
-    PlanarMesherOptions o = options;
-    o.partElements = 0;
+    PlanarMesherOptions o = partOptions;
     o.timings = &timings[p];
     o.boundaryCache = nullptr;  // the parts run concurrently, on loops of their own
     if (options.progress) {
       o.progress = [&, p](double f) {
-        std::lock_guard<std::mutex> lock(progressLock);
-        fraction[p] = f;
-        double sum = 0.0;
-        for (double x : fraction) sum += x;
-        // The whole domain's boundary stage reported 0.1 before the parts started.
-        return options.progress(0.1 + 0.9 * sum / static_cast<double>(n));
+        fraction[p].store(f);
+        if (std::this_thread::get_id() == caller) report();
+        return !stop.load();
       };
     }
     meshes[p] = meshPlanarBoundary(partLoops, cs, o);
   };
   if (queriesAreConcurrent(cs)) {
-    parallelChunks(n, 1, [&](size_t c, size_t, size_t) { meshPart(order[c]); });
+    parallelChunks(
+        n, 1, [&](size_t c, size_t, size_t) { meshPart(order[c]); },
+        options.progress ? std::function<void()>(report) : std::function<void()>());
   } else {
     for (size_t c = 0; c < n; ++c) meshPart(order[c]);
   }

@@ -1,0 +1,60 @@
+// The multithreaded module ('anisomesh/threads', Emscripten pthreads): the same mesh bytes as
+// the single-threaded module at 1 and 2 threads (a planar case large enough to be meshed as
+// domain parts, in parallel at 2 threads, and a remesh of its mesh), and onProgress still
+// cancels, called on the calling thread only (a JS function cannot run on a pthread).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { createHash } from 'node:crypto';
+import { loadAnisomesh, AnisomeshError } from 'anisomesh';
+import { loadAnisomesh as loadThreaded } from 'anisomesh/threads';
+
+const st = await loadAnisomesh();
+const mt = await loadThreaded();
+const md5 = (text) => createHash('md5').update(text).digest('hex');
+const square = JSON.stringify({
+  domain: { outer: [{ type: 'polyline', points: [[0, 0], [1, 0], [1, 1], [0, 1], [0, 0]] }] },
+  controlSpace: { hmax: 0.006 },
+});
+
+test('setThreads: 1 in the single-threaded module, up to 3 in the threaded one', () => {
+  assert.equal(st.setThreads(2), 1);
+  assert.equal(mt.setThreads(8), 3);
+  assert.equal(mt.setThreads(1), 1);
+  assert.throws(() => mt.setThreads(0), AnisomeshError);
+});
+
+test('the same mesh bytes from both modules at 1 and 2 threads (meshCase, remesh)', () => {
+  const ref = st.meshCase(square, { stats: false });
+  const refText = st.writeMesh(ref.mesh);
+  const refRemesh = st.writeMesh(st.remesh(ref.mesh, null, { hsiz: 0.008 }).mesh);
+  assert.ok(ref.mesh.triangles.length / 3 > 30000, 'large enough to be meshed as domain parts');
+  for (const threads of [1, 2]) {
+    assert.equal(mt.setThreads(threads), threads);
+    const r = mt.meshCase(square, { stats: false });
+    assert.equal(md5(mt.writeMesh(r.mesh)), md5(refText), `meshCase at ${threads} threads`);
+    assert.equal(md5(mt.writeMesh(mt.remesh(r.mesh, null, { hsiz: 0.008 }).mesh)), md5(refRemesh), `remesh at ${threads} threads`);
+  }
+});
+
+test('onProgress cancels the threaded module at 2 threads, during the domain parts', () => {
+  mt.setThreads(2);
+  const events = [];
+  try {
+    mt.meshCase(square, {
+      onProgress: (fraction) => {
+        events.push(fraction);
+        return fraction <= 0.3;  // the parts report from 0.1 up
+      },
+    });
+    events.push('returned');
+  } catch (e) {
+    events.push(e instanceof AnisomeshError ? e.code : `threw ${e}`);
+  }
+  assert.equal(events.at(-1), 'CANCELLED', events.slice(-3).join(' '));
+  const fractions = events.slice(0, -1);
+  assert.ok(fractions.at(-1) > 0.3, `cancelled after ${fractions.at(-1)}`);
+  assert.ok(fractions.slice(0, -1).every((f) => f <= 0.3), 'no callback after the first false');
+  // The module is still usable after a cancelled run.
+  assert.equal(md5(mt.writeMesh(mt.meshCase(square, { stats: false }).mesh)).length, 32);
+  mt.setThreads(1);
+});

@@ -1,0 +1,45 @@
+// Node entry of the multithreaded core ('anisomesh/threads'): the module built with Emscripten
+// pthreads, its pool of 2 workers as worker_threads. setThreads(2) (or 3) on the loaded API
+// uses them; the default is 1 thread.
+import { readFile } from 'node:fs/promises';
+import { createRequire } from 'node:module';
+import { fileURLToPath } from 'node:url';
+import createAnisomeshCore from './dist/anisomesh-core-mt.js';
+import { makeLoader } from './load.js';
+
+export { AnisomeshError } from './api.js';
+
+const dist = new URL('./dist/', import.meta.url);
+// Emscripten 3.1.6's glue for Node is CommonJS at heart: in an ES module it finds require and
+// __dirname as globals only (they are set while it loads). Its worker script is CommonJS too,
+// copied to .worker.cjs (this package is "type": "module").
+function withCommonJsGlobals(create) {
+  return (glue) => {
+    const saved = { require: globalThis.require, __dirname: globalThis.__dirname };
+    globalThis.require = createRequire(import.meta.url);
+    globalThis.__dirname = fileURLToPath(dist);
+    const restore = () => Object.assign(globalThis, saved);
+    try {
+      const ready = create(glue);
+      return Promise.resolve(ready).then((core) => {
+        restore();
+        core.unrefWorkers();
+        return core;
+      }, (e) => {
+        restore();
+        throw e;
+      });
+    } catch (e) {
+      restore();
+      throw e;
+    }
+  };
+}
+
+const workerPath = fileURLToPath(new URL('./anisomesh-core-mt.worker.cjs', dist));
+/** Loads the multithreaded core (cached; a failed load is retried). */
+export const loadAnisomesh = makeLoader(() => readFile(new URL('./anisomesh-core-mt.wasm', dist)),
+  withCommonJsGlobals(createAnisomeshCore), {
+    locateFile: (path) => (path.endsWith('.worker.js') ? workerPath : path),
+    mainScriptUrlOrBlob: new URL('./anisomesh-core-mt.js', dist).href,
+  });

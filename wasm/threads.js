@@ -1,0 +1,29 @@
+// Browser / Web Worker entry of the multithreaded core ('anisomesh/threads'): the same API as
+// 'anisomesh', over the module built with Emscripten pthreads (a pool of 2 Web Workers on one
+// SharedArrayBuffer). Needs a cross-origin isolated page (COOP + COEP headers); call
+// setThreads(2) (or 3) on the loaded API to use the pool, the default is 1 thread.
+// Blocking joins are only allowed off the page's main thread: use it in a Web Worker.
+import createAnisomeshCore from './dist/anisomesh-core-mt.js';
+import { AnisomeshError } from './api.js';
+import { fetchWasm, makeLoader } from './load.js';
+
+export { AnisomeshError } from './api.js';
+
+const workerUrl = new URL('./dist/anisomesh-core-mt.worker.js', import.meta.url).href;
+const load = makeLoader(() => fetchWasm(new URL('./dist/anisomesh-core-mt.wasm', import.meta.url).href), createAnisomeshCore, {
+  locateFile: (path) => (path.endsWith('.worker.js') ? workerUrl : path),
+  mainScriptUrlOrBlob: new URL('./dist/anisomesh-core-mt.js', import.meta.url).href,
+});
+
+/**
+ * Loads the multithreaded core (options as 'anisomesh': wasmUrl, wasmBinary of
+ * anisomesh-core-mt.wasm). Rejects with WASM_LOAD_FAILED where SharedArrayBuffer is missing
+ * (a page that is not cross-origin isolated).
+ */
+export function loadAnisomesh(options = {}) {
+  if (typeof SharedArrayBuffer === 'undefined' || globalThis.crossOriginIsolated === false) {
+    return Promise.reject(new AnisomeshError('WASM_LOAD_FAILED',
+      "anisomesh/threads needs SharedArrayBuffer: serve the page cross-origin isolated (COOP: same-origin, COEP: require-corp), or use 'anisomesh'"));
+  }
+  return load(options);
+}
