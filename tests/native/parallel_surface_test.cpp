@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/io/run_case.h"
 
@@ -124,4 +125,34 @@ TEST(ParallelSurface, ThreadSlotsDistinctAndNestedRegionsStayOnTheirThread) {
   EXPECT_FALSE(nestedOutside);
   EXPECT_FALSE(insideParallelChunks());
   EXPECT_EQ(threadSlot(), 0);
+}
+
+// Patches meshed concurrently report progress from the calling thread only (a JS callback
+// in the pthreads build must stay on its thread), and a false answer cancels the run.
+TEST(ParallelSurface, ProgressFromTheCallingThreadAndCancels) {
+  SurfaceThreadsGuard guard;
+  setThreadCount(2);
+  nlohmann::json c = exampleCase("surface_two_patch_c.json");
+  const std::thread::id self = std::this_thread::get_id();
+  std::mutex m;
+  int calls = 0, elsewhere = 0;
+  RunCaseOptions o;
+  o.progress = [&](double) {
+    std::lock_guard<std::mutex> lock(m);
+    ++calls;
+    if (std::this_thread::get_id() != self) ++elsewhere;
+    return true;
+  };
+  (void)runCase(c.dump(), o);
+  EXPECT_GT(calls, 0);
+  EXPECT_EQ(elsewhere, 0);
+  // Cancelled at the third report: the run stops with ErrorCode::Cancelled.
+  int answered = 0;
+  o.progress = [&](double) { return ++answered < 3; };
+  try {
+    (void)runCase(c.dump(), o);
+    ADD_FAILURE() << "not cancelled";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::Cancelled) << e.what();
+  }
 }

@@ -4,7 +4,8 @@
 // control spaces across shared contours, inner meshing and merging.
 #include "anisomesh/surface/surface_mesh.h"
 
-#include <mutex>
+#include <atomic>
+#include <thread>
 
 #include "anisomesh/controlspace/concurrency.h"
 #include "anisomesh/mesh/all_quad_split.h"
@@ -162,30 +163,46 @@ bool ModelMesher::hasStaleInvalidContour() const {
 
 // 14-15: the patches' interiors, concurrently when there are several and their control
 // spaces allow it (each patch's mesh is the same either way; an error is the lowest
-// patch's, as when they are meshed in order). One progress for all: the patches' mean.
+// patch's, as when they are meshed in order). One progress for all, the patches' mean,
+// reported from the calling thread only (its own patch's ticks, then parallelChunks' poll):
+// a callback bound to its thread (a JS function in the pthreads build) stays there.
 std::vector<Mesh> ModelMesher::meshPatchInteriors(const std::vector<std::vector<BoundaryLoop>>& loops) {
   const size_t n = m_.patches.size();
   std::vector<Mesh> meshes(n);
-  std::vector<double> fraction(n, 0.0);
-  std::mutex progressLock;
   bool concurrent = n > 1;
   for (size_t p = 0; p < n; ++p) concurrent = concurrent && queriesAreConcurrent(space(int(p)));
+  // The patches' options, made here without the caller's callback (copying it on another
+  // thread could touch what only this thread may).
+  PlanarMesherOptions base = o_.mesher;
+  base.progress = nullptr;
+  base.boundaryOnly = false;
+  // Quads are merged in the patch's (u, v) (never across its contour edges); the all-quad
+  // split is done in meshPatches so that shared contour edges get one midpoint for both.
+  base.quads = o_.quads || o_.allQuads;
+  base.allQuads = false;
+  std::vector<std::atomic<double>> fraction(n);
+  for (auto& f : fraction) f.store(0.0);
+  std::atomic<bool> stop{false};
+  const std::thread::id caller = std::this_thread::get_id();
+  auto report = [&] {
+    if (stop.load()) return;
+    double sum = 0.0;
+    for (const auto& x : fraction) sum += x.load();
+    if (!o_.mesher.progress(sum / static_cast<double>(n))) stop.store(true);
+  };
   auto meshPatch = [&](size_t p) {
-    PlanarMesherOptions mo = o_.mesher;
-    mo.boundaryOnly = false;
-    // Quads are merged in the patch's (u, v) (never across its contour edges); the all-quad
-    // split is done in meshPatches so that shared contour edges get one midpoint for both.
-    mo.quads = o_.quads || o_.allQuads;
-    mo.allQuads = false;
+    PlanarMesherOptions mo = base;
     mo.boundaryCache = boundaryCaches_[p];
-    if (o_.mesher.progress && n > 1) {
-      mo.progress = [&, p](double f) {
-        std::lock_guard<std::mutex> lock(progressLock);
-        fraction[p] = f;
-        double sum = 0.0;
-        for (double x : fraction) sum += x;
-        return o_.mesher.progress(sum / static_cast<double>(n));
-      };
+    if (o_.mesher.progress) {
+      if (n == 1) {
+        mo.progress = o_.mesher.progress;  // (this thread)
+      } else {
+        mo.progress = [&, p](double f) {
+          fraction[p].store(f);
+          if (std::this_thread::get_id() == caller) report();
+          return !stop.load();
+        };
+      }
     }
     try {
       meshes[p] = meshPlanarBoundary(loops[p], space(int(p)), mo);
@@ -194,7 +211,9 @@ std::vector<Mesh> ModelMesher::meshPatchInteriors(const std::vector<std::vector<
     }
   };
   if (concurrent)
-    parallelChunks(n, 1, [&](size_t p, size_t, size_t) { meshPatch(p); });
+    parallelChunks(
+        n, 1, [&](size_t p, size_t, size_t) { meshPatch(p); },
+        o_.mesher.progress ? std::function<void()>(report) : std::function<void()>());
   else
     for (size_t p = 0; p < n; ++p) meshPatch(p);
   return meshes;
