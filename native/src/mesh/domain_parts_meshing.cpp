@@ -1,12 +1,11 @@
 // Planar domain decomposition: the parts meshed (in parallel) and merged into one mesh
 // (see mesh/domain_decomposition.h).
 #include <algorithm>
-#include <atomic>
 #include <sstream>
-#include <thread>
 #include <vector>
 
 #include "anisomesh/controlspace/concurrency.h"
+#include "anisomesh/core/caller_progress.h"
 #include "anisomesh/core/clock.h"
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
@@ -20,21 +19,10 @@ Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& 
   const size_t n = parts.parts.size();
   std::vector<Mesh> meshes(n);
   std::vector<MesherTimings> timings(n);
-  // Progress: each part stores its fraction; only the calling thread reports the sum (from
-  // its own part's ticks and, once it waits for the others, from parallelChunks' poll), so a
-  // callback that must stay on its thread (a JS function in the pthreads build) can. A false
-  // answer stops every part at its next tick (ErrorCode::Cancelled).
-  std::vector<std::atomic<double>> fraction(n);
-  for (auto& f : fraction) f.store(0.0);
-  std::atomic<bool> stop{false};
-  const std::thread::id caller = std::this_thread::get_id();
-  auto report = [&] {
-    if (stop.load()) return;
-    double sum = 0.0;
-    for (const auto& x : fraction) sum += x.load();
-    // The whole domain's boundary stage reported 0.1 before the parts started.
-    if (!options.progress(0.1 + 0.9 * sum / static_cast<double>(n))) stop.store(true);
-  };
+  // Progress: each part stores its fraction; only the calling thread reports the mean (the
+  // whole domain's boundary stage reported 0.1 before the parts started). A false answer
+  // stops every part at its next tick (ErrorCode::Cancelled).
+  CallerProgress progress(n, options.progress, 0.1, 0.9);
   // Larger parts first (by boundary size, a stand-in for their work): better balance.
   std::vector<size_t> order(n);
   for (size_t p = 0; p < n; ++p) order[p] = p;
@@ -59,19 +47,13 @@ Mesh meshDomainParts(const std::vector<BoundaryLoop>& loops, const DomainParts& 
     PlanarMesherOptions o = partOptions;
     o.timings = &timings[p];
     o.boundaryCache = nullptr;  // the parts run concurrently, on loops of their own
-    if (options.progress) {
-      o.progress = [&, p](double f) {
-        fraction[p].store(f);
-        if (std::this_thread::get_id() == caller) report();
-        return !stop.load();
-      };
-    }
+    if (options.progress) o.progress = progress.task(p);
     meshes[p] = meshPlanarBoundary(partLoops, cs, o);
   };
   if (queriesAreConcurrent(cs)) {
     parallelChunks(
         n, 1, [&](size_t c, size_t, size_t) { meshPart(order[c]); },
-        options.progress ? std::function<void()>(report) : std::function<void()>());
+        options.progress ? progress.poll() : std::function<void()>());
   } else {
     for (size_t c = 0; c < n; ++c) meshPart(order[c]);
   }

@@ -25,6 +25,13 @@ void forChunks(bool concurrent, size_t n, size_t grain, const std::function<void
 
 constexpr size_t kMeasureGrain = 1024;
 
+// Quad t's corners: (u, v) and 3D points.
+void quadCorners(const MeasuredPatch& mp, const std::vector<Vec3>& points, const std::array<int, 4>& t, Vec2 tu[4],
+                 Vec3 tx[4]) {
+  for (int j = 0; j < 4; ++j)
+    tu[j] = mp.params[size_t(t[size_t(j)])], tx[j] = points[size_t(mp.gid[size_t(t[size_t(j)])])];
+}
+
 }  // namespace
 
 // In three passes, so the control-space queries (the costly part) run in parallel chunks
@@ -95,11 +102,9 @@ void DeferredMeasures::measureElements() {
     });
     forChunks(concurrent, mp.quads.size(), kMeasureGrain, [&](size_t, size_t b, size_t e) {
       for (size_t k = b; k < e; ++k) {
-        const auto& t = mp.quads[k];
         Vec2 tu[4];
         Vec3 tx[4];
-        for (int j = 0; j < 4; ++j)
-          tu[j] = mp.params[size_t(t[size_t(j)])], tx[j] = points[size_t(mp.gid[size_t(t[size_t(j)])])];
+        quadCorners(mp, points, mp.quads[k], tu, tx);
         elementQuality[quadsOf[p] + k] = quadQuality3D(tx, metric3(0.25 * (tu[0] + tu[1] + tu[2] + tu[3])));
       }
     });
@@ -181,11 +186,9 @@ void DeferredMeasures::measureChords() {
     parallelChunks(mp.quads.size(), kMeasureGrain, [&](size_t c, size_t b, size_t e) {
       Part& r = parts[c];
       for (size_t k = b; k < e; ++k) {
-        const auto& t = mp.quads[k];
         Vec2 tu[4];
         Vec3 tx[4];
-        for (int j = 0; j < 4; ++j)
-          tu[j] = mp.params[size_t(t[size_t(j)])], tx[j] = points[size_t(mp.gid[size_t(t[size_t(j)])])];
+        quadCorners(mp, points, mp.quads[k], tu, tx);
         // Inverted: a corner turning clockwise in (u, v) (non-convex or clockwise quad).
         bool convex = true;
         for (int j = 0; j < 4; ++j) {

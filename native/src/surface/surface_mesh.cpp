@@ -4,10 +4,8 @@
 // control spaces across shared contours, inner meshing and merging.
 #include "anisomesh/surface/surface_mesh.h"
 
-#include <atomic>
-#include <thread>
-
 #include "anisomesh/controlspace/concurrency.h"
+#include "anisomesh/core/caller_progress.h"
 #include "anisomesh/mesh/all_quad_split.h"
 #include "model_mesher.h"
 
@@ -180,16 +178,7 @@ std::vector<Mesh> ModelMesher::meshPatchInteriors(const std::vector<std::vector<
   // split is done in meshPatches so that shared contour edges get one midpoint for both.
   base.quads = o_.quads || o_.allQuads;
   base.allQuads = false;
-  std::vector<std::atomic<double>> fraction(n);
-  for (auto& f : fraction) f.store(0.0);
-  std::atomic<bool> stop{false};
-  const std::thread::id caller = std::this_thread::get_id();
-  auto report = [&] {
-    if (stop.load()) return;
-    double sum = 0.0;
-    for (const auto& x : fraction) sum += x.load();
-    if (!o_.mesher.progress(sum / static_cast<double>(n))) stop.store(true);
-  };
+  CallerProgress progress(n, o_.mesher.progress);
   auto meshPatch = [&](size_t p) {
     PlanarMesherOptions mo = base;
     mo.boundaryCache = boundaryCaches_[p];
@@ -197,11 +186,7 @@ std::vector<Mesh> ModelMesher::meshPatchInteriors(const std::vector<std::vector<
       if (n == 1) {
         mo.progress = o_.mesher.progress;  // (this thread)
       } else {
-        mo.progress = [&, p](double f) {
-          fraction[p].store(f);
-          if (std::this_thread::get_id() == caller) report();
-          return !stop.load();
-        };
+        mo.progress = progress.task(p);
       }
     }
     try {
@@ -213,7 +198,7 @@ std::vector<Mesh> ModelMesher::meshPatchInteriors(const std::vector<std::vector<
   if (concurrent)
     parallelChunks(
         n, 1, [&](size_t p, size_t, size_t) { meshPatch(p); },
-        o_.mesher.progress ? std::function<void()>(report) : std::function<void()>());
+        o_.mesher.progress ? progress.poll() : std::function<void()>());
   else
     for (size_t p = 0; p < n; ++p) meshPatch(p);
   return meshes;
