@@ -54,6 +54,7 @@ const rows = [
   ['remesh', input, '-sol', sol, '-o', 'OUT.mesh', '-threads', '2', '--stats'], ['remesh', input, '-sol', sol, '-o', 'OUT.mesh', '-threads', 'x'],
   ['remesh', input, '-sol', sol, '-o', 'OUT.mesh', '-v', '1', '--max-control-nodes', '100000', '--max-input-bytes', '100000000'],
   ['mesh', planar, '-o', 'OUT.mesh', '--max-control-nodes', '10'], ['mesh', planar, '-o', 'OUT.mesh', '--max-input-bytes', '10'],
+  ['mesh', surface, '-o', 'OUT.mesh', '-threads', '2', '--stats'], ['mesh', planar, '-o', 'OUT.mesh', '-threads', '0'],
   ['adapt', '--help'], ['adapt', input, '-field', 'sin(4*x)*y', '-o', 'OUT.mesh', '-nv', '300', '-iterations', '2'],
   ['adapt', input, '-field', 'sin(4*x)*y', '-field', 'x*x', '-o', 'OUT.mesh', '-err', '0.01', '-relative', '-norm', '2', '-hmin', '0.01',
     '-hmax', '0.5', '-anisomax', '20', '-hgrad', '2', '-iterations', '1', '-svg', 'OUT.svg', '--control-threshold', '0.5', '--stats'],

@@ -46,8 +46,10 @@ void DeferredMeasures::measureElements() {
   q.edgeLengthMin = q.qualityMin = std::numeric_limits<double>::infinity();
   std::unordered_set<std::uint64_t> seen;  // distinct edges (merged-mesh vertex pairs)
   size_t elements = 0, triangles = 0;
-  for (const MeasuredPatch& mp : patches) elements += mp.triangles.size() + mp.quads.size();
-  for (const MeasuredPatch& mp : patches) triangles += mp.triangles.size();
+  for (const MeasuredPatch& mp : patches) {
+    triangles += mp.triangles.size();
+    elements += mp.triangles.size() + mp.quads.size();
+  }
   seen.reserve(2 * elements);
   edgeLengths.clear();
   edgeAt.clear();
