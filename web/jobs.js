@@ -13,9 +13,9 @@
 
 const workerUrl = new URL('./worker.js', import.meta.url);
 // Threads of each worker's core. ?threads=2 on a cross-origin isolated page: the worker loads
-// the pthreads build ('anisomesh/threads'), planar domain parts on 2 threads. Default 1 (the
-// single-threaded build): surfaces mesh one patch serially, and the pthreads build's JS
-// exceptions made their drags no faster (docs/SCALING.md).
+// the pthreads build ('anisomesh/threads'), its parallel stages on 2 threads. Default 1 (the
+// single-threaded build): on the page, surface drags were no faster with it (software WebGL
+// takes the second core, and the pthreads build's JS exceptions cost 5-13 %; docs/SCALING.md).
 const coreThreads = globalThis.crossOriginIsolated === true && typeof SharedArrayBuffer === 'function'
   ? Math.max(1, Math.min(2, Number(new URLSearchParams(globalThis.location?.search ?? '').get('threads') ?? 1) || 1))
   : 1;

@@ -1,6 +1,7 @@
 #include "anisomesh/core/parallel.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -40,25 +41,24 @@ thread_local int tSlot = 0;
 
 // The slot numbers in use (0 is every thread the layer did not start).
 std::mutex gSlotsLock;
-std::vector<char> gSlotsUsed;
+std::array<bool, kThreadSlots> gSlotsUsed{};
 
 // Holds a free slot for the thread that constructs it, until it is destroyed.
 class SlotHold {
  public:
   SlotHold() {
     std::lock_guard<std::mutex> lock(gSlotsLock);
-    if (gSlotsUsed.empty()) gSlotsUsed.assign(kThreadSlots, 0);
     int s = 1;
     while (s < kThreadSlots && gSlotsUsed[size_t(s)]) ++s;
     // More live threads than slots: the layer never starts that many (at most threadCount()
     // per region, nested regions run on their caller's thread).
     if (s == kThreadSlots) std::terminate();
-    gSlotsUsed[size_t(s)] = 1;
+    gSlotsUsed[size_t(s)] = true;
     tSlot = s;
   }
   ~SlotHold() {
     std::lock_guard<std::mutex> lock(gSlotsLock);
-    gSlotsUsed[size_t(tSlot)] = 0;
+    gSlotsUsed[size_t(tSlot)] = false;
   }
   SlotHold(const SlotHold&) = delete;
   SlotHold& operator=(const SlotHold&) = delete;
