@@ -29,8 +29,9 @@ stage "lint: clang-format, clang-tidy, eslint"
 run_layer lint bash tests/lint.sh
 
 stage "native under ASan + UBSan: build and ctest"
+# Batches of 16 here: a cold build took 602 CPU s (344 s wall) against 696 with batches of 8.
 cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" -DANISOMESH_SANITIZE=ON \
-  -DANISOMESH_BUILD_BENCHMARKS=OFF -DCMAKE_UNITY_BUILD=ON >/dev/null
+  -DANISOMESH_BUILD_BENCHMARKS=OFF -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 >/dev/null
 cmake --build build/sanitize -j"$jobs"
 run_layer sanitize bash -c 'cd build/sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j"$0"' "$jobs"
 

@@ -72,42 +72,44 @@ void expectSameCaseMesh(const Mesh& a, const Mesh& b) {
 
 }  // namespace
 
-TEST(PipelineCase, EveryExampleMeshesWithTheRealControlSpace) {
-  for (const char* name : {"fig6_rect_holes_nosmooth", "fig7_rect_holes_dr8", "fig7_rect_holes_dr2", "boundary_layer",
-                           "shear_layer", "point_source", "expression_field"}) {
-    SCOPED_TRACE(name);
-    const CaseSpec spec = exampleCase(name);
-    PipelineReport report;
-    std::unique_ptr<AdaptiveControlSpace> cs;
-    const Mesh mesh = meshCase(spec, &report, {}, &cs);
-    ASSERT_TRUE(cs);
-    EXPECT_TRUE(report.updatesConverged);
-    const double scale = domainBounds(spec.domain).size().norm();
-    // Every input boundary point (curve ends, polyline vertices) is a mesh vertex.
-    std::map<int, double> curveLength, edgeLength;
-    for (const Contour* c : contoursOf(spec.domain))
-      for (const CurveUse& u : c->curves) {
-        EXPECT_TRUE(hasVertex(mesh, u.start(), 1e-12 * scale)) << u.start().transpose();
-        if (const auto* p = dynamic_cast<const PolylineCurve*>(u.curve.get())) {
-          for (const Vec2& q : p->points()) EXPECT_TRUE(hasVertex(mesh, q, 1e-12 * scale)) << q.transpose();
-        }
-        curveLength[u.curve->ref()] += u.curve->length();
+// One test per example (ctest runs them side by side). Determinism is the goldens' check
+// (tests/golden: every example's output bytes against committed values, in fresh processes).
+class EveryExample : public testing::TestWithParam<const char*> {};
+
+TEST_P(EveryExample, MeshesWithTheRealControlSpace) {
+  const CaseSpec spec = exampleCase(GetParam());
+  PipelineReport report;
+  std::unique_ptr<AdaptiveControlSpace> cs;
+  const Mesh mesh = meshCase(spec, &report, {}, &cs);
+  ASSERT_TRUE(cs);
+  EXPECT_TRUE(report.updatesConverged);
+  const double scale = domainBounds(spec.domain).size().norm();
+  // Every input boundary point (curve ends, polyline vertices) is a mesh vertex.
+  std::map<int, double> curveLength, edgeLength;
+  for (const Contour* c : contoursOf(spec.domain))
+    for (const CurveUse& u : c->curves) {
+      EXPECT_TRUE(hasVertex(mesh, u.start(), 1e-12 * scale)) << u.start().transpose();
+      if (const auto* p = dynamic_cast<const PolylineCurve*>(u.curve.get())) {
+        for (const Vec2& q : p->points()) EXPECT_TRUE(hasVertex(mesh, q, 1e-12 * scale)) << q.transpose();
       }
-    // Every boundary curve is covered by boundary edges (chords: slightly shorter on curves).
-    for (size_t e = 0; e < mesh.edges.size(); ++e)
-      edgeLength[mesh.edgeRefs[e]] += (mesh.points[mesh.edges[e][1]] - mesh.points[mesh.edges[e][0]]).norm();
-    for (const auto& [ref, len] : curveLength) {
-      EXPECT_LE(edgeLength[ref], len * (1 + 1e-9)) << "ref " << ref;
-      EXPECT_GE(edgeLength[ref], len * 0.99) << "ref " << ref;
+      curveLength[u.curve->ref()] += u.curve->length();
     }
-    const QualityReport q = measureQuality(mesh, *cs);
-    EXPECT_EQ(q.inverted, 0);
-    EXPECT_EQ(q.degenerate, 0);
-    EXPECT_GT(q.triangles, 100);
-    // Deterministic.
-    expectSameCaseMesh(mesh, meshCase(spec));
+  // Every boundary curve is covered by boundary edges (chords: slightly shorter on curves).
+  for (size_t e = 0; e < mesh.edges.size(); ++e)
+    edgeLength[mesh.edgeRefs[e]] += (mesh.points[mesh.edges[e][1]] - mesh.points[mesh.edges[e][0]]).norm();
+  for (const auto& [ref, len] : curveLength) {
+    EXPECT_LE(edgeLength[ref], len * (1 + 1e-9)) << "ref " << ref;
+    EXPECT_GE(edgeLength[ref], len * 0.99) << "ref " << ref;
   }
+  const QualityReport q = measureQuality(mesh, *cs);
+  EXPECT_EQ(q.inverted, 0);
+  EXPECT_EQ(q.degenerate, 0);
+  EXPECT_GT(q.triangles, 100);
 }
+
+INSTANTIATE_TEST_SUITE_P(PipelineCase, EveryExample,
+                         testing::Values("fig6_rect_holes_nosmooth", "fig7_rect_holes_dr8", "fig7_rect_holes_dr2",
+                                         "boundary_layer", "shear_layer", "point_source", "expression_field"));
 
 // Quality against the analytic metric the case asks for (not the structure's
 // interpolation of it): the mesher follows the quadtree, the user wants the formula.
