@@ -8,6 +8,7 @@
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
+#include "judge_in_slices.h"
 #include "spatial_order.h"
 
 namespace anisomesh {
@@ -445,18 +446,14 @@ void BackgroundMeshControlSpace::refineImpl(const ElementPredicate& pred, const 
       }
       const std::vector<int> order = controlspace_internal::zOrder(centroids);
       // (on one thread, short slices: the progress ticks, which may cancel, come every few ms)
-      const size_t kSlice = threadCount() > 1 ? 16384 : 1024, kGrain = 512;
       verdict.resize(work.size());
-      for (size_t s0 = 0; s0 < work.size(); s0 += kSlice) {
-        const size_t n = std::min(kSlice, work.size() - s0);
-        parallelChunks(n, kGrain, [&](size_t, size_t b, size_t e) {
-          for (size_t k = b; k < e; ++k) {
-            const size_t at = size_t(order[s0 + k]);
+      controlspace_internal::judgeInSlices(
+          work.size(), threadCount() > 1 ? 16384 : 1024, 512,
+          [&](size_t k) {
+            const size_t at = size_t(order[k]);
             verdict[at] = wanted(work[at]) ? 1 : 0;
-          }
-        });
-        for (size_t k = 0; k < n; ++k) refinementTick();
-      }
+          },
+          [&] { refinementTick(); });
       for (size_t k = 0; k < work.size(); ++k)
         if (verdict[k]) split.push_back(work[k]);
     } else {

@@ -8,6 +8,7 @@
 
 #include "anisomesh/core/error.h"
 #include "anisomesh/core/parallel.h"
+#include "judge_in_slices.h"
 
 namespace anisomesh {
 namespace {
@@ -573,15 +574,10 @@ void QuadtreeControlSpace::refineFrom(std::vector<int> work, const ElementPredic
     if (readOnly && threadCount() > 1) {
       // Slices of the batch in parallel chunks, the progress ticks on this thread between
       // them; the split list in batch order, as one thread makes it.
-      constexpr size_t kSlice = 8192, kGrain = 256;
       verdict.assign(work.size(), 0);
-      for (size_t s0 = 0; s0 < work.size(); s0 += kSlice) {
-        const size_t n = std::min(kSlice, work.size() - s0);
-        parallelChunks(n, kGrain, [&](size_t, size_t b, size_t e) {
-          for (size_t k = b; k < e; ++k) verdict[s0 + k] = wanted(work[s0 + k]) ? 1 : 0;
-        });
-        for (size_t k = 0; k < n; ++k) refinementTick();
-      }
+      controlspace_internal::judgeInSlices(
+          work.size(), 8192, 256, [&](size_t k) { verdict[k] = wanted(work[k]) ? 1 : 0; },
+          [&] { refinementTick(); });
       for (size_t k = 0; k < work.size(); ++k)
         if (verdict[k]) split.push_back(work[k]);
     } else {
