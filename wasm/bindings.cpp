@@ -816,9 +816,14 @@ val domainFromSvg(std::string svgText, double size, bool flipY) {
 
 std::string coreVersion() { return anisomesh::version(); }
 
-// Sets the threads of the parallel stages (clamped: always 1 in the single-threaded module)
-// and returns the count in effect.
+// Sets the threads of the parallel stages (clamped: always 1 in the single-threaded module,
+// the caller and the worker pool in the threaded one) and returns the count in effect.
 int setThreads(int threads) {
+#if defined(__EMSCRIPTEN_PTHREADS__)
+  // A thread beyond the pool started with the module would wait for the caller's event loop
+  // (wasm/threads_pre.js sizes the pool).
+  threads = std::min(threads, EM_ASM_INT({ return Module['anisomeshPoolSize'] | 0; }) + 1);
+#endif
   setThreadCount(threads);
   return threadCount();
 }

@@ -476,8 +476,9 @@ export interface Anisomesh {
   memoryStats(): { inUseBytes: number; heapBytes: number };
   /**
    * Sets the threads of the core's parallel stages (remesh reading, control space, domain
-   * parts, report) and returns the count in effect: always 1 from 'anisomesh', up to 3 from
-   * 'anisomesh/threads'. The mesh is the same for any count.
+   * parts, report) and returns the count in effect: always 1 from 'anisomesh'; from
+   * 'anisomesh/threads' up to the caller and its worker pool (one worker per core, 2 to 7).
+   * The mesh is the same for any count.
    */
   setThreads(threads: number): number;
   /** Validates a metric and returns all its forms. Throws INVALID_METRIC for NaN, non-positive sizes or a non-SPD tensor. */

@@ -1,6 +1,6 @@
 // Node entry of the multithreaded core ('anisomesh/threads'): the module built with Emscripten
-// pthreads, its pool of 2 workers as worker_threads. setThreads(2) (or 3) on the loaded API
-// uses them; the default is 1 thread.
+// pthreads, its pool as worker_threads (one per core beside the caller, 2 to 7:
+// wasm/threads_pre.js). setThreads(n) on the loaded API uses them; the default is 1 thread.
 import { readFile } from 'node:fs/promises';
 import { createRequire } from 'node:module';
 import { fileURLToPath } from 'node:url';

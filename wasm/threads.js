@@ -1,7 +1,8 @@
 // Browser / Web Worker entry of the multithreaded core ('anisomesh/threads'): the same API as
-// 'anisomesh', over the module built with Emscripten pthreads (a pool of 2 Web Workers on one
-// SharedArrayBuffer). Needs a cross-origin isolated page (COOP + COEP headers); call
-// setThreads(2) (or 3) on the loaded API to use the pool, the default is 1 thread.
+// 'anisomesh', over the module built with Emscripten pthreads (a pool of Web Workers on one
+// SharedArrayBuffer, one per core beside the caller: 2 to 7, wasm/threads_pre.js). Needs a
+// cross-origin isolated page (COOP + COEP headers); call setThreads(n) on the loaded API to
+// use the pool (it returns the count in effect), the default is 1 thread.
 // Blocking joins are only allowed off the page's main thread: use it in a Web Worker.
 import createAnisomeshCore from './dist/anisomesh-core-mt.js';
 import { AnisomeshError } from './api.js';

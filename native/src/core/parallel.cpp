@@ -19,9 +19,10 @@ constexpr bool kSingleThreaded = true;  // no -pthread build: one thread, the sa
 constexpr int kMaxThreads = 1;
 #elif defined(__EMSCRIPTEN_PTHREADS__)
 constexpr bool kSingleThreaded = false;
-// The caller and the workers of the pool started with the module (PTHREAD_POOL_SIZE in
-// wasm/CMakeLists.txt): a thread beyond the pool would wait for the caller's event loop.
-constexpr int kMaxThreads = 3;
+// The caller and the most workers wasm/threads_pre.js starts with the module (the bindings'
+// setThreads clamps to the pool actually started: a thread beyond it would wait for the
+// caller's event loop).
+constexpr int kMaxThreads = 8;
 #else
 constexpr bool kSingleThreaded = false;
 constexpr int kMaxThreads = 256;
