@@ -467,6 +467,12 @@ export interface LoadOptions {
   wasmUrl?: string | URL;
   /** The bytes of anisomesh-core.wasm. */
   wasmBinary?: ArrayBuffer | Uint8Array;
+  /**
+   * 'anisomesh/threads' only (the single-threaded module ignores it): the most threads the
+   * instance will run, 2 to 8, which sizes its worker pool (threads - 1 Web Workers or
+   * worker_threads). Default: one worker per core beside the caller, 2 to 7.
+   */
+  threads?: number;
 }
 
 export interface Anisomesh {

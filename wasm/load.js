@@ -68,6 +68,25 @@ export async function fetchWasm(url) {
 }
 
 /**
+ * Makes the threaded entry points' loadAnisomesh({ wasmUrl, wasmBinary, threads }): threads
+ * (2 to 8) sizes the instance's worker pool (threads - 1 workers, each a Web Worker or
+ * worker_thread holding the module), else one worker per core (wasm/threads_pre.js). One
+ * cached instance per pool size and source.
+ */
+export function makeThreadedLoader(defaultBytes, create, glue = {}) {
+  const loaders = new Map();
+  return function loadAnisomesh(options = {}) {
+    const threads = options !== null && typeof options === 'object' ? options.threads : undefined;
+    if (threads !== undefined && !(Number.isInteger(threads) && threads >= 2 && threads <= 8)) {
+      return Promise.reject(new AnisomeshError('INVALID_ARGUMENT', `loadAnisomesh: threads must be an integer from 2 to 8, got ${String(threads)}`));
+    }
+    const key = threads ?? 0;
+    if (!loaders.has(key)) loaders.set(key, makeLoader(defaultBytes, create, threads ? { ...glue, anisomeshPoolSize: threads - 1 } : glue));
+    return loaders.get(key)(options);
+  };
+}
+
+/**
  * Makes loadAnisomesh({ wasmUrl, wasmBinary }) for an entry point whose defaultBytes() gives
  * the packaged wasm, create is the Emscripten glue's factory and glue extra module options
  * (the threaded module's worker script). Successful loads are cached per source; failed ones are not.

@@ -5,7 +5,7 @@ import { readFile } from 'node:fs/promises';
 import { createRequire } from 'node:module';
 import { fileURLToPath } from 'node:url';
 import createAnisomeshCore from './dist/anisomesh-core-mt.js';
-import { makeLoader } from './load.js';
+import { makeThreadedLoader } from './load.js';
 
 export { AnisomeshError } from './api.js';
 
@@ -37,8 +37,11 @@ function withCommonJsGlobals(create) {
 }
 
 const workerPath = fileURLToPath(new URL('./anisomesh-core-mt.worker.cjs', dist));
-/** Loads the multithreaded core (cached; a failed load is retried). */
-export const loadAnisomesh = makeLoader(() => readFile(new URL('./anisomesh-core-mt.wasm', dist)),
+/**
+ * Loads the multithreaded core (cached per source and threads; a failed load is retried).
+ * threads: the most threads it will run, 2 to 8 (its pool: threads - 1 workers); default one per core.
+ */
+export const loadAnisomesh = makeThreadedLoader(() => readFile(new URL('./anisomesh-core-mt.wasm', dist)),
   withCommonJsGlobals(createAnisomeshCore), {
     locateFile: (path) => (path.endsWith('.worker.js') ? workerPath : path),
     mainScriptUrlOrBlob: new URL('./anisomesh-core-mt.js', dist).href,

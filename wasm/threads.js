@@ -6,19 +6,20 @@
 // Blocking joins are only allowed off the page's main thread: use it in a Web Worker.
 import createAnisomeshCore from './dist/anisomesh-core-mt.js';
 import { AnisomeshError } from './api.js';
-import { fetchWasm, makeLoader } from './load.js';
+import { fetchWasm, makeThreadedLoader } from './load.js';
 
 export { AnisomeshError } from './api.js';
 
 const workerUrl = new URL('./dist/anisomesh-core-mt.worker.js', import.meta.url).href;
-const load = makeLoader(() => fetchWasm(new URL('./dist/anisomesh-core-mt.wasm', import.meta.url).href), createAnisomeshCore, {
+const load = makeThreadedLoader(() => fetchWasm(new URL('./dist/anisomesh-core-mt.wasm', import.meta.url).href), createAnisomeshCore, {
   locateFile: (path) => (path.endsWith('.worker.js') ? workerUrl : path),
   mainScriptUrlOrBlob: new URL('./dist/anisomesh-core-mt.js', import.meta.url).href,
 });
 
 /**
  * Loads the multithreaded core (options as 'anisomesh': wasmUrl, wasmBinary of
- * anisomesh-core-mt.wasm). Rejects with WASM_LOAD_FAILED where SharedArrayBuffer is missing
+ * anisomesh-core-mt.wasm; threads: the most threads it will run, 2 to 8, which sizes its
+ * worker pool, default one per core). Rejects with WASM_LOAD_FAILED where SharedArrayBuffer is missing
  * (a page that is not cross-origin isolated).
  */
 export function loadAnisomesh(options = {}) {

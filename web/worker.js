@@ -31,7 +31,7 @@ async function init(module, threads) {
   if (threads > 1) {
     // The pthreads build (the page is cross-origin isolated): fetched and compiled here.
     const { loadAnisomesh } = await import('../wasm/threads.js');
-    am = await loadAnisomesh();
+    am = await loadAnisomesh({ threads });  // a pool of threads - 1 workers, not one per core
     const inEffect = am.setThreads(threads);
     readyResolve();
     self.postMessage({ type: 'ready', version: am.version, initMs: performance.now() - t0, threads: inEffect });

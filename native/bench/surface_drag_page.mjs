@@ -69,8 +69,11 @@ try {
       plain.push({ ...r.b, workerMs: r.job.workerMs, cpu: (workerCpuNs() - n0) / 1e6, gpu: (workerCpuNs('gpu-process') - g0) / 1e6 });
     }
     // The core alone on the page: mesh jobs posted straight to the mesh worker (the runner
-    // sees no job: no busy toolbar, no result drawn, no frame), as a drag's are. What the
-    // drags' core runs take beyond this is contention (frames, the other lane, the page).
+    // sees no job: no busy toolbar, no result drawn, no frame), as a drag's are, once the
+    // spare's and the second lane's warm-up runs are over. What the drags' core runs take
+    // beyond this is contention (frames, the other lane, the page). (They replace the run the
+    // worker keeps for its report: the drags that follow make their own.)
+    await page.evaluate(() => new Promise((r) => setTimeout(r, 2000)));
     const idle = await page.evaluate(async (n) => {
       const app = window.anisomeshApp, w = app.meshRunner.worker, out = [];
       for (let k = 0; k < n; k++) {

@@ -4,6 +4,7 @@
 // (timings aside) for any thread count.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 #include <functional>
 #include <mutex>
@@ -125,6 +126,31 @@ TEST(ParallelSurface, ThreadSlotsDistinctAndNestedRegionsStayOnTheirThread) {
   EXPECT_FALSE(nestedOutside);
   EXPECT_FALSE(insideParallelChunks());
   EXPECT_EQ(threadSlot(), 0);
+}
+
+// parallelInvoke's first branch runs on the caller while the second's thread lives: its
+// own regions stay on the caller (else threadCount() + 1 threads: in the pthreads build one
+// more than the pool, a thread that would never start).
+TEST(ParallelSurface, RegionsInParallelInvokesFirstBranchStayOnTheCaller) {
+  SurfaceThreadsGuard guard;
+  setThreadCount(4);
+  const std::thread::id caller = std::this_thread::get_id();
+  std::mutex m;
+  std::set<std::thread::id> inA;
+  parallelInvoke(
+      [&] {
+        parallelChunks(16, 1, [&](size_t, size_t, size_t) {
+          {
+            std::lock_guard<std::mutex> lock(m);
+            inA.insert(std::this_thread::get_id());
+          }
+          // Long enough chunks that started threads would take some.
+          std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        });
+      },
+      [] {});
+  EXPECT_EQ(inA, std::set<std::thread::id>{caller});
+  EXPECT_FALSE(insideParallelChunks());
 }
 
 // Patches meshed concurrently report progress from the calling thread only (a JS callback

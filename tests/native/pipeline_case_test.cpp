@@ -109,7 +109,8 @@ TEST_P(EveryExample, MeshesWithTheRealControlSpace) {
 
 INSTANTIATE_TEST_SUITE_P(PipelineCase, EveryExample,
                          testing::Values("fig6_rect_holes_nosmooth", "fig7_rect_holes_dr8", "fig7_rect_holes_dr2",
-                                         "boundary_layer", "shear_layer", "point_source", "expression_field"));
+                                         "boundary_layer", "shear_layer", "point_source", "expression_field"),
+                         [](const testing::TestParamInfo<const char*>& info) { return std::string(info.param); });
 
 // Quality against the analytic metric the case asks for (not the structure's
 // interpolation of it): the mesher follows the quadtree, the user wants the formula.

@@ -48,6 +48,19 @@ test('on a 6-core machine the pool has 5 workers and 6 threads give the same mes
   assert.equal(md5(text), md5(st.writeMesh(st.meshCase(square, { stats: false }).mesh)));
 });
 
+// loadAnisomesh({ threads }): an instance whose pool is threads - 1 workers (the page asks for 2).
+test('loadAnisomesh({ threads: 2 }) is an instance of 2 threads at most with the same bytes; bad threads are refused', async () => {
+  const two = await loadThreaded({ threads: 2 });
+  assert.notEqual(two, mt);
+  assert.equal(await loadThreaded({ threads: 2 }), two, 'cached per pool size');
+  assert.equal(two.setThreads(64), 2);
+  const r = two.meshCase(square, { stats: false });
+  assert.equal(md5(two.writeMesh(r.mesh)), md5(st.writeMesh(st.meshCase(square, { stats: false }).mesh)));
+  for (const bad of [1, 9, 2.5, '2', null]) {
+    await assert.rejects(loadThreaded({ threads: bad }), (e) => e instanceof AnisomeshError && e.code === 'INVALID_ARGUMENT', String(bad));
+  }
+});
+
 test('the same mesh bytes from both modules at 1, 2 and 3 threads (meshCase, remesh)', () => {
   const ref = st.meshCase(square, { stats: false });
   const refText = st.writeMesh(ref.mesh);

@@ -162,6 +162,10 @@ void parallelInvoke(const std::function<void()>& a, const std::function<void()>&
   });
   std::exception_ptr fa;
   try {
+    // a's own regions run on this thread while b's lives (the nesting rule): started
+    // threads would be one more than threadCount(), and in the pthreads build one more
+    // than its pool, which would wait forever for the caller's event loop.
+    const InsideChunks inside;
     a();
   } catch (...) {
     fa = std::current_exception();

@@ -8,8 +8,8 @@
 // per stage (thread start-up, ~50 us, is noise against them), the WebAssembly build must
 // compile the same sources without threads, and a dependency would have to be built for
 // both targets. The default WebAssembly build runs on one thread; the opt-in pthreads build
-// (wasm/dist/anisomesh-core-mt) on up to 3 (its worker pool and the caller), nested calls
-// from its workers on the worker itself.
+// (wasm/dist/anisomesh-core-mt) on up to 8 (the caller and its worker pool, which the
+// bindings clamp to), nested calls from its workers on the worker itself.
 #include <cstddef>
 #include <functional>
 
@@ -17,7 +17,7 @@ namespace anisomesh {
 
 // Worker threads used by parallelChunks / parallelInvoke (process-wide; default 1).
 int threadCount();
-// Sets the worker threads, clamped to [1, 256] (1 in the WebAssembly build, 3 with pthreads).
+// Sets the worker threads, clamped to [1, 256] (1 in the WebAssembly build, 8 with pthreads).
 void setThreadCount(int threads);
 
 // Calls f(chunk, begin, end) for the chunks [k * grain, min(n, (k + 1) * grain)) of [0, n),
