@@ -576,8 +576,7 @@ void QuadtreeControlSpace::refineFrom(std::vector<int> work, const ElementPredic
       // them; the split list in batch order, as one thread makes it.
       verdict.assign(work.size(), 0);
       controlspace_internal::judgeInSlices(
-          work.size(), 8192, 256, [&](size_t k) { verdict[k] = wanted(work[k]) ? 1 : 0; },
-          [&] { refinementTick(); });
+          work.size(), 8192, 256, [&](size_t k) { verdict[k] = wanted(work[k]) ? 1 : 0; }, [&] { refinementTick(); });
       for (size_t k = 0; k < work.size(); ++k)
         if (verdict[k]) split.push_back(work[k]);
     } else {
