@@ -36,8 +36,7 @@ async function downloadFrom(page, kind, count = 1) {
 }
 
 // A digest of the mesh on screen (vertices and connectivity), to compare two meshes exactly.
-const meshDigest = () => {
-  const m = window.anisomeshApp.views.mesh;
+const meshDigest = (m = window.anisomeshApp.views.mesh) => {
   let h = 0;
   const mix = (x) => { h = (Math.imul(h, 31) + x) | 0; };
   for (const x of new Int32Array(new Float64Array(m.vertices).buffer)) mix(x);
@@ -502,6 +501,28 @@ test('a drag leaves the toolbar still (no spinner animation, no job progress) un
   await page.mouse.up();
   await page.waitForFunction(() => window.anisomeshApp.state.dragToMeshMs !== null && window.anisomeshApp.idle(), null, { timeout: 60000 });
   assert.match(await page.locator('#status-text').textContent(), /^meshed in/);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+// ?threads=2 (an isolated page): each mesh worker loads 'anisomesh/threads' with a pool of one
+// worker (loadAnisomesh({ threads: 2 })) and meshes on 2 threads; a drag there ends with the
+// mesh the single-threaded module makes for the same input (loaded in the page itself).
+test('with ?threads=2 the mesh worker runs 2 threads and a drag ends with the single-threaded module\'s mesh', async () => {
+  const { page, errors } = await openSurfaceDragPage(env.browser, `${env.url}?threads=2`);
+  assert.equal(await page.evaluate(() => window.anisomeshApp.meshRunner.threads), 2);
+  await dragSourceOnce(page, 0);
+  await settle(page);
+  await page.evaluate(`window.meshDigestOf = ${meshDigest}`);
+  const [shown, single] = await page.evaluate(async () => {
+    const { loadAnisomesh } = await import('/wasm/browser.js');
+    const am = await loadAnisomesh();
+    const r = am.meshCase(JSON.stringify(window.anisomeshApp.state.case), { stats: false });
+    const digests = [window.meshDigestOf(), window.meshDigestOf(r.mesh)];
+    r.dispose?.();
+    return digests;
+  });
+  assert.deepEqual(single, shown);
   assert.deepEqual(errors, []);
   await page.close();
 });
