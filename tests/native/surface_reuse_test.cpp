@@ -138,15 +138,23 @@ TEST(SurfaceReuse, RepeatedRunsWithAMovedSourceGiveTheBitsOfFreshOnes) {
   expectSameRun(a, runReuse(p2WithSource(0.0)));
 }
 
+// A small sphere patch at a chord tolerance: a cheap run whose stage takes a place in the
+// cache (every stage key counts against the same 4 places).
+std::string smallSphere(double chordTolerance) {
+  return R"({"metric": {"chordTolerance": )" + std::to_string(chordTolerance) +
+         R"(, "hmin": 0.05, "hmax": 0.8, "gradation": 2.0},
+  "patches": [{"surface": {"type": "sphere", "radius": 1.0, "domain": [[0.5, -0.8], [2.5, 0.8]]}}]})";
+}
+
 // The kept stage holds the contours' curvature: a moved hole is another stage. A run after
 // another hole's run gives what a fresh run gives (the cache emptied of that sizing by
-// runs at 5 other sizings first: it keeps 4 stages, kEntries in curvature_stage_cache.cpp),
+// runs at 5 other keys first: it keeps 4 stages, kEntries in curvature_stage_cache.cpp),
 // not the other hole's stage.
 TEST(SurfaceReuse, AMovedHoleIsAnotherStage) {
   const double chord = 0.045;  // a sizing no other test uses: the first run of each key is fresh
   (void)runReuse(p2WithSource(0.0, chord, -4.0));
   const SurfaceRun afterOther = runReuse(p2WithSource(0.0, chord, -1.0));
-  for (double other : {0.044, 0.043, 0.042, 0.041, 0.040}) (void)runReuse(p2WithSource(0.0, other, -1.0));
+  for (double other : {0.044, 0.043, 0.042, 0.041, 0.040}) (void)runReuse(smallSphere(other));
   const SurfaceRun fresh = runReuse(p2WithSource(0.0, chord, -1.0));
   expectSameRun(afterOther, fresh);
 }
