@@ -253,7 +253,8 @@ export function wrapCore(core) {
     /** Threads of the parallel stages (1 in the single-threaded module); returns the count in effect. */
     setThreads(threads) {
       if (!Number.isInteger(threads) || threads < 1) throw argError('threads: expected a positive integer');
-      return core.setThreads(threads);
+      // Above the core's int (which would wrap, e.g. 2^31 to a negative count): the most there is.
+      return core.setThreads(Math.min(threads, 0x7fffffff));
     },
     /** A metric from {alpha, h1, h2}, {h} or {m11, m12, m22}; returns all three forms. */
     metric(spec) {

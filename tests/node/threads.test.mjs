@@ -26,6 +26,7 @@ const poolThreads = 1 + Math.max(2, Math.min(7, availableParallelism() - 1));
 test('setThreads: 1 in the single-threaded module; in the threaded one the caller and its pool (one worker per core, 3 to 8 threads)', () => {
   assert.equal(st.setThreads(2), 1);
   assert.equal(mt.setThreads(64), poolThreads);
+  for (const huge of [2 ** 31, 2 ** 32 + 2, Number.MAX_SAFE_INTEGER]) assert.equal(mt.setThreads(huge), poolThreads, String(huge));
   assert.equal(mt.setThreads(3), 3);
   assert.equal(mt.setThreads(1), 1);
   assert.throws(() => mt.setThreads(0), AnisomeshError);
