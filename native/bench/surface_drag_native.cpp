@@ -6,7 +6,12 @@
 // profiler (perf record -g) run on it shows where a drag's time goes. Each run's line ends
 // with a hash of its mesh (two builds' meshes compared run for run).
 //
-// Usage: surface_drag_native CASE.json [RUNS] [--hmax H --chord T] [--report] [--threads N]
+// Freed memory is kept for reuse (as the CLI does, and as a wasm instance's memory always
+// is): glibc's default hands large freed blocks back to the kernel and each run then pays
+// page faults for them again, 25 % of a refined run's CPU on this virtual machine, which
+// the worker never pays. --return-memory keeps glibc's default.
+//
+// Usage: surface_drag_native CASE.json [RUNS] [--hmax H --chord T] [--report] [--threads N] [--return-memory]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -15,6 +20,10 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#if defined(__linux__) && defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "anisomesh/core/parallel.h"
 #include "anisomesh/io/run_case.h"
@@ -53,7 +62,8 @@ double median(std::vector<double> v) {
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
-                 "usage: surface_drag_native CASE.json [RUNS] [--hmax H] [--chord T] [--report] [--threads N]\n");
+                 "usage: surface_drag_native CASE.json [RUNS] [--hmax H] [--chord T] [--report] [--threads N] "
+                 "[--return-memory]\n");
     return 2;
   }
   std::ifstream in(argv[1]);
@@ -61,7 +71,7 @@ int main(int argc, char** argv) {
   ss << in.rdbuf();
   nlohmann::json c = nlohmann::json::parse(ss.str());
   int runs = 8;
-  bool report = false;
+  bool report = false, keepMemory = true;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--hmax" && i + 1 < argc)
@@ -72,9 +82,17 @@ int main(int argc, char** argv) {
       report = true;
     else if (a == "--threads" && i + 1 < argc)
       anisomesh::setThreadCount(std::stoi(argv[++i]));
+    else if (a == "--return-memory")
+      keepMemory = false;
     else
       runs = std::stoi(a);
   }
+#if defined(__linux__) && defined(__GLIBC__)
+  if (keepMemory) {  // the CLI's settings (native/cli/huge_pages.cpp)
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, 256 << 20);
+  }
+#endif
   anisomesh::RunCaseOptions o;
   o.stats = false;
   o.elementMeasures = false;
@@ -105,6 +123,7 @@ int main(int argc, char** argv) {
   std::printf("%s: %zu triangles: first CPU %.1f ms, later median CPU %.1f ms (wall %.1f)", argv[1], tris, cpu[0],
               median({cpu.begin() + 1, cpu.end()}), median({wall.begin() + 1, wall.end()}));
   if (report) std::printf(", report after: median CPU %.1f ms (wall %.1f)", median(rep), median(repWall));
+  std::printf(keepMemory ? " [freed memory kept]" : " [freed memory returned]");
   std::printf("\n");
   return 0;
 }
