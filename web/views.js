@@ -448,7 +448,13 @@ export class Views {
   #attribute(geom, name, count) {
     let attr = geom.getAttribute(name);
     if (!attr || attr.array.length < 3 * count) {
-      if (attr) geom.dispose();  // frees the GPU buffers of the smaller arrays
+      if (attr) {
+        // Frees the GPU buffers of the smaller arrays. The 2D and 3D geometries share
+        // attributes (colours, edge codes, flat positions): the other one is released too, or
+        // its vertex array state keeps drawing the freed buffers (black or stale faces).
+        geom.dispose();
+        this.#partnerOf(geom)?.dispose();
+      }
       attr = new THREE.BufferAttribute(new Float32Array(Math.ceil(3 * count * 1.25) + 3), 3);
       attr.setUsage(THREE.DynamicDrawUsage);
       geom.setAttribute(name, attr);
@@ -461,13 +467,23 @@ export class Views {
     return attr;
   }
 
+  /** The geometry that shares attributes with geom (faces2 <-> faces3, boundary2 <-> boundary3). */
+  #partnerOf(geom) {
+    const g = this.meshObjects;
+    if (!g) return null;
+    return { [g.faces2.id]: g.faces3, [g.faces3.id]: g.faces2, [g.boundary2.id]: g.boundary3, [g.boundary3.id]: g.boundary2 }[geom.id] ?? null;
+  }
+
   // The 3D geometry draws the 2D one's arrays (flat planar mesh: no upload of its own),
   // or its own positions; the colours (and the faces' edge codes) are always the 2D geometry's.
   #share(geom3, geom2, shared, count) {
     const pos2 = geom2.getAttribute('position'), col2 = geom2.getAttribute('color'), codes2 = geom2.getAttribute('edgeCode');
     if (codes2) geom3.setAttribute('edgeCode', codes2);
     if (shared) {
-      if (geom3.getAttribute('position') && geom3.getAttribute('position') !== pos2) geom3.dispose();
+      if (geom3.getAttribute('position') && geom3.getAttribute('position') !== pos2) {
+        geom3.dispose();  // its own positions' buffer; geom2 shares its other buffers (see #attribute)
+        geom2.dispose();
+      }
       geom3.setAttribute('position', pos2);
     } else if (geom3.getAttribute('position') === pos2) {
       geom3.deleteAttribute('position');

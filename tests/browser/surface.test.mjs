@@ -124,6 +124,36 @@ test('the two patches of figs. 11-13 are drawn side by side in (u, v), never ove
   await page.close();
 });
 
+// Near-black pixels of a viewport, drawn now (the faces are light: a freed GPU buffer draws black).
+const darkPixels = (which) => {
+  const v = window.anisomeshApp.views;
+  v.invalidate2D();
+  v.renderNow([which], { sync: true });
+  const vp = v.viewports()[which], c = document.createElement('canvas');
+  c.width = v.canvas.width; c.height = v.canvas.height;
+  const ctx = c.getContext('2d');
+  ctx.drawImage(v.canvas, 0, 0);
+  const d = ctx.getImageData(vp.x, vp.y, vp.w, vp.h).data;
+  let n = 0;
+  for (let i = 0; i < d.length; i += 4) if (d[i] < 20 && d[i + 1] < 20 && d[i + 2] < 20) n++;
+  return n;
+};
+
+test('a surface mesh that outgrows its arrays is drawn in colour in both views (no freed buffers)', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('two-patch-c'));
+  const before = await page.evaluate(() => window.anisomeshApp.views.mesh.triangles.length / 3);
+  // 7.8k -> 9.8k triangles: more than the arrays' 25 % slack, so the 2D geometry's arrays
+  // are replaced while the 3D geometry shares its colours.
+  await settle(page, () => { const a = window.anisomeshApp; a.state.case.metric.hmax = 0.04; a.edited(0); });
+  const after = await page.evaluate(() => window.anisomeshApp.views.mesh.triangles.length / 3);
+  assert.ok(after > 1.25 * before, `${before} -> ${after} triangles`);
+  const dark = { '2d': await page.evaluate(darkPixels, '2d'), '3d': await page.evaluate(darkPixels, '3d') };
+  assert.ok(dark['2d'] < 50 && dark['3d'] < 50, `near-black pixels: ${JSON.stringify(dark)}`);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
 test('a surface case downloads and loads back (file input and drop) with an identical mesh', async () => {
   const { page, errors } = await openPage(env.browser, env.url, { acceptDownloads: true });
   await settle(page, () => window.anisomeshApp.loadPreset('two-patch-c'));
