@@ -59,6 +59,39 @@ TEST(SurfacePatchParams, TwoPatchCornersMapToTheirVertices) {
   expectCornersOnSurface("surface_two_patch_c.json", true);
 }
 
+// A patch shared with itself along a seam (sphere band: u = 0 / 2 pi; torus: both
+// directions): an element across the seam has its seam corners on its own side, so no
+// element spans more than half the domain, and every corner still maps to its vertex.
+void expectSeamElementsCompact(const std::string& file, size_t minAcross) {
+  const SurfaceCaseSpec spec = parseSurfaceCaseJson(readSurfaceExample(file));
+  const Mesh mesh = meshSurfaceCase(spec);
+  const std::vector<Vec2> corners = patchCornerParams(spec.model, mesh);
+  const Surface& s = *spec.model.patches[0].surface;
+  const Vec2 size = s.domain().hi - s.domain().lo;
+  size_t c = 0, across = 0, wide = 0;
+  double worst = 0.0;
+  for (size_t e = 0; e < mesh.triangles.size() + mesh.quads.size(); ++e) {
+    const int n = e < mesh.triangles.size() ? 3 : 4;
+    Vec2 lo = corners[c], hi = corners[c], vlo = mesh.params[size_t(cornerVertex(mesh, e, 0))], vhi = vlo;
+    for (int k = 0; k < n; ++k, ++c) {
+      const Vec2 vp = mesh.params[size_t(cornerVertex(mesh, e, k))];
+      lo = lo.cwiseMin(corners[c]), hi = hi.cwiseMax(corners[c]);
+      vlo = vlo.cwiseMin(vp), vhi = vhi.cwiseMax(vp);
+      worst = std::max(worst, (s.point(corners[c]) - mesh.points[size_t(cornerVertex(mesh, e, k))]).norm());
+    }
+    if ((vhi - vlo).x() > 0.5 * size.x() || (vhi - vlo).y() > 0.5 * size.y()) ++across;
+    if ((hi - lo).x() > 0.5 * size.x() || (hi - lo).y() > 0.5 * size.y()) ++wide;
+  }
+  EXPECT_GE(across, minAcross) << file << ": elements whose vertex parameters span the seam";
+  EXPECT_EQ(wide, 0u) << file << ": elements whose corners still span the domain";
+  EXPECT_LT(worst, 1e-7) << file << ": a corner's (u, v) does not map to its vertex";
+}
+
+TEST(SurfacePatchParams, ElementsAcrossASeamKeepTheirCornersOnTheirSide) {
+  expectSeamElementsCompact("surface_sphere.json", 10);
+  expectSeamElementsCompact("surface_torus.json", 10);
+}
+
 TEST(SurfacePatchParams, SinglePatchKeepsTheVertexParameters) {
   expectCornersOnSurface("surface_p2_holes.json", false);
 }
