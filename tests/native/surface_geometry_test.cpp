@@ -289,6 +289,19 @@ TEST(SurfaceGeometry, BadInputsAreTypedErrors) {
   EXPECT_EQ(code([] { TorusSurface(1, 2); }), ErrorCode::InvalidArgument);
   EXPECT_EQ(code([] { CylinderSurface(0); }), ErrorCode::InvalidArgument);
   EXPECT_EQ(code([] { SphereSurface(1, Vec3::Zero(), Box2{{1, 0}, {0, 1}}); }), ErrorCode::InvalidDomain);
+  // Angle ranges that fold the surface over itself: past a pole, more than one turn.
+  EXPECT_EQ(code([] { SphereSurface(1, Vec3::Zero(), Box2{{0, -1}, {6, 2.5}}); }), ErrorCode::InvalidDomain);
+  EXPECT_EQ(code([] { SphereSurface(1, Vec3::Zero(), Box2{{0, -1.6}, {6, 1}}); }), ErrorCode::InvalidDomain);
+  EXPECT_EQ(code([] { SphereSurface(1, Vec3::Zero(), Box2{{-1, 0}, {6, 1}}); }), ErrorCode::InvalidDomain);
+  EXPECT_EQ(code([] { TorusSurface(2, 1, Vec3::Zero(), Box2{{0, 0}, {7, 1}}); }), ErrorCode::InvalidDomain);
+  EXPECT_EQ(code([] { TorusSurface(2, 1, Vec3::Zero(), Box2{{0, -4}, {1, 3}}); }), ErrorCode::InvalidDomain);
+  EXPECT_EQ(code([] { CylinderSurface(1, Vec3::Zero(), Box2{{0, 0}, {6.5, 1}}); }), ErrorCode::InvalidDomain);
+  // The whole sphere (poles included) and exactly one turn are valid.
+  EXPECT_EQ(code([] {
+              SphereSurface(1, Vec3::Zero(), Box2{{0, -M_PI / 2}, {2 * M_PI, M_PI / 2}});
+            }),
+            ErrorCode::Internal);
+  EXPECT_EQ(code([] { TorusSurface(2, 1, Vec3::Zero(), Box2{{-M_PI, -M_PI}, {M_PI, M_PI}}); }), ErrorCode::Internal);
   EXPECT_EQ(code([] { PlaneSurface(Vec3::Zero(), Vec3(1, 0, 0), Vec3(2, 0, 0)); }), ErrorCode::InvalidSurface);
   EXPECT_EQ(code([] { BSplinePatchSurface(curvedBSplinePoints(3, 5)); }), ErrorCode::InvalidArgument);
   EXPECT_EQ(code([] { BSplinePatchSurface(curvedBSplinePoints(5, 5), 0, 3); }), ErrorCode::InvalidArgument);

@@ -22,6 +22,15 @@ bool finite(const Vec3& v) { return v.allFinite(); }
 // Division defined as 0 when the denominator is 0 (repeated knots make 0/0 terms).
 inline double safeDiv(double a, double b) { return b == 0.0 ? 0.0 : a / b; }
 
+// An angle parameter of an analytic surface spans at most one turn (more covers the surface
+// twice: it folds over itself).
+void requireOneTurn(const std::string& kind, const char* param, double lo, double hi) {
+  if (hi - lo > 2.0 * M_PI * (1.0 + 1e-12))
+    throw Error(ErrorCode::InvalidDomain, "surface '" + kind + "': the " + param + " range [" + fmtParam(lo) + ", " +
+                                              fmtParam(hi) +
+                                              "] spans more than 2 pi (the surface would fold over itself)");
+}
+
 }  // namespace
 
 // --- SurfaceDerivatives ----------------------------------------------------------------
@@ -126,6 +135,7 @@ CylinderSurface::CylinderSurface(double radius, const Vec3& center, const Box2& 
   if (!(std::isfinite(radius) && radius > 0.0 && center.allFinite()))
     throw Error(ErrorCode::InvalidArgument,
                 "surface 'cylinder': radius must be finite and positive, got " + fmtParam(radius));
+  requireOneTurn("cylinder", "u (angle)", domain.lo.x(), domain.hi.x());
 }
 
 Vec3 CylinderSurface::point(const Vec2& uv) const {
@@ -150,6 +160,13 @@ SphereSurface::SphereSurface(double radius, const Vec3& center, const Box2& doma
   if (!(std::isfinite(radius) && radius > 0.0 && center.allFinite()))
     throw Error(ErrorCode::InvalidArgument,
                 "surface 'sphere': radius must be finite and positive, got " + fmtParam(radius));
+  requireOneTurn("sphere", "u (longitude)", domain.lo.x(), domain.hi.x());
+  // Past a pole the latitude folds the surface back over itself.
+  const double pole = 0.5 * M_PI * (1.0 + 1e-12);
+  if (domain.lo.y() < -pole || domain.hi.y() > pole)
+    throw Error(ErrorCode::InvalidDomain, "surface 'sphere': the v (latitude) range [" + fmtParam(domain.lo.y()) +
+                                              ", " + fmtParam(domain.hi.y()) +
+                                              "] passes a pole (it must lie within [-pi/2, pi/2])");
 }
 
 Vec3 SphereSurface::point(const Vec2& uv) const {
@@ -178,6 +195,8 @@ TorusSurface::TorusSurface(double majorRadius, double minorRadius, const Vec3& c
         center.allFinite()))
     throw Error(ErrorCode::InvalidArgument, "surface 'torus': need finite radii with major > minor > 0, got " +
                                                 fmtParam(majorRadius) + " and " + fmtParam(minorRadius));
+  requireOneTurn("torus", "u (around the axis)", domain.lo.x(), domain.hi.x());
+  requireOneTurn("torus", "v (around the tube)", domain.lo.y(), domain.hi.y());
 }
 
 Vec3 TorusSurface::point(const Vec2& uv) const {
