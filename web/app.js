@@ -487,6 +487,7 @@ function bumpVersion() {
 function edited(delay = EDIT_DEBOUNCE_MS) {
   bumpVersion();
   recordHistory();
+  refreshEditable();
   clearTimeout(editTimer);
   editTimer = setTimeout(() => { editTimer = null; remesh(); cancelStaleLanes(); }, delay);
 }
@@ -502,6 +503,7 @@ function edited(delay = EDIT_DEBOUNCE_MS) {
 let dragWaiting = false, restTimer = null, lastMoveAt = 0, moveInterval = 16;
 function editedByDrag() {
   bumpVersion();
+  refreshEditable();
   clearTimeout(restTimer);
   const now = performance.now();
   if (now - lastMoveAt < 500) moveInterval = 0.7 * moveInterval + 0.3 * (now - lastMoveAt);
@@ -1137,8 +1139,16 @@ function domainText(d) {
 const editableKey = () => (state.surface ? 'patches' : 'domain');
 function showEditable() {
   $('domain-box').querySelector('summary').textContent = state.surface ? 'Surface patches (JSON)' : 'Domain (JSON)';
-  $('domain-json').value = domainText(state.case[editableKey()]);
+  state.shownEditable = $('domain-json').value = domainText(state.case[editableKey()]);
+  // The analytic size field h(x, y) is a planar source (surface patches take sources in (u, v)).
+  $('expr-box').hidden = state.surface;
 }
+// The box follows the case (panel edits, sources placed or dragged) while the user has not
+// typed in it: an Apply then never silently undoes an edit made elsewhere.
+function refreshEditable() {
+  if ($('domain-box').open && $('domain-json').value === state.shownEditable) showEditable();
+}
+$('domain-box').addEventListener('toggle', refreshEditable);
 
 // Domain as editable JSON (a self-intersecting contour etc. is reported below the box).
 $('domain-apply').addEventListener('click', () => {
@@ -1151,6 +1161,16 @@ $('domain-apply').addEventListener('click', () => {
     return;
   }
   state.case[editableKey()] = d;
+  if (state.surface) {
+    // The panel's controls are bound to the replaced patches: bind them to the new ones.
+    surfaceEditor.reset(Math.max(0, Math.min(surfaceEditor.patch, (state.case.patches?.length ?? 1) - 1)));
+    surfaceEditor.rebuild();
+    state.selected = Math.min(state.selected, sourceList().length - 1);
+    rebuildSourceGui();
+    views.sourcePatch = surfaceEditor.patch;
+    views.setSources(sourceList(), state.selected, state.view.sources);
+  }
+  showEditable();
   needsFit = true;
   edited(0);
 });

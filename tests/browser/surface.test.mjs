@@ -226,6 +226,38 @@ test('surface metric controls remesh and the state of a surface case is kept in 
   await second.page.close();
 });
 
+test('the surface JSON box follows panel edits, and after an Apply the panel edits the applied patches', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('new-heightfield'));
+  assert.equal(await page.locator('#expr-box').isHidden(), true, 'the planar size field box is hidden on surfaces');
+  const zInput = page.locator('.lil-gui .lil-controller', { hasText: 'z(u, v)' }).locator('input');
+  const setZ = async (z) => {
+    await zInput.fill(z);
+    await zInput.press('Enter');
+    await page.waitForFunction((z) => window.anisomeshApp.idle() && window.anisomeshApp.state.case.patches[0].surface.z === z, z);
+    await settle(page);
+  };
+  await setZ('0.3*u*v');
+  await page.locator('#domain-box summary').click();
+  const box = () => page.locator('#domain-json').inputValue();
+  assert.match(await box(), /0\.3\*u\*v/, 'the box shows the z typed in the panel');
+  // Open: it follows further panel edits too.
+  await setZ('0.2*u');
+  assert.match(await box(), /"0\.2\*u"/);
+  // An edit in the box (the z in it), applied: then the panel edits the applied patch.
+  await page.locator('#domain-json').fill((await box()).replace('"0.2*u"', '"0.1*v"'));
+  await page.locator('#domain-apply').click();
+  await page.waitForFunction(() => window.anisomeshApp.idle() && window.anisomeshApp.state.case.patches[0].surface.z === '0.1*v');
+  await settle(page);
+  assert.equal(await zInput.inputValue(), '0.1*v', 'the panel shows the applied z');
+  await setZ('0.25*u*u');
+  const r = await page.evaluate(() => ({ z: window.anisomeshApp.state.case.patches[0].surface.z, error: window.anisomeshApp.state.lastError }));
+  assert.deepEqual(r, { z: '0.25*u*u', error: null });
+  assert.match(await box(), /"0\.25\*u\*u"/);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
 test('a height-field patch typed as an expression meshes; an invalid expression shows its error and keeps the mesh', async () => {
   const { page, errors } = await openPage(env.browser, env.url);
   await settle(page, () => window.anisomeshApp.loadPreset('new-heightfield'));
