@@ -250,6 +250,13 @@ std::unique_ptr<AdaptiveControlSpace> buildControlSpaceImpl(const SurfacePatch& 
                                                             const SurfaceMeshOptions& o, Counters& counters,
                                                             std::string* stageKey = nullptr);
 
+// The (u, v) shifts that map a patch onto itself across its periodic seams (curves of the
+// patch shared with each other that differ by a constant shift): each period and, with two,
+// their sums and differences; empty for a patch without one (seam_images.cpp).
+std::vector<Vec2> seamShifts(const SurfaceModel& m, int patch);
+// The sources and their copies moved by each shift: a source near a seam acts across it.
+std::vector<MetricSource> withSeamImages(const std::vector<MetricSource>& sources, const std::vector<Vec2>& shifts);
+
 double modelSize(const SurfaceModel& m);
 
 // Gaps between an edge's chord x0x1 and the surface at 7 samples of its parameter segment

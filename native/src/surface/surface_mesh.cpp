@@ -93,7 +93,14 @@ Mesh ModelMesher::run(SurfaceMeshReport* report) {
 void ModelMesher::buildControlSpaces() {
   for (size_t p = 0; p < m_.patches.size(); ++p) {
     try {
-      ps_[p].cs = buildControlSpaceImpl(m_.patches[p], m_.sources3d, o_, *counters_, &ps_[p].stageKey);
+      const std::vector<Vec2> shifts = seamShifts(m_, int(p));
+      if (shifts.empty() || m_.patches[p].sources.empty()) {
+        ps_[p].cs = buildControlSpaceImpl(m_.patches[p], m_.sources3d, o_, *counters_, &ps_[p].stageKey);
+      } else {
+        SurfacePatch periodic = m_.patches[p];
+        periodic.sources = withSeamImages(periodic.sources, shifts);
+        ps_[p].cs = buildControlSpaceImpl(periodic, m_.sources3d, o_, *counters_, &ps_[p].stageKey);
+      }
     } catch (const Error& e) {
       throw Error(e.code(), patchLabel(m_.patches[p], int(p)) + ": " + e.what());
     }
