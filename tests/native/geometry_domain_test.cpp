@@ -97,6 +97,29 @@ TEST(GeometryDomain, SelfIntersectingCurvedContour) {
   expectInvalid(d, ErrorCode::SelfIntersectingContour, "the contour intersects itself");
 }
 
+// Short segments 1e-6 apart do not touch: the tolerance is a distance (1e-12 of the
+// polygons' extent), not a cross product that grows as 1 / length (with which segments
+// shorter than 2e-6 "touched" a polygon 1e-6 away, and refining them made it worse).
+TEST(GeometryDomain, FineSegmentsCloseToEachOtherDoNotMeet) {
+  std::vector<Vec2> outer{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  std::vector<Vec2> hole;
+  // A hole whose bottom runs 1e-6 above the outer bottom side, both cut into 1e-7 pieces there.
+  for (int i = 0; i <= 1000; ++i) hole.push_back({0.45 + 1e-4 * i, 1e-6});
+  hole.push_back({0.55, 0.5});
+  hole.push_back({0.45, 0.5});
+  std::vector<Vec2> fine{{0, 0}};
+  for (int i = 0; i <= 1000; ++i) fine.push_back({0.45 + 1e-7 * i, 0.0});
+  fine.insert(fine.end(), {{1, 0}, {1, 1}, {0, 1}});
+  std::reverse(hole.begin(), hole.end());
+  PolygonCrossing x;
+  EXPECT_FALSE(findPolygonCrossing({fine, hole}, &x)) << x.where.transpose();
+  EXPECT_FALSE(findPolygonCrossing({outer, hole}, &x)) << x.where.transpose();
+  // Moved onto the side, the hole touches it.
+  for (Vec2& p : hole)
+    if (p.y() == 1e-6) p.y() = 0.0;
+  EXPECT_TRUE(findPolygonCrossing({fine, hole}, &x));
+}
+
 TEST(GeometryDomain, HoleCrossingOuterContour) {
   Domain d;
   d.outer = rectangle(0, 0, 4, 4);

@@ -63,38 +63,43 @@ std::string curveName(const Domain& d, int contour, int curve) {
 
 double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
 
-// Where segments s and t meet (crossing, touching, overlapping), if they do.
-bool segmentsMeet(const Segment& s, const Segment& t, double eps, Vec2* where) {
+// Where segments s and t meet (crossing, touching, overlapping), if they do. tol is a
+// distance: a point within tol of a segment's line counts as on it (a tolerance on the cross
+// products themselves would grow as 1 / length for short segments: refining two curves
+// 1e-6 apart made their segments "touch", which refined them further, without end).
+bool segmentsMeet(const Segment& s, const Segment& t, double tol, Vec2* where) {
+  const double ls = (s.b - s.a).norm(), lt = (t.b - t.a).norm();
+  const double es = tol * ls, et = tol * lt;  // cross product tolerances: distance times length
   const double o1 = cross(s.b - s.a, t.a - s.a), o2 = cross(s.b - s.a, t.b - s.a);
   const double o3 = cross(t.b - t.a, s.a - t.a), o4 = cross(t.b - t.a, s.b - t.a);
-  if (((o1 > eps && o2 < -eps) || (o1 < -eps && o2 > eps)) && ((o3 > eps && o4 < -eps) || (o3 < -eps && o4 > eps))) {
+  if (((o1 > es && o2 < -es) || (o1 < -es && o2 > es)) && ((o3 > et && o4 < -et) || (o3 < -et && o4 > et))) {
     const double u = o3 / (o3 - o4);
     *where = s.a + u * (s.b - s.a);
     return true;
   }
   // Touching: an end point of one lies on the other.
-  auto onSegment = [eps](const Vec2& p, const Vec2& a, const Vec2& b, double o) {
-    if (std::abs(o) > eps) return false;
+  auto onSegment = [](const Vec2& p, const Vec2& a, const Vec2& b, double o, double e) {
+    if (std::abs(o) > e) return false;
     const Vec2 ab = b - a;
     const double l2 = ab.squaredNorm();
     if (l2 == 0) return (p - a).squaredNorm() == 0;
     const double u = (p - a).dot(ab) / l2;
     return u >= -1e-12 && u <= 1 + 1e-12;
   };
-  if (onSegment(t.a, s.a, s.b, o1)) return *where = t.a, true;
-  if (onSegment(t.b, s.a, s.b, o2)) return *where = t.b, true;
-  if (onSegment(s.a, t.a, t.b, o3)) return *where = s.a, true;
-  if (onSegment(s.b, t.a, t.b, o4)) return *where = s.b, true;
+  if (onSegment(t.a, s.a, s.b, o1, es)) return *where = t.a, true;
+  if (onSegment(t.b, s.a, s.b, o2, es)) return *where = t.b, true;
+  if (onSegment(s.a, t.a, t.b, o3, et)) return *where = s.a, true;
+  if (onSegment(s.b, t.a, t.b, o4, et)) return *where = s.b, true;
   return false;
 }
 
 // Adjacent segments of one contour share their common end point; they only "meet"
-// when they fold back onto each other.
-bool adjacentFold(const Segment& s, const Segment& t, double eps) {
+// when they fold back onto each other (the second within tol of the first's line).
+bool adjacentFold(const Segment& s, const Segment& t, double tol) {
   const Segment& first = (t.index == (s.index + 1) % s.count) ? s : t;
   const Segment& second = (&first == &s) ? t : s;
   const Vec2 u = first.b - first.a, v = second.b - second.a;
-  return std::abs(cross(u, v)) <= eps && u.dot(v) < 0;
+  return std::abs(cross(u, v)) <= tol * u.norm() && u.dot(v) < 0;
 }
 
 }  // namespace
@@ -155,7 +160,7 @@ bool findPolygonCrossing(const std::vector<std::vector<Vec2>>& polygons, Polygon
   if (segs.empty()) return false;
   const double diag = box.size().norm() > 0 ? box.size().norm() : 1.0;
   // Uniform grid over the bounding box; every segment is binned in the cells its box covers.
-  const double eps = 1e-12 * diag * diag;
+  const double tol = 1e-12 * diag;  // distance within which points meet
   const int side = std::max(1, std::min(1024, int(std::sqrt(double(segs.size())))));
   const Vec2 lo = box.lo, extent = box.size().cwiseMax(Vec2::Constant(1e-300));
   auto cellOf = [&](double v, int axis) {
@@ -169,12 +174,12 @@ bool findPolygonCrossing(const std::vector<std::vector<Vec2>>& polygons, Polygon
       for (int y = cellOf(a.y(), 1); y <= cellOf(b.y(), 1); ++y) cells[size_t(y) * side + x].push_back(s);
   }
   // Boxes grown by the distance within which segmentsMeet calls an end point "on" a
-  // segment (eps / length, plus its 1e-12 parameter slack): pairs whose grown boxes are
-  // apart cannot meet, so they are skipped without changing which pair is found.
+  // segment (tol, plus its 1e-12 parameter slack): pairs whose grown boxes are apart
+  // cannot meet, so they are skipped without changing which pair is found.
   std::vector<Box2> grown(segs.size());
   for (size_t s = 0; s < segs.size(); ++s) {
     const double len = (segs[s].b - segs[s].a).norm();
-    const double margin = len > 0 ? eps / len + 1e-12 * len : 0.0;
+    const double margin = len > 0 ? tol + 1e-12 * len : 0.0;
     grown[s] = {segs[s].a.cwiseMin(segs[s].b) - Vec2::Constant(margin),
                 segs[s].a.cwiseMax(segs[s].b) + Vec2::Constant(margin)};
   }
@@ -218,10 +223,10 @@ bool findPolygonCrossing(const std::vector<std::vector<Vec2>>& polygons, Polygon
       if (s.polygon == t.polygon && s.count > 1 &&
           (t.index == (s.index + 1) % s.count || s.index == (t.index + 1) % s.count)) {
         if (s.count == 2) continue;
-        meet = adjacentFold(s, t, eps);
+        meet = adjacentFold(s, t, tol);
         where = (t.index == (s.index + 1) % s.count) ? s.b : s.a;
       } else {
-        meet = segmentsMeet(s, t, eps, &where);
+        meet = segmentsMeet(s, t, tol, &where);
       }
       if (meet) {
         *out = {s.polygon, s.index, t.polygon, t.index, where};

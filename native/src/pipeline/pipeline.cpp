@@ -143,7 +143,7 @@ class PlanarCaseSteps final : public Algorithm1Steps {
     r_.secondsDiscretization += secondsSince(t);
   }
 
-  bool checkBoundaries(int /*round*/) override {
+  bool checkBoundaries(int round) override {
     const auto t = Clock::now();
     // (a) segment lengths: short ones update the control space, those outside
     // [lengthMin, lengthMax] make their contour invalid.
@@ -171,7 +171,13 @@ class PlanarCaseSteps final : public Algorithm1Steps {
     const int refined = refineNearSegments(*cs_, lengths.shortSegments, analytic_);
     r_.refinedElements += refined;
     const bool changed = !sources.empty() || refined > 0;
-    if (changed) addCaseSources(*cs_, spec_, sources);
+    if (changed) {
+      addCaseSources(*cs_, spec_, sources);
+      // The sources of a round can ask for far more elements than the case (a hole 1e-6
+      // from the outer contour): refused now, not after more rounds of ever finer contours.
+      const std::string stage = "element estimate after boundary update round " + std::to_string(round + 1);
+      checkElementEstimate(spec_.domain, *cs_, mesher_.maxElements, stage.c_str());
+    }
     r_.secondsUpdates += secondsSince(t);
     return changed;
   }
