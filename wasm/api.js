@@ -20,6 +20,38 @@ function unwrap(result) {
   return result;
 }
 
+// The user's callbacks among options[keys], run from inside the core: an exception thrown
+// by one must not unwind through the core's frames (their destructors would not run and the
+// memory they hold would leak). It is caught here, the callback answers false (which cancels
+// the run), and call() throws it once the core has returned.
+function callbacksGuarded(options, keys, call) {
+  let thrown = false, error;
+  const wrapped = { ...options };
+  for (const key of keys) {
+    const f = options[key];
+    if (typeof f !== 'function') continue;
+    wrapped[key] = (...args) => {
+      if (thrown) return false;
+      try {
+        return f(...args);
+      } catch (e) {
+        thrown = true;
+        error = e;
+        return false;
+      }
+    };
+  }
+  let result;
+  try {
+    result = call(wrapped);
+  } catch (e) {
+    if (thrown) throw error;
+    throw e;
+  }
+  if (thrown) throw error;
+  return result;
+}
+
 function argError(message) {
   return new AnisomeshError('INVALID_ARGUMENT', message);
 }
@@ -46,7 +78,34 @@ function checkVector(v, name) {
 function caseText(c, name = 'case') {
   if (typeof c === 'string') return c;
   if (c === null || typeof c !== 'object') throw argError(`${name}: expected a case object or JSON text`);
-  return JSON.stringify(c);
+  // JSON.stringify would write NaN and Infinity as null (the core would then report a null
+  // where the caller gave a number) and throws its own errors on cycles, BigInts and very
+  // deep objects: each becomes an INVALID_ARGUMENT naming where it is.
+  const path = [];
+  const seen = new Set();
+  const where = () => name + path.map((k) => (typeof k === 'number' ? `[${k}]` : `.${k}`)).join('');
+  const check = (v, depth) => {
+    if (typeof v === 'number' && !Number.isFinite(v)) throw argError(`${where()}: expected a finite number, got ${v}`);
+    if (typeof v === 'bigint') throw argError(`${where()}: a BigInt cannot be written as JSON (use a number)`);
+    if (v === null || typeof v !== 'object') return;
+    if (depth > 256) throw argError(`${where()}: nested more than 256 levels deep`);
+    if (seen.has(v)) throw argError(`${where()}: the case refers to itself (a cycle)`);
+    if (typeof v.toJSON === 'function') return;
+    seen.add(v);
+    const keys = Array.isArray(v) ? v.keys() : Object.keys(v);
+    for (const k of keys) {
+      path.push(k);
+      check(v[k], depth + 1);
+      path.pop();
+    }
+    seen.delete(v);
+  };
+  check(c, 0);
+  try {
+    return JSON.stringify(c);
+  } catch (e) {
+    throw argError(`${name}: cannot be written as JSON: ${e.message}`);
+  }
 }
 
 // A surface case (examples/SURFACE_FORMAT.md) has top-level "patches" (isSurfaceCaseJson in the core).
@@ -112,8 +171,9 @@ function checkAdaptOptions(options) {
     if (!(typeof v === 'number' && Number.isFinite(v) && v >= 0)) throw argError(`options.${key}: expected a finite nonnegative number`);
     out[key] = v;
   }
-  if (out.iterations !== undefined && !(Number.isInteger(out.iterations) && out.iterations >= 1)) {
-    throw argError('options.iterations: expected a positive integer');
+  // The core's bound (kMaxAdaptIterations): a larger count would wrap in the int it takes.
+  if (out.iterations !== undefined && !(Number.isInteger(out.iterations) && out.iterations >= 1 && out.iterations <= 1000)) {
+    throw argError('options.iterations: expected an integer in [1, 1000]');
   }
   if (options.relative !== undefined) out.relative = Boolean(options.relative);
   if (options.measures !== undefined) out.measures = Boolean(options.measures);
@@ -301,7 +361,8 @@ export function wrapCore(core) {
         if (options[key] !== undefined && typeof options[key] !== 'boolean') throw argError(`options.${key}: expected a boolean`);
       }
       const svg = checkSvgOption(options.svg);
-      const r = unwrap(core.meshCase(caseText(c), { ...options, svg }));
+      const text = caseText(c);
+      const r = callbacksGuarded({ ...options, svg }, ['onProgress'], (o) => unwrap(core.meshCase(text, o)));
       const result = {
         mesh: r.mesh,
         ...(svg !== undefined ? { svg: r.svg } : {}),
@@ -338,7 +399,7 @@ export function wrapCore(core) {
       }
       if (options.stats !== undefined && typeof options.stats !== 'boolean') throw argError('options.stats: expected a boolean');
       const svg = checkSvgOption(options.svg);
-      const r = unwrap(core.remesh(mesh, metrics, { ...options, svg }));
+      const r = callbacksGuarded({ ...options, svg }, ['onProgress', 'onStage'], (o) => unwrap(core.remesh(mesh, metrics, o)));
       const result = {
         mesh: r.mesh,
         stats: r.stats === null ? null : JSON.parse(r.stats),

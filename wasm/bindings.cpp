@@ -564,10 +564,12 @@ val remeshJs(val mesh, val metrics, val options) {
       o.mesher.progress = [onProgress](double fraction) { return !onProgress(fraction).isFalse(); };
     // onStage(name) as each stage starts ("boundary", "control space", "discretization",
     // "meshing", as the CLI's -v 1 lines, then "output": the results copied out to JS): lets a
-    // caller time the stages.
+    // caller time the stages. false cancels (the JS layer answers false for a callback that threw).
     const val onStage = options["onStage"];
     if (onStage.typeOf().as<std::string>() == "function")
-      o.onStage = [onStage](const char* stage) { onStage(std::string(stage)); };
+      o.onStage = [onStage](const char* stage) {
+        if (onStage(std::string(stage)).isFalse()) throw Error(ErrorCode::Cancelled, "remesh: cancelled by onStage");
+      };
     std::unique_ptr<AdaptiveControlSpace> cs;
     CaseRun run;
     // Moved in, as the CLI does: the input and its metrics are freed once the control space

@@ -449,9 +449,11 @@ export interface RemeshOptions {
   onProgress?: (fraction: number) => boolean | void;
   /**
    * Called as each stage starts: 'boundary', 'control space', 'discretization', 'meshing' (the
-   * CLI's -v 1 stages), then 'output' (the results copied out of the core).
+   * CLI's -v 1 stages), then 'output' (the results copied out of the core). Returning false
+   * cancels the run (AnisomeshError CANCELLED). An exception it throws cancels the run too and
+   * is thrown by remesh once the core has stopped (as for onProgress).
    */
-  onStage?: (stage: string) => void;
+  onStage?: (stage: string) => boolean | void;
   /**
    * false skips the quality report (stats is null; the CLI makes none without --stats): the
    * result's report() makes it later, dispose() frees the kept run without it.
@@ -502,7 +504,8 @@ export interface Anisomesh {
   /**
    * Meshes a JSON case, planar (examples/CASE_FORMAT.md) or surface (examples/SURFACE_FORMAT.md),
    * given as an object or JSON text. onProgress(fraction) is called while meshing; returning
-   * false cancels the run with AnisomeshError CANCELLED.
+   * false cancels the run with AnisomeshError CANCELLED; an exception it throws cancels the
+   * run too and is thrown by meshCase once the core has stopped.
    */
   meshCase(c: PlanarCase, options?: MeshCaseOptions): CaseResult<PlanarMeshStats>;
   meshCase(c: SurfaceCase, options?: MeshCaseOptions): CaseResult<SurfaceMeshStats>;

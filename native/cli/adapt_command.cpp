@@ -115,7 +115,8 @@ int run(int argc, char** argv) {
       o.hgrad = number(a, value(), 0);
     else if (a == "-iterations") {
       const double k = number(a, value(), 1);
-      if (k != std::floor(k) || k > 1000) throw AdaptUsageError{"-iterations expects an integer in [1, 1000]"};
+      if (k != std::floor(k) || k > kMaxAdaptIterations)
+        throw AdaptUsageError{"-iterations expects an integer in [1, " + std::to_string(kMaxAdaptIterations) + "]"};
       o.iterations = int(k);
     } else if (a == "-isotropic")
       o.metric.shape = MetricShape::Isotropic;

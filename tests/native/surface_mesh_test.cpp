@@ -432,6 +432,24 @@ TEST(SurfaceMeshErrors, ParseErrorsNameThePath) {
   expectSurfaceError("{\"patches\": [", ErrorCode::ParseError, {"malformed JSON"});
 }
 
+// Out-of-range options are refused, not clamped or taken as "off" (a negative chord
+// tolerance behaved as 0, negative improvement passes changed the mesh).
+TEST(SurfaceMeshErrors, OutOfRangeOptionsAreRefused) {
+  const std::string plane = R"("patches": [{"surface": {"type": "plane"}}])";
+  expectSurfaceError("{" + plane + R"(, "metric": {"chordTolerance": -1, "hmax": 0.3, "hmin": 0.01}})",
+                     ErrorCode::InvalidArgument, {"metric", "chordTolerance and angleTolerance", ">= 0"});
+  expectSurfaceError("{" + plane + R"(, "metric": {"angleTolerance": -0.1, "hmax": 0.3, "hmin": 0.01}})",
+                     ErrorCode::InvalidArgument, {"metric", ">= 0"});
+  expectSurfaceError("{" + plane + ", " + kMetric + R"(, "options": {"improvementPasses": -1}})",
+                     ErrorCode::InvalidArgument, {"options.improvementPasses", ">= 0"});
+  expectSurfaceError("{" + plane + ", " + kMetric + R"(, "options": {"maxRounds": 0}})", ErrorCode::InvalidArgument,
+                     {"options.maxRounds", ">= 1"});
+  // The limits themselves are valid.
+  EXPECT_NO_THROW(meshSurfaceCase(
+      "{" + plane +
+      R"(, "metric": {"chordTolerance": 0, "angleTolerance": 0, "hmax": 0.3, "hmin": 0.01}, "options": {"improvementPasses": 0, "maxRounds": 1}})"));
+}
+
 TEST(SurfaceMeshErrors, BadExpressionNamesTheColumn) {
   expectSurfaceError(
       R"J({"patches": [{"surface": {"type": "expression", "x": "u", "y": "v", "z": "sin(u +* v)", "domain": [[0,0],[1,1]]}}]})J",

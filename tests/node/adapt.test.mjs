@@ -69,6 +69,10 @@ test('bad input gives coded errors', () => {
   assert.equal(code(() => am.adapt(square, 'x^', { nv: 100 })), 'PARSE_ERROR');
   assert.equal(code(() => am.adapt(square, 'x^2', { nv: 100, err: 0.1 })), 'INVALID_ARGUMENT');
   assert.equal(code(() => am.adapt(square, 'x^2', { nv: 100, norm: 3 })), 'INVALID_ARGUMENT');
+  // The CLI's -iterations range: the package has no callback to stop a loop of 1e9 runs.
+  for (const iterations of [0, 1001, 1e9, 2 ** 40]) {
+    assert.equal(code(() => am.adapt(square, 'x^2', { nv: 100, iterations })), 'INVALID_ARGUMENT', `iterations ${iterations}`);
+  }
   assert.equal(code(() => am.metricFromField(square, [], { nv: 100 })), 'INVALID_ARGUMENT');
   // A constant field: hmax everywhere (a documented result, not an error).
   const c = am.metricFromField(square, new Float64Array(n).fill(2), { nv: 100, hmax: 0.25 });

@@ -55,3 +55,24 @@ test('IO_ERROR and INTERNAL are documented for file access (the Node CLI, tests/
   const covered = new Set([...Object.keys(cases), 'IO_ERROR', 'INTERNAL', 'WASM_LOAD_FAILED', 'OUT_OF_MEMORY']);
   assert.deepEqual(documented.filter((c) => !covered.has(c)), []);
 });
+
+// A case object JSON cannot carry faithfully: NaN and Infinity (JSON.stringify writes null,
+// and the core then reported a null), a cycle, a BigInt, nesting deeper than the stack: each
+// is an INVALID_ARGUMENT naming where it is, never a RangeError or TypeError.
+test('case objects that JSON cannot carry are INVALID_ARGUMENT errors naming the place', () => {
+  const cyclic = planar({ outer: square });
+  cyclic.self = cyclic;
+  let deep = {};
+  for (let i = 0; i < 5000; i++) deep = { a: deep };
+  const bad = [
+    [planar({ outer: square }, { controlSpace: { hmax: NaN } }), /case\.controlSpace\.hmax: expected a finite number, got NaN/],
+    [planar({ outer: [line([Infinity, 0], [1, 0]), ...square.slice(1)] }), /case\.domain\.outer\[0\]\.p1\[0\]: expected a finite number/],
+    [cyclic, /case\.self: the case refers to itself/],
+    [planar({ outer: square }, { controlSpace: { hmax: 10n } }), /case\.controlSpace\.hmax: a BigInt/],
+    [deep, /nested more than 256 levels/],
+  ];
+  for (const [c, message] of bad) {
+    assert.throws(() => am.meshCase(c), (e) => e instanceof AnisomeshError && e.code === 'INVALID_ARGUMENT' && message.test(e.message));
+  }
+  assert.ok(am.meshCase(planar({ outer: square })).mesh.triangles.length > 0, 'the module keeps working');
+});

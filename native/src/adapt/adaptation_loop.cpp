@@ -31,8 +31,11 @@ AdaptResult runLoop(const Mesh& mesh, std::vector<std::vector<double>> fields, c
                     const std::function<std::vector<std::vector<double>>(
                         const Mesh&, const Mesh&, const std::vector<std::vector<double>>&)>& next,
                     const std::vector<FieldFunction>* functions) {
-  require(o.iterations >= 1, ErrorCode::InvalidArgument,
-          "adapt: iterations must be >= 1, got " + std::to_string(o.iterations));
+  // At most kMaxAdaptIterations (the CLI's -iterations range): the package has no callback
+  // to stop a loop it was asked to run a billion times.
+  require(o.iterations >= 1 && o.iterations <= kMaxAdaptIterations, ErrorCode::InvalidArgument,
+          "adapt: iterations must be in [1, " + std::to_string(kMaxAdaptIterations) + "], got " +
+              std::to_string(o.iterations));
   require(o.hgrad == 0 || (o.hgrad >= 1 && std::isfinite(o.hgrad)), ErrorCode::InvalidArgument,
           "adapt: hgrad must be 0 (off) or a ratio >= 1");
   AdaptResult result;

@@ -51,8 +51,12 @@ Metric curvatureParameterMetric(const SurfaceCurvature& c, const SurfaceMetricOp
 }  // namespace
 
 void validate(const SurfaceMetricOptions& o) {
-  if (!(std::isfinite(o.chordTolerance) && std::isfinite(o.angleTolerance)))
-    throw Error(ErrorCode::InvalidArgument, "surface metric: tolerances must be finite");
+  if (!(std::isfinite(o.chordTolerance) && std::isfinite(o.angleTolerance) && o.chordTolerance >= 0.0 &&
+        o.angleTolerance >= 0.0))
+    throw Error(ErrorCode::InvalidArgument,
+                "surface metric: chordTolerance and angleTolerance must be finite and >= 0 "
+                "(0: off), got " +
+                    fmtBound(o.chordTolerance) + " and " + fmtBound(o.angleTolerance));
   if (!(std::isfinite(o.hmin) && o.hmin > 0.0 && std::isfinite(o.hmax) && o.hmax >= o.hmin))
     throw Error(ErrorCode::InvalidArgument, "surface metric: need 0 < hmin <= hmax, got hmin = " + fmtBound(o.hmin) +
                                                 ", hmax = " + fmtBound(o.hmax));

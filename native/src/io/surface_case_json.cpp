@@ -158,9 +158,14 @@ SurfaceCaseSpec parseSurfaceCaseJsonTree(const json& root) {
       o.mesher.maxElements = integer(v["maxElements"], "options.maxElements");
       require(o.mesher.maxElements > 0, ErrorCode::InvalidArgument, "options.maxElements: must be positive");
     }
-    if (v.contains("maxRounds")) o.maxRounds = std::max(1, integer(v["maxRounds"], "options.maxRounds"));
-    if (v.contains("improvementPasses"))
-      o.mesher.improvementPasses = std::max(0, integer(v["improvementPasses"], "options.improvementPasses"));
+    if (v.contains("maxRounds")) {
+      o.maxRounds = integer(v["maxRounds"], "options.maxRounds");
+      require(o.maxRounds >= 1, ErrorCode::InvalidArgument, "options.maxRounds: must be >= 1");
+    }
+    if (v.contains("improvementPasses")) {
+      o.mesher.improvementPasses = integer(v["improvementPasses"], "options.improvementPasses");
+      require(o.mesher.improvementPasses >= 0, ErrorCode::InvalidArgument, "options.improvementPasses: must be >= 0");
+    }
   }
   std::map<std::string, std::shared_ptr<const Surface>> named;
   if (root.contains("surfaces")) {

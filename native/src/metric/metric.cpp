@@ -43,10 +43,17 @@ void checkSpd(const Mat2& m, const char* what) {
     throw Error(ErrorCode::InvalidMetric, std::string(what) + " is not positive definite: " + describe(m));
 }
 
+// Sizes whose tensor 1 / h^2 (and its products in intersections) stays finite and normal:
+// 1e-300 overflowed to an infinite tensor and failed far from here ("alpha must be finite").
+constexpr double kSmallestSize = 1e-100, kLargestSize = 1e100;
+
 void checkSize(double h, const char* name) {
   if (!(std::isfinite(h) && h > 0.0))
     throw Error(ErrorCode::InvalidMetric,
                 std::string("metric size ") + name + " must be finite and positive, got " + numberText(h));
+  if (!(h >= kSmallestSize && h <= kLargestSize))
+    throw Error(ErrorCode::InvalidMetric, std::string("metric size ") + name + " = " + numberText(h) +
+                                              " is outside [1e-100, 1e100]");
 }
 
 }  // namespace

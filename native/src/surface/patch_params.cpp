@@ -127,7 +127,8 @@ void unwrapSeamCorners(const SurfacePatch& patch, const std::vector<Seam>& seams
     for (int round = 0; round < 2; ++round)
       for (size_t i = 0, m = c.size(); i < m; ++i)
         for (const Seam& seam : seams)
-          for (const auto& [from, to] : {std::make_pair(seam.a, seam.b), std::make_pair(seam.b, seam.a)}) {
+          for (const auto& ends : {std::make_pair(seam.a, seam.b), std::make_pair(seam.b, seam.a)}) {
+            const Curve *from = ends.first, *to = ends.second;  // (lambdas cannot capture structured bindings in C++17)
             const Vec2 q = c[i];
             const Nearest on = nearestOnCurve([&](double t) { return (at(*from, t) - q).squaredNorm(); }, o);
             if (on.d2 > tol2) continue;

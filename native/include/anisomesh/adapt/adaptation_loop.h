@@ -22,9 +22,11 @@
 
 namespace anisomesh {
 
+inline constexpr int kMaxAdaptIterations = 1000;
+
 struct AdaptOptions {
   FieldMetricOptions metric;     // err or targetVertices, norm, hmin, hmax, anisomax, budget
-  int iterations = 3;            // K >= 1
+  int iterations = 3;            // K in [1, kMaxAdaptIterations]
   double hgrad = 0.0;            // gradation ratio dr of the control space (0: off, else >= 1)
   double refineThreshold = 1.0;  // control space: metric difference that splits an element (remesh uses 0.2;
                                  // field metrics vary from vertex to vertex, 1 keeps the structure ~7x the mesh)
@@ -65,7 +67,8 @@ std::unique_ptr<AdaptiveControlSpace> fieldControlSpace(const Mesh& mesh, const 
                                                         const AdaptOptions& options = {});
 
 // Adapts to fields given at the vertices of mesh (transferred between iterations). Throws
-// what validateField, metricFromFields and remesh throw; InvalidArgument for iterations < 1.
+// what validateField, metricFromFields and remesh throw; InvalidArgument for iterations outside [1,
+// kMaxAdaptIterations].
 AdaptResult adaptToFields(const Mesh& mesh, const std::vector<std::vector<double>>& fields,
                           const AdaptOptions& options);
 
