@@ -52,8 +52,8 @@ void checkSize(double h, const char* name) {
     throw Error(ErrorCode::InvalidMetric,
                 std::string("metric size ") + name + " must be finite and positive, got " + numberText(h));
   if (!(h >= kSmallestSize && h <= kLargestSize))
-    throw Error(ErrorCode::InvalidMetric, std::string("metric size ") + name + " = " + numberText(h) +
-                                              " is outside [1e-100, 1e100]");
+    throw Error(ErrorCode::InvalidMetric,
+                std::string("metric size ") + name + " = " + numberText(h) + " is outside [1e-100, 1e100]");
 }
 
 }  // namespace
