@@ -99,3 +99,48 @@ TEST(SvgImport, DrawingsThatAreNoDomain) {
 }
 
 }  // namespace
+
+namespace {
+
+// Domain area of an SVG drawing (size 1 along its larger side, no flip needed for areas).
+double svgArea(const std::string& svg) { return meshedArea(domainJsonFromSvg(svg), 0.02); }
+
+TEST(SvgImport, TransformsOfShapesAndGroupsApply) {
+  // A 100 x 50 rectangle rotated by 90 degrees about its centre is 50 x 100: after scaling
+  // its larger side to 1, a 0.5 x 1 domain (unrotated it was 1 x 0.5: the same area, so the
+  // shape is checked through its box).
+  const nlohmann::json r =
+      domainJsonFromSvg(R"svg(<svg><rect width="100" height="50" transform="rotate(90 50 25)"/></svg>)svg");
+  double xmax = 0, ymax = 0;
+  for (const auto& c : r["outer"])
+    for (const auto& p : {c["p1"], c["p2"]})
+      xmax = std::max(xmax, p[0].get<double>()), ymax = std::max(ymax, p[1].get<double>());
+  EXPECT_NEAR(xmax, 0.5, 1e-12);
+  EXPECT_NEAR(ymax, 1.0, 1e-12);
+  // A hole drawn at twice its size inside a group scaled by 0.5 (and translated): a hole of
+  // radius 10 in a 100 x 100 square, not "2 outermost shapes".
+  const std::string grouped = R"svg(<svg><rect width="100" height="100"/>
+      <g transform="translate(50 50) scale(0.5)"><circle cx="0" cy="0" r="20"/></g>
+      <g transform="matrix(1 0 0 1 10 10)"><g transform="skewX(0)"><rect x="5" y="5" width="10" height="10"/></g></g></svg>)svg";
+  const nlohmann::json g = domainJsonFromSvg(grouped);
+  EXPECT_EQ(g["holes"].size(), 2u);
+  EXPECT_NEAR(svgArea(grouped), 1.0 - M_PI * 0.01 - 0.01, 2e-3);
+  // Rounded corners: rx = 10 on a 100 x 100 square removes (4 - pi) rx^2.
+  EXPECT_NEAR(svgArea(R"svg(<svg><rect width="100" height="100" rx="10"/></svg>)svg"), 1.0 - (4.0 - M_PI) * 0.01, 2e-3);
+  // A transform that is not one: a parse error naming it.
+  try {
+    domainJsonFromSvg(R"svg(<svg><rect width="1" height="1" transform="scale(0)"/></svg>)svg");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::ParseError);
+    EXPECT_NE(std::string(e.what()).find("not an invertible map"), std::string::npos) << e.what();
+  }
+  try {
+    domainJsonFromSvg(R"svg(<svg><rect width="1" height="1" transform="wobble(3)"/></svg>)svg");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown function 'wobble'"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace

@@ -114,6 +114,71 @@ class Scanner {
   size_t i_ = 0;
 };
 
+// An affine map x -> a x + t (SVG's transform attribute; nested groups compose).
+struct Affine {
+  Mat2 a = Mat2::Identity();
+  Vec2 t = Vec2::Zero();
+  Vec2 operator()(const Vec2& p) const { return a * p + t; }
+  Affine then(const Affine& inner) const { return {a * inner.a, a * inner.t + t}; }  // this after inner
+};
+
+// The transform attribute's list: matrix, translate, scale, rotate (about a point), skewX, skewY.
+Affine parseTransform(const std::string& text, const std::string& where) {
+  Affine m;
+  size_t i = 0;
+  const double deg = M_PI / 180.0;
+  for (;;) {
+    while (i < text.size() && (std::isspace(static_cast<unsigned char>(text[i])) || text[i] == ',')) ++i;
+    if (i >= text.size()) return m;
+    size_t j = i;
+    while (j < text.size() && std::isalpha(static_cast<unsigned char>(text[j]))) ++j;
+    const std::string name = text.substr(i, j - i);
+    while (j < text.size() && std::isspace(static_cast<unsigned char>(text[j]))) ++j;
+    const size_t close = j < text.size() && text[j] == '(' ? text.find(')', j) : std::string::npos;
+    if (name.empty() || close == std::string::npos)
+      parseError(where, "transform: expected name(numbers) at column " + std::to_string(i + 1));
+    const std::string args = text.substr(j + 1, close - j - 1);
+    Scanner sc(args, where + " transform " + name);
+    std::vector<double> v;
+    while (!sc.done()) v.push_back(sc.number());
+    auto need = [&](size_t lo, size_t hi) {
+      if (v.size() < lo || v.size() > hi)
+        parseError(where, "transform " + name + ": expected " + std::to_string(lo) +
+                              (hi > lo ? " to " + std::to_string(hi) : "") + " numbers, got " +
+                              std::to_string(v.size()));
+    };
+    Affine f;
+    if (name == "matrix") {
+      need(6, 6);
+      f.a << v[0], v[2], v[1], v[3];
+      f.t = Vec2(v[4], v[5]);
+    } else if (name == "translate") {
+      need(1, 2);
+      f.t = Vec2(v[0], v.size() > 1 ? v[1] : 0.0);
+    } else if (name == "scale") {
+      need(1, 2);
+      f.a = Vec2(v[0], v.size() > 1 ? v[1] : v[0]).asDiagonal();
+    } else if (name == "rotate") {
+      if (v.size() != 1) need(3, 3);
+      const double c = std::cos(v[0] * deg), sn = std::sin(v[0] * deg);
+      f.a << c, -sn, sn, c;
+      if (v.size() == 3) f.t = Vec2(v[1], v[2]) - f.a * Vec2(v[1], v[2]);  // about (cx, cy)
+    } else if (name == "skewX") {
+      need(1, 1);
+      f.a(0, 1) = std::tan(v[0] * deg);
+    } else if (name == "skewY") {
+      need(1, 1);
+      f.a(1, 0) = std::tan(v[0] * deg);
+    } else {
+      parseError(where, "transform: unknown function '" + name + "'");
+    }
+    if (!f.a.allFinite() || !f.t.allFinite() || !(std::abs(f.a.determinant()) > 0.0))
+      parseError(where, "transform " + name + ": not an invertible map");
+    m = m.then(f);  // the list applies right to left: m(f(x))
+    i = close + 1;
+  }
+}
+
 PathPiece line(const Vec2& a, const Vec2& b) { return {{a, b}}; }
 PathPiece cubic(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) { return {{a, b, c, d}}; }
 
@@ -250,20 +315,38 @@ double numberAttr(const std::string& tag, const char* name, const std::string& w
   return x;
 }
 
-// Closed subpaths of the shapes in the document, in document order.
+// Closed subpaths of the shapes in the document, in document order, in the document's
+// coordinates (the transforms of their groups and their own applied).
 std::vector<Subpath> shapes(const std::string& svg) {
   std::vector<Subpath> all;
   size_t i = 0;
   int count = 0;
+  std::vector<Affine> groups{Affine{}};  // the transform of each open container element
   while ((i = svg.find('<', i)) != std::string::npos) {
     const size_t end = svg.find('>', i);
     if (end == std::string::npos) break;
     const std::string tag = svg.substr(i + 1, end - i - 1);
     i = end + 1;
+    if (!tag.empty() && tag[0] == '/') {  // a closing tag: its container's transform ends
+      size_t n = 1;
+      while (n < tag.size() && (std::isalnum(static_cast<unsigned char>(tag[n])) || tag[n] == ':')) ++n;
+      const std::string closing = tag.substr(1, n - 1);
+      if ((closing == "g" || closing == "svg" || closing == "a") && groups.size() > 1) groups.pop_back();
+      continue;
+    }
     size_t n = 0;
     while (n < tag.size() && (std::isalnum(static_cast<unsigned char>(tag[n])) || tag[n] == ':')) ++n;
     const std::string name = tag.substr(0, n);
     const std::string where = "<" + name + "> #" + std::to_string(++count);
+    std::string transformText;
+    const Affine own = attribute(tag, "transform", &transformText) ? parseTransform(transformText, where) : Affine{};
+    const Affine toDocument = groups.back().then(own);
+    const bool selfClosing = !tag.empty() && tag.back() == '/';
+    if (name == "g" || name == "a" || name == "svg") {
+      if (!selfClosing) groups.push_back(toDocument);
+      continue;
+    }
+    const size_t first = all.size();
     std::string d;
     if (name == "path") {
       if (!attribute(tag, "d", &d)) continue;
@@ -275,8 +358,26 @@ std::vector<Subpath> shapes(const std::string& svg) {
       const double x = numberAttr(tag, "x", where, 0), y = numberAttr(tag, "y", where, 0);
       const double w = numberAttr(tag, "width", where, 0), h = numberAttr(tag, "height", where, 0);
       if (!(w > 0 && h > 0)) parseError(where, "width and height must be positive");
-      d = "M " + std::to_string(x) + " " + std::to_string(y) + " h " + std::to_string(w) + " v " + std::to_string(h) +
-          " h " + std::to_string(-w) + " Z";
+      // Rounded corners: rx or ry alone sets both; each at most half its side (SVG 2).
+      double rx = numberAttr(tag, "rx", where, -1), ry = numberAttr(tag, "ry", where, -1);
+      if (rx < 0) rx = ry;
+      if (ry < 0) ry = rx;
+      rx = std::min(std::max(rx, 0.0), 0.5 * w), ry = std::min(std::max(ry, 0.0), 0.5 * h);
+      Subpath sp{{}, true, where};
+      const Vec2 o(x, y);
+      if (rx > 0 && ry > 0) {
+        const Vec2 c[4] = {o + Vec2(w - rx, 0), o + Vec2(w, h - ry), o + Vec2(rx, h), o + Vec2(0, ry)};
+        const Vec2 e[4] = {o + Vec2(w, ry), o + Vec2(w - rx, h), o + Vec2(0, h - ry), o + Vec2(rx, 0)};
+        for (int k = 0; k < 4; ++k) {
+          const Vec2 from = e[(k + 3) % 4];
+          if ((c[k] - from).norm() > 0) sp.pieces.push_back(line(from, c[k]));
+          appendArc(sp.pieces, c[k], rx, ry, 0, false, true, e[k]);
+        }
+      } else {
+        const Vec2 c[4] = {o, o + Vec2(w, 0), o + Vec2(w, h), o + Vec2(0, h)};
+        for (int k = 0; k < 4; ++k) sp.pieces.push_back(line(c[k], c[(k + 1) % 4]));
+      }
+      all.push_back(std::move(sp));
     } else if (name == "circle" || name == "ellipse") {
       const double cx = numberAttr(tag, "cx", where, 0), cy = numberAttr(tag, "cy", where, 0);
       const double rx = name == "circle" ? numberAttr(tag, "r", where, 0) : numberAttr(tag, "rx", where, 0);
@@ -287,12 +388,16 @@ std::vector<Subpath> shapes(const std::string& svg) {
       appendArc(sp.pieces, a, rx, ry, 0, false, true, b);
       appendArc(sp.pieces, b, rx, ry, 0, false, true, a);
       all.push_back(std::move(sp));
-      continue;
     } else {
       continue;
     }
-    for (Subpath& sp : parsePathData(d, where))
-      if (!sp.pieces.empty()) all.push_back(std::move(sp));
+    if (!d.empty())
+      for (Subpath& sp : parsePathData(d, where))
+        if (!sp.pieces.empty()) all.push_back(std::move(sp));
+    // Lines and cubic Beziers map to lines and cubic Beziers: their points are mapped.
+    for (size_t k = first; k < all.size(); ++k)
+      for (PathPiece& pc : all[k].pieces)
+        for (Vec2& p : pc.p) p = toDocument(p);
   }
   return all;
 }

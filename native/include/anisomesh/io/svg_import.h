@@ -14,13 +14,15 @@ struct SvgImportOptions {
   double closeTolerance = 1e-6;
 };
 
-// Reads <path d>, <polygon>, <rect>, <circle> and <ellipse> elements (path commands M, L,
-// H, V, C, S, Q, T, A, Z, absolute and relative; transforms are not applied). Every closed
+// Reads <path d>, <polygon>, <rect> (rounded corners too), <circle> and <ellipse> elements
+// (path commands M, L, H, V, C, S, Q, T, A, Z, absolute and relative), in the document's
+// coordinates: the transform attributes of the shapes and of their enclosing <g>, <a> and
+// <svg> elements are applied (matrix, translate, scale, rotate, skewX, skewY). Every closed
 // subpath is a contour: lines stay lines, quadratic and cubic Beziers become cubic
 // "bezier" curves, elliptical arcs cubic Beziers of at most 90 degrees each. Nesting gives
 // holes: the one outermost contour is "outer", the contours directly inside it are holes.
 // The drawing is translated to start at (0, 0) and scaled so its larger side is options.size.
-// Errors: ParseError (malformed path data or numbers, naming the element and the place),
+// Errors: ParseError (malformed path data, numbers or transforms, naming the element and the place),
 // OpenContour (a subpath that is not closed), InvalidDomain (no closed shape, several
 // outermost contours, or a contour inside a hole).
 nlohmann::json domainJsonFromSvg(const std::string& svgText, const SvgImportOptions& options = {});
