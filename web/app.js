@@ -776,6 +776,8 @@ function showResult(result) {
     needsFit = false;
     views.fit2D(views.meshBounds2());
     views.fit3D();
+  } else if (!views.dragging) {
+    views.refitIfOutgrown();
   }
   views.sourcePatch = state.surface ? surfaceEditor.patch : 0;
   views.setSources(sourceList(), state.selected, state.view.sources);
@@ -819,12 +821,17 @@ function renderStats(s) {
   const f3 = (x) => (x == null ? '–' : Number(x).toFixed(3));
   const el = s.edgeLength ?? {}, q = s.quality ?? {};
   const ms = (x) => `${(1000 * (x ?? 0)).toFixed(0)} ms`;
+  // A surface's report measures in 3D (quality3d: its edge count, no degenerate count and
+  // no [0.6, 1.3] fraction): rows it has no value for are left out, not shown empty.
+  const surface = s.quality3d != null;
   const rows = [
     ['vertices', s.vertices], ['triangles', s.triangles],
-    ['quads', s.quads], ['edges', s.edges],
-    ['len in [1/√2, √2]', pct(el.fractionWithinSqrt2)], ['len in [0.6, 1.3]', pct(el['fractionWithin0.6_1.3'])],
+    ['quads', s.quads], ['edges', s.edges ?? s.quality3d?.edges],
+    ['len in [1/√2, √2]', pct(el.fractionWithinSqrt2)],
+    ...(surface ? [] : [['len in [0.6, 1.3]', pct(el['fractionWithin0.6_1.3'])]]),
     ['len min / mean', `${f3(el.min)} / ${f3(el.mean)}`], ['len max', f3(el.max)],
-    ['Q min / mean', `${f3(q.min)} / ${f3(q.mean)}`], ['inverted, degen.', `${s.inverted ?? '–'}, ${s.degenerate ?? '–'}`],
+    ['Q min / mean', `${f3(q.min)} / ${f3(q.mean)}`],
+    surface ? ['inverted', `${s.inverted ?? '–'}`] : ['inverted, degen.', `${s.inverted ?? '–'}, ${s.degenerate ?? '–'}`],
     ...(s.pipelineSeconds
       ? [['core control space', ms(s.pipelineSeconds.controlSpace + s.pipelineSeconds.boundaryUpdates)], ['core meshing', ms(s.pipelineSeconds.meshing)]]
       : [['core total', ms(s.secondsTotal)], ['patches, rounds', `${s.patches ?? '–'}, ${s.rounds ?? '–'}`]]),

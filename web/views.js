@@ -182,6 +182,7 @@ export class Views {
   fit2D(bounds) {
     if (!bounds) return;
     const [x0, y0, x1, y1] = bounds;
+    this.fitted2 = [...bounds];
     const v = this.viewports()['2d'] ?? { w: 1, h: 1 };
     const aspect = v.w / Math.max(v.h, 1);
     this.view2.cx = (x0 + x1) / 2;
@@ -197,6 +198,7 @@ export class Views {
     if (box.isEmpty()) return;
     const c = box.getCenter(new THREE.Vector3());
     const r = box.getSize(new THREE.Vector3()).length() / 2;
+    this.fitted3 = { c: c.clone(), r };
     const dist = r / Math.sin((this.cam3.fov * Math.PI) / 360) * 1.2;
     this.controls.target.copy(c);
     const dir = this.mesh?.dimension === 3 ? new THREE.Vector3(1, -1.4, 0.9) : new THREE.Vector3(0.15, -1.1, 1.0);
@@ -206,6 +208,27 @@ export class Views {
     this.cam3.updateProjectionMatrix();
     this.controls.update();
     this.requestRender('3d');
+  }
+
+  /**
+   * Fits again a view whose last fit no longer frames the mesh: its size changed by more than
+   * 1.5 times or it moved by more than a quarter of its size (a sphere's radius 1 -> 3, a new
+   * parameter range). Small changes (a source dragged) keep the user's camera.
+   */
+  refitIfOutgrown() {
+    const box = new THREE.Box3().setFromObject(this.group3);
+    if (!box.isEmpty() && this.fitted3) {
+      const c = box.getCenter(new THREE.Vector3()), r = box.getSize(new THREE.Vector3()).length() / 2;
+      const f = this.fitted3;
+      if (r > 1.5 * f.r || r < f.r / 1.5 || c.distanceTo(f.c) > 0.25 * f.r) this.fit3D();
+    }
+    const b = this.meshBounds2(), g = this.fitted2;
+    if (b && g) {
+      const size = (q) => Math.max(q[2] - q[0], q[3] - q[1]);
+      const s = size(b), t = size(g);
+      const moved = Math.hypot((b[0] + b[2] - g[0] - g[2]) / 2, (b[1] + b[3] - g[1] - g[3]) / 2);
+      if (s > 1.5 * t || s < t / 1.5 || moved > 0.25 * t) this.fit2D(b);
+    }
   }
 
   // --- rendering ------------------------------------------------------------------------

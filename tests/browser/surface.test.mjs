@@ -154,6 +154,22 @@ test('a surface mesh that outgrows its arrays is drawn in colour in both views (
   await page.close();
 });
 
+test('a surface\'s stats panel has no empty rows, and a surface made 3 times larger is fitted again', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('sphere'));
+  await page.waitForFunction(() => document.querySelector('#stats dd[data-key="Q min / mean"]')?.textContent.includes('/'));
+  const rows = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('#stats dd')].map((d) => [d.dataset.key, d.textContent])));
+  assert.ok(Number(rows.edges) > 1000, `edges: ${rows.edges}`);
+  for (const [k, v] of Object.entries(rows)) assert.ok(!/^–$|–,|, –|undefined/.test(v), `row ${k}: ${v}`);
+  assert.equal(rows['len in [0.6, 1.3]'], undefined, 'a row the surface report has no value for');
+  const r0 = await page.evaluate(() => window.anisomeshApp.views.fitted3.r);
+  await settle(page, () => { const a = window.anisomeshApp; a.state.case.patches[0].surface.radius = 3; a.edited(0); });
+  const r1 = await page.evaluate(() => window.anisomeshApp.views.fitted3.r);
+  assert.ok(Math.abs(r1 / r0 - 3) < 0.1, `fitted radius ${r0} -> ${r1}`);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
 test('a surface case downloads and loads back (file input and drop) with an identical mesh', async () => {
   const { page, errors } = await openPage(env.browser, env.url, { acceptDownloads: true });
   await settle(page, () => window.anisomeshApp.loadPreset('two-patch-c'));
