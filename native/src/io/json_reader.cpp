@@ -1,5 +1,7 @@
 #include "json_reader.h"
 
+#include "anisomesh/io/json_text.h"
+
 #include <cmath>
 #include <memory>
 
@@ -17,6 +19,7 @@ std::string child(const std::string& path, const std::string& key) { return path
 std::string index(const std::string& path, size_t i) { return path + "[" + std::to_string(i) + "]"; }
 
 json parseText(const std::string& text) {
+  requireNoNulByte(text);
   try {
     return json::parse(text);
   } catch (const json::exception& e) {  // parse_error, and out_of_range for a number overflow (1e999)

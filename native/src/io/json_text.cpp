@@ -83,6 +83,13 @@ std::string jsonOverflowPath(const std::string& text) {
   return t.overflowPath;
 }
 
+void requireNoNulByte(const std::string& text) {
+  const size_t at = text.find('\0');
+  require(at == std::string::npos, ErrorCode::ParseError,
+          "(root): malformed JSON: a NUL byte at offset " + std::to_string(at) +
+              " (the JSON parser would take it for the end of the text and ignore what follows)");
+}
+
 void requireNoJsonNumberOverflow(const std::string& text) {
   const std::string path = jsonOverflowPath(text);
   require(path.empty(), ErrorCode::ParseError, path + ": number overflow: the value does not fit a double");

@@ -51,6 +51,7 @@ CaseRun runCaseUnguarded(const std::string& jsonText, const RunCaseOptions& opti
   // Parsed once (a 1M-point polyline is 33 MB of text); on a syntax error the check
   // below gives one clean message for both kinds of case.
   nlohmann::json root = readCase(jsonText, [&] {
+    requireNoNulByte(jsonText);
     nlohmann::json parsed = nlohmann::json::parse(jsonText, nullptr, false);
     if (parsed.is_discarded()) {
       checkJsonSyntax(jsonText);  // throws (an overflowing number: out_of_range 406)

@@ -14,4 +14,8 @@ std::string jsonOverflowPath(const std::string& text);
 // holds such a number (call it when nlohmann's parser reports out_of_range 406).
 void requireNoJsonNumberOverflow(const std::string& text);
 
+// ParseError when the text holds a NUL byte (nlohmann's parser stops there: a valid case
+// followed by a NUL and garbage was read as the case alone).
+void requireNoNulByte(const std::string& text);
+
 }  // namespace anisomesh
