@@ -52,6 +52,10 @@ function callbacksGuarded(options, keys, call) {
   return result;
 }
 
+// The options meshCase takes (MeshCaseOptions in index.d.ts).
+const MESH_CASE_OPTIONS = ['inspectControlSpace', 'vertexMetrics', 'measures', 'elementMeasures', 'stats', 'quads', 'allQuads',
+  'maxElements', 'controlSpaceUpdates', 'controlSpaceGlyphs', 'patchParams', 'onProgress', 'svg', 'vtu'];
+
 function argError(message) {
   return new AnisomeshError('INVALID_ARGUMENT', message);
 }
@@ -352,6 +356,10 @@ export function wrapCore(core) {
      */
     meshCase(c, options = {}) {
       if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+      // As unknown fields of a case are refused, so are unknown options (a typo would be ignored).
+      for (const key of Object.keys(options)) {
+        if (!MESH_CASE_OPTIONS.includes(key)) throw argError(`options.${key}: unknown option (known: ${MESH_CASE_OPTIONS.join(', ')})`);
+      }
       const { onProgress, maxElements } = options;
       if (onProgress !== undefined && typeof onProgress !== 'function') throw argError('options.onProgress: expected a function');
       if (maxElements !== undefined && !(Number.isInteger(maxElements) && maxElements > 0)) {
