@@ -138,7 +138,10 @@ Affine parseTransform(const std::string& text, const std::string& where) {
     if (name.empty() || close == std::string::npos)
       parseError(where, "transform: expected name(numbers) at column " + std::to_string(i + 1));
     const std::string args = text.substr(j + 1, close - j - 1);
-    Scanner sc(args, where + " transform " + name);
+    std::string scanWhere = where;
+    scanWhere += " transform ";
+    scanWhere += name;
+    Scanner sc(args, scanWhere);
     std::vector<double> v;
     while (!sc.done()) v.push_back(sc.number());
     auto need = [&](size_t lo, size_t hi) {
