@@ -293,6 +293,11 @@ Mesh remeshImpl(const Mesh& input, const std::vector<Metric>& metrics, const Rem
     if (options.onStage) options.onStage(name);
   };
   stage("boundary");
+  // A non-finite vertex is named here (the boundary loops would refuse it as a polyline
+  // point without saying which): 1-based, as Medit numbers vertices.
+  for (size_t v = 0; v < input.points.size(); ++v)
+    require(input.points[v].allFinite(), ErrorCode::InvalidArgument,
+            "remesh: vertex " + std::to_string(v + 1) + " of the input mesh has a coordinate that is not finite");
   auto t = Clock::now();
   LoopDomainOptions loopOptions;
   loopOptions.smooth = options.hausdorff > 0;
