@@ -1142,11 +1142,29 @@ function domainText(d) {
 }
 
 // The editable JSON part of the case: the planar domain (contour and holes), or a surface
-// case's patches (surfaces with their expressions, trimming contours, sources).
-const editableKey = () => (state.surface ? 'patches' : 'domain');
+// case's model: its patches (surfaces with their expressions, trimming contours, sources),
+// the curves they share (a second patch and its shared curve are added here) and the named
+// surfaces they use.
+const SURFACE_MODEL_KEYS = ['surfaces', 'patches', 'shared'];
+function editableValue() {
+  if (!state.surface) return state.case.domain;
+  return Object.fromEntries(SURFACE_MODEL_KEYS.filter((k) => state.case[k] !== undefined).map((k) => [k, state.case[k]]));
+}
+function setEditable(d) {
+  if (!state.surface) {
+    state.case.domain = d;
+    return;
+  }
+  // An array is the patches alone (as the box held them before it held the whole model).
+  const model = Array.isArray(d) ? { ...editableValue(), patches: d } : d;
+  for (const k of SURFACE_MODEL_KEYS) {
+    if (model?.[k] !== undefined) state.case[k] = model[k];
+    else delete state.case[k];
+  }
+}
 function showEditable() {
-  $('domain-box').querySelector('summary').textContent = state.surface ? 'Surface patches (JSON)' : 'Domain (JSON)';
-  state.shownEditable = $('domain-json').value = domainText(state.case[editableKey()]);
+  $('domain-box').querySelector('summary').textContent = state.surface ? 'Surface model (JSON: patches, shared curves)' : 'Domain (JSON)';
+  state.shownEditable = $('domain-json').value = domainText(editableValue());
   // The analytic size field h(x, y) is a planar source (surface patches take sources in (u, v)).
   $('expr-box').hidden = state.surface;
 }
@@ -1167,7 +1185,7 @@ $('domain-apply').addEventListener('click', () => {
     showError('domain', `JSON: ${e.message}`);
     return;
   }
-  state.case[editableKey()] = d;
+  setEditable(d);
   if (state.surface) {
     // The panel's controls are bound to the replaced patches: bind them to the new ones.
     surfaceEditor.reset(Math.max(0, Math.min(surfaceEditor.patch, (state.case.patches?.length ?? 1) - 1)));

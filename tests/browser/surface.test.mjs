@@ -274,6 +274,35 @@ test('the surface JSON box follows panel edits, and after an Apply the panel edi
   await page.close();
 });
 
+test('the surface JSON box holds the shared curves: a second patch and its shared curve are removed and added there', async () => {
+  const { page, errors } = await openPage(env.browser, env.url);
+  await settle(page, () => window.anisomeshApp.loadPreset('two-patch-c'));
+  const patchesOnScreen = () => page.evaluate(() => new Set(window.anisomeshApp.views.result.patches.element).size);
+  const digest = await page.evaluate(meshDigest);
+  assert.equal(await patchesOnScreen(), 2);
+  await page.locator('#domain-box summary').click();
+  const text = await page.locator('#domain-json').inputValue();
+  const model = JSON.parse(text);
+  assert.equal(model.patches.length, 2);
+  assert.ok(model.shared?.length >= 1, 'the shared curves are in the box');
+  // One patch, no shared curve: applied, one patch is meshed.
+  await page.locator('#domain-json').fill(JSON.stringify({ ...model, patches: model.patches.slice(0, 1), shared: undefined }));
+  await page.locator('#domain-apply').click();
+  await page.waitForFunction(() => window.anisomeshApp.idle() && window.anisomeshApp.state.case.patches.length === 1);
+  await settle(page);
+  assert.equal(await page.evaluate(() => window.anisomeshApp.state.case.shared), undefined);
+  assert.equal(await patchesOnScreen(), 1);
+  // The second patch and its shared curve added back: the preset's mesh again.
+  await page.locator('#domain-json').fill(text);
+  await page.locator('#domain-apply').click();
+  await page.waitForFunction(() => window.anisomeshApp.idle() && window.anisomeshApp.state.case.patches.length === 2);
+  await settle(page);
+  assert.equal(await patchesOnScreen(), 2);
+  assert.deepEqual(await page.evaluate(meshDigest), digest);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
 test('a height-field patch typed as an expression meshes; an invalid expression shows its error and keeps the mesh', async () => {
   const { page, errors } = await openPage(env.browser, env.url);
   await settle(page, () => window.anisomeshApp.loadPreset('new-heightfield'));
