@@ -450,6 +450,23 @@ TEST(SurfaceMeshErrors, OutOfRangeOptionsAreRefused) {
       R"(, "metric": {"chordTolerance": 0, "angleTolerance": 0, "hmax": 0.3, "hmin": 0.01}, "options": {"improvementPasses": 0, "maxRounds": 1}})"));
 }
 
+// A parameterization that folds inside the patch (x = u^2 over [-1, 1] covers x in [0, 1]
+// twice: Su x Sv = 0 along u = 0, the normal turns over) is refused; a kink (|u|), a fast
+// oscillation and a thin tube turn the normal between samples without vanishing and mesh.
+TEST(SurfaceMeshErrors, AFoldingParameterizationIsRefused) {
+  auto expressionCase = [](const std::string& x, const std::string& y, const std::string& z,
+                           const std::string& domain) {
+    return R"({"metric": {"chordTolerance": 0.02, "hmin": 0.02, "hmax": 0.5}, "patches": [{"name": "p", "surface": {"type": "expression", "x": ")" +
+           x + R"(", "y": ")" + y + R"(", "z": ")" + z + R"(", "domain": )" + domain + "}}]}";
+  };
+  expectSurfaceError(expressionCase("u*u", "v", "0", "[[-1, 0], [1, 1]]"), ErrorCode::InvalidSurface,
+                     {"patch 'p'", "folds over itself"});
+  for (const char* z : {"10*abs(u)", "0.2*sin(40*u)"})
+    EXPECT_NO_THROW(meshSurfaceCase(expressionCase("u", "v", z, "[[-1, 0], [1, 1]]"))) << z;
+  EXPECT_NO_THROW(meshSurfaceCase(
+      expressionCase("(1+0.05*cos(v))*cos(u)", "(1+0.05*cos(v))*sin(u)", "0.05*sin(v)", "[[0, 0], [3, 6.2]]")));
+}
+
 TEST(SurfaceMeshErrors, BadExpressionNamesTheColumn) {
   expectSurfaceError(
       R"J({"patches": [{"surface": {"type": "expression", "x": "u", "y": "v", "z": "sin(u +* v)", "domain": [[0,0],[1,1]]}}]})J",

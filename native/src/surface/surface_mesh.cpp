@@ -47,19 +47,65 @@ void checkPatch(const SurfacePatch& p, int index) {
   for (const auto& h : p.domain.holes) holes.push_back(sampleContour(h, 16));
   int inside = 0, degenerate = 0;
   Vec2 firstBad;
-  for (int i = 0; i < 12; ++i)
-    for (int j = 0; j < 12; ++j) {
-      const Vec2 q = box.lo + Vec2(box.size().x() * (i + 0.5) / 12, box.size().y() * (j + 0.5) / 12);
+  constexpr int kGrid = 12;
+  auto sample = [&](int i, int j) {
+    return Vec2(box.lo + Vec2(box.size().x() * (i + 0.5) / kGrid, box.size().y() * (j + 0.5) / kGrid));
+  };
+  std::vector<char> in(kGrid * kGrid, 0);
+  std::vector<Vec3> normals(kGrid * kGrid);  // Su x Sv of the non-degenerate inside samples
+  for (int i = 0; i < kGrid; ++i)
+    for (int j = 0; j < kGrid; ++j) {
+      const Vec2 q = sample(i, j);
       if (!pointInPolygon(outer, q)) continue;
       bool inHole = false;
       for (const auto& h : holes) inHole = inHole || pointInPolygon(h, q);
       if (inHole) continue;
       ++inside;
-      if (isDegenerate(derivs(q)) && degenerate++ == 0) firstBad = q;
+      const SurfaceDerivatives d = derivs(q);
+      if (isDegenerate(d)) {
+        if (degenerate++ == 0) firstBad = q;
+      } else {
+        in[size_t(i * kGrid + j)] = 1;
+        normals[size_t(i * kGrid + j)] = d.su.cross(d.sv);
+      }
     }
   if (degenerate > 0 && 10 * degenerate > inside)
     throw Error(ErrorCode::InvalidSurface, label + ": degenerate parameterization (Su x Sv = 0) at " + fmtUv(firstBad) +
                                                " and " + std::to_string(degenerate - 1) + " more sample points");
+  // A fold: between two neighbouring samples the normal turns over and Su x Sv vanishes on
+  // the way (x = u^2 over [-1, 1] covers x in [0, 1] twice). Bisection finds where the
+  // normal turns; a kink (|u|) or a tight bend turns it with Su x Sv far from 0 and passes.
+  auto normal = [&](const Vec2& q, double* area) {
+    const SurfaceDerivatives d = derivs(q);
+    const Vec3 n = d.su.cross(d.sv);
+    *area = n.norm();
+    return Vec3(n / (*area > 0.0 ? *area : 1.0));
+  };
+  for (int i = 0; i < kGrid; ++i)
+    for (int j = 0; j < kGrid; ++j)
+      for (const auto& [di, dj] : {std::make_pair(1, 0), std::make_pair(0, 1)}) {
+        if (i + di >= kGrid || j + dj >= kGrid || !in[size_t(i * kGrid + j)] || !in[size_t((i + di) * kGrid + j + dj)])
+          continue;
+        const Vec3 &ca = normals[size_t(i * kGrid + j)], &cb = normals[size_t((i + di) * kGrid + j + dj)];
+        if (!(ca.dot(cb) < 0.0)) continue;  // the usual case: no evaluation beyond the grid's
+        Vec2 a = sample(i, j), b = sample(i + di, j + dj);
+        const double areaA = ca.norm(), areaB = cb.norm();
+        double area;
+        const Vec3 na = ca / areaA;
+        Vec2 m = 0.5 * (a + b);
+        for (int k = 0; k < 60; ++k) {
+          m = 0.5 * (a + b);
+          const Vec3 nm = normal(m, &area);
+          if (!(area > 0.0)) break;
+          (nm.dot(na) > 0.0 ? a : b) = m;
+        }
+        normal(m, &area);
+        if (!(area > 1e-6 * std::max(areaA, areaB)))
+          throw Error(ErrorCode::InvalidSurface, label +
+                                                     ": the surface folds over itself (Su x Sv = 0 and the normal "
+                                                     "turns over) near " +
+                                                     fmtUv(m));
+      }
 }
 
 Mesh ModelMesher::run(SurfaceMeshReport* report) {
