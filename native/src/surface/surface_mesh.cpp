@@ -51,6 +51,7 @@ void checkPatch(const SurfacePatch& p, int index) {
   auto sample = [&](int i, int j) {
     return Vec2(box.lo + Vec2(box.size().x() * (i + 0.5) / kGrid, box.size().y() * (j + 0.5) / kGrid));
   };
+  auto cell = [](int i, int j) { return static_cast<size_t>(i) * kGrid + static_cast<size_t>(j); };
   std::vector<char> in(kGrid * kGrid, 0);
   std::vector<Vec3> normals(kGrid * kGrid);  // Su x Sv of the non-degenerate inside samples
   for (int i = 0; i < kGrid; ++i)
@@ -65,8 +66,8 @@ void checkPatch(const SurfacePatch& p, int index) {
       if (isDegenerate(d)) {
         if (degenerate++ == 0) firstBad = q;
       } else {
-        in[size_t(i * kGrid + j)] = 1;
-        normals[size_t(i * kGrid + j)] = d.su.cross(d.sv);
+        in[cell(i, j)] = 1;
+        normals[cell(i, j)] = d.su.cross(d.sv);
       }
     }
   if (degenerate > 0 && 10 * degenerate > inside)
@@ -84,9 +85,8 @@ void checkPatch(const SurfacePatch& p, int index) {
   for (int i = 0; i < kGrid; ++i)
     for (int j = 0; j < kGrid; ++j)
       for (const auto& [di, dj] : {std::make_pair(1, 0), std::make_pair(0, 1)}) {
-        if (i + di >= kGrid || j + dj >= kGrid || !in[size_t(i * kGrid + j)] || !in[size_t((i + di) * kGrid + j + dj)])
-          continue;
-        const Vec3 &ca = normals[size_t(i * kGrid + j)], &cb = normals[size_t((i + di) * kGrid + j + dj)];
+        if (i + di >= kGrid || j + dj >= kGrid || !in[cell(i, j)] || !in[cell(i + di, j + dj)]) continue;
+        const Vec3 &ca = normals[cell(i, j)], &cb = normals[cell(i + di, j + dj)];
         if (!(ca.dot(cb) < 0.0)) continue;  // the usual case: no evaluation beyond the grid's
         Vec2 a = sample(i, j), b = sample(i + di, j + dj);
         const double areaA = ca.norm(), areaB = cb.norm();
