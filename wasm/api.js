@@ -56,6 +56,16 @@ function callbacksGuarded(options, keys, call) {
 const MESH_CASE_OPTIONS = ['inspectControlSpace', 'vertexMetrics', 'measures', 'elementMeasures', 'stats', 'quads', 'allQuads',
   'maxElements', 'controlSpaceUpdates', 'controlSpaceGlyphs', 'patchParams', 'onProgress', 'svg', 'vtu'];
 
+// The options remesh takes (RemeshOptions in index.d.ts).
+const REMESH_OPTIONS = ['hmin', 'hmax', 'hgrad', 'hsiz', 'maxElements', 'onProgress', 'onStage', 'stats', 'svg', 'vtu'];
+
+// As unknown fields of a case are refused, so are unknown options (a typo would be ignored).
+function checkKnownOptions(options, known) {
+  for (const key of Object.keys(options)) {
+    if (!known.includes(key)) throw argError(`options.${key}: unknown option (known: ${known.join(', ')})`);
+  }
+}
+
 function argError(message) {
   return new AnisomeshError('INVALID_ARGUMENT', message);
 }
@@ -356,10 +366,7 @@ export function wrapCore(core) {
      */
     meshCase(c, options = {}) {
       if (options === null || typeof options !== 'object') throw argError('options: expected an object');
-      // As unknown fields of a case are refused, so are unknown options (a typo would be ignored).
-      for (const key of Object.keys(options)) {
-        if (!MESH_CASE_OPTIONS.includes(key)) throw argError(`options.${key}: unknown option (known: ${MESH_CASE_OPTIONS.join(', ')})`);
-      }
+      checkKnownOptions(options, MESH_CASE_OPTIONS);
       const { onProgress, maxElements } = options;
       if (onProgress !== undefined && typeof onProgress !== 'function') throw argError('options.onProgress: expected a function');
       if (maxElements !== undefined && !(Number.isInteger(maxElements) && maxElements > 0)) {
@@ -393,6 +400,7 @@ export function wrapCore(core) {
       checkMesh(mesh);
       if (metrics !== null) checkMetrics(metrics, mesh.vertices.length / mesh.dimension);
       if (options === null || typeof options !== 'object') throw argError('options: expected an object');
+      checkKnownOptions(options, REMESH_OPTIONS);
       for (const key of ['hmin', 'hmax', 'hgrad', 'hsiz']) {
         const v = options[key];
         if (v !== undefined && !(typeof v === 'number' && Number.isFinite(v) && v >= 0)) {

@@ -77,8 +77,11 @@ test('case objects that JSON cannot carry are INVALID_ARGUMENT errors naming the
   assert.ok(am.meshCase(planar({ outer: square })).mesh.triangles.length > 0, 'the module keeps working');
 });
 
-test('an unknown meshCase option is an INVALID_ARGUMENT naming it (a typo is not ignored)', () => {
+test('an unknown meshCase or remesh option is an INVALID_ARGUMENT naming it (a typo is not ignored)', () => {
   assert.throws(() => am.meshCase(planar({ outer: square }), { frobnicate: true }),
     (e) => e instanceof AnisomeshError && e.code === 'INVALID_ARGUMENT' && /options\.frobnicate: unknown option/.test(e.message));
   assert.throws(() => am.meshCase(planar({ outer: square }), { onprogress: () => false }), /options\.onprogress/);
+  const { mesh } = am.meshCase(planar({ outer: square }));
+  assert.throws(() => am.remesh(mesh, null, { hsize: 0.05 }),
+    (e) => e instanceof AnisomeshError && e.code === 'INVALID_ARGUMENT' && /options\.hsize: unknown option/.test(e.message));
 });
