@@ -116,6 +116,15 @@ inline const Contour& contourOf(const SurfacePatch& p, int k) {
 
 inline int contourCount(const SurfacePatch& p) { return 1 + int(p.domain.holes.size()); }
 
+// The curve a reference names, or nullptr when the model has no such patch, contour or curve.
+inline const Curve* curveAt(const SurfaceModel& m, const CurveRef& r) {
+  if (r.patch < 0 || size_t(r.patch) >= m.patches.size()) return nullptr;
+  const SurfacePatch& p = m.patches[size_t(r.patch)];
+  if (r.contour < 0 || r.contour >= contourCount(p)) return nullptr;
+  const Contour& c = contourOf(p, r.contour);
+  return r.curve >= 0 && size_t(r.curve) < c.curves.size() ? c.curves[size_t(r.curve)].curve.get() : nullptr;
+}
+
 // One boundary curve of one patch and its current discretization (own t ascending).
 struct Slot {
   int patch = 0, contour = 0, curve = 0;

@@ -6,6 +6,8 @@
 #include <limits>
 #include <map>
 
+#include "model_mesher.h"
+
 namespace anisomesh {
 
 std::vector<int> elementPatches(const SurfaceModel& model, const Mesh& mesh) {
@@ -87,15 +89,8 @@ struct Seam {
 
 std::vector<std::vector<Seam>> seamsOf(const SurfaceModel& model) {
   std::vector<std::vector<Seam>> seams(model.patches.size());
-  auto curveOf = [&](const CurveRef& r) -> const Curve* {
-    if (r.patch < 0 || size_t(r.patch) >= model.patches.size()) return nullptr;
-    const Domain& d = model.patches[size_t(r.patch)].domain;
-    if (r.contour < 0 || size_t(r.contour) > d.holes.size()) return nullptr;
-    const Contour& c = r.contour == 0 ? d.outer : d.holes[size_t(r.contour - 1)];
-    return r.curve >= 0 && size_t(r.curve) < c.curves.size() ? c.curves[size_t(r.curve)].curve.get() : nullptr;
-  };
   for (const SharedCurve& sc : model.shared) {
-    const Curve *a = curveOf(sc.a), *b = curveOf(sc.b);
+    const Curve *a = surface_mesher::curveAt(model, sc.a), *b = surface_mesher::curveAt(model, sc.b);
     if (sc.a.patch == sc.b.patch && a && b) seams[size_t(sc.a.patch)].push_back({a, b, sc.reversed});
   }
   return seams;

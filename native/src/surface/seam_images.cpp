@@ -8,14 +8,6 @@ namespace surface_mesher {
 
 namespace {
 
-const Curve* curveAt(const SurfaceModel& m, const CurveRef& r) {
-  if (r.patch < 0 || size_t(r.patch) >= m.patches.size()) return nullptr;
-  const Domain& d = m.patches[size_t(r.patch)].domain;
-  if (r.contour < 0 || size_t(r.contour) > d.holes.size()) return nullptr;
-  const Contour& c = r.contour == 0 ? d.outer : d.holes[size_t(r.contour - 1)];
-  return r.curve >= 0 && size_t(r.curve) < c.curves.size() ? c.curves[size_t(r.curve)].curve.get() : nullptr;
-}
-
 Vec2 shifted(const Vec2& p, const Vec2& s) { return p + s; }
 
 }  // namespace
